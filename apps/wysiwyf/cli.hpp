@@ -1,0 +1,37 @@
+#pragma once
+// The `wysiwyf` command line: small argument helpers shared by the sub-commands.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wysiwyf::cli {
+
+// Arguments after the sub-command, consumed as options are read.
+class Args {
+ public:
+  explicit Args(std::vector<std::string> args) : args_(std::move(args)) {}
+  // "--name value" (or "--name=value"); removes it. Repeated options: every value, in order.
+  std::vector<std::string> values(const std::string& name);
+  std::optional<std::string> value(const std::string& name);
+  bool flag(const std::string& name);
+  // The first argument if it is not an option (a sub-command or its operand); removes it.
+  std::optional<std::string> take_front();
+  // What is left that is not an option.
+  std::vector<std::string> positional() const;
+  // Options nobody asked for; call after reading every option.
+  std::vector<std::string> unknown_options() const;
+
+ private:
+  std::vector<std::string> args_;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+int cmd_run(Args args);
+int cmd_validate(Args args);
+int cmd_components(Args args);
+int cmd_topic(Args args);
+
+}  // namespace wysiwyf::cli

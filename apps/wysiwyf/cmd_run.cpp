@@ -1,0 +1,95 @@
+// wysiwyf run / validate.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+
+#include "cli.hpp"
+#include "wysiwyf/runtime.hpp"
+#include "wysiwyf/validator.hpp"
+
+namespace wysiwyf::cli {
+
+namespace {
+
+struct Loaded {
+  PipelineSpec spec;
+  ValidationResult validation;
+};
+
+// Parses and validates; prints every problem; nullopt when the pipeline cannot run.
+std::optional<Loaded> load_and_validate(Args& args, Loader& loader, std::string& process) {
+  process = args.value("--process").value_or("");
+  const auto sets = args.values("--set");
+  const auto files = args.positional();
+  if (files.size() != 1) throw UsageError("expected one pipeline file, found " + std::to_string(files.size()));
+  Loaded loaded;
+  try {
+    loaded.spec = load_pipeline(files[0], sets);
+  } catch (const ConfigError& e) {
+    std::cerr << e.what() << "\n" << e.issues().size() << " error(s); nothing was started\n";
+    return std::nullopt;
+  }
+  loaded.validation = validate_pipeline(loaded.spec, loader, process);
+  for (const auto& w : loaded.validation.warnings) std::cerr << w.where.str() << ": warning: " << w.message << "\n";
+  for (const auto& e : loaded.validation.errors) std::cerr << e.str() << "\n";
+  if (!loaded.validation.ok()) {
+    std::cerr << loaded.validation.errors.size() << " error(s); nothing was started\n";
+    return std::nullopt;
+  }
+  return loaded;
+}
+
+void print_report(const RunResult& r) {
+  std::cout << std::fixed << std::setprecision(3) << "stopped: " << (r.ok ? r.stop_reason : "fault")
+            << " at t=" << r.sim_time_ns * 1e-9 << " s after " << r.wall_seconds << " s wall\n";
+  std::cout << std::left << std::setw(18) << "component" << std::setw(20) << "type" << std::right << std::setw(10)
+            << "ticks" << std::setw(11) << "p50 us" << std::setw(11) << "p99 us" << std::setw(11) << "max us"
+            << std::setw(10) << "overruns" << "\n";
+  for (const auto& c : r.components)
+    std::cout << std::left << std::setw(18) << c.name << std::setw(20) << c.type << std::right << std::setw(10)
+              << c.ticks << std::setprecision(1) << std::setw(11) << c.tick_p50_us << std::setw(11) << c.tick_p99_us
+              << std::setw(11) << c.tick_max_us << std::setw(10) << c.overruns << "\n";
+}
+
+}  // namespace
+
+int cmd_run(Args args) {
+  const bool progress = args.flag("--progress");
+  const bool no_progress = args.flag("--no-progress");
+  Loader loader;
+  std::string process;
+  auto loaded = load_and_validate(args, loader, process);
+  if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
+  if (!loaded) return 2;
+  install_stop_signal_handlers();
+  RunOptions options;
+  options.process = process;
+  options.progress = progress || (!no_progress && isatty(STDERR_FILENO));
+  Runtime runtime(loaded->spec, loader, options);
+  const RunResult result = runtime.run();
+  print_report(result);
+  if (!result.ok) {
+    std::cerr << "error: " << result.error << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+int cmd_validate(Args args) {
+  Loader loader;
+  std::string process;
+  auto loaded = load_and_validate(args, loader, process);
+  if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
+  if (!loaded) return 2;
+  const auto& spec = loaded->spec;
+  std::cout << spec.file << ": ok: pipeline '" << spec.name.value << "', " << spec.components.size()
+            << " component(s), process group(s):";
+  for (const auto& p : spec.processes()) std::cout << " " << p;
+  std::cout << ", domain " << spec.domain_id() << ", " << (spec.clock_mode() == ClockMode::kSim ? "sim" : "real")
+            << " clock\n";
+  return 0;
+}
+
+}  // namespace wysiwyf::cli

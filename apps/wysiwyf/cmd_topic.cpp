@@ -1,0 +1,280 @@
+// wysiwyf topic list | echo TOPIC | hz TOPIC: watch the topics of running pipelines over DDS.
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "cli.hpp"
+#include "wysiwyf/dds.hpp"
+#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/pipeline_spec.hpp"
+#include "wysiwyf/runtime.hpp"
+
+namespace wysiwyf::cli {
+
+using namespace eprosima::fastdds::dds;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+struct TopicInfo {
+  std::string type;
+  std::set<std::string> writers, readers;  // GUIDs
+  ReliabilityQosPolicyKind reliability = BEST_EFFORT_RELIABILITY_QOS;
+  DurabilityQosPolicyKind durability = VOLATILE_DURABILITY_QOS;
+};
+
+// Collects the topics that remote writers and readers announce.
+class Discovery : public DomainParticipantListener {
+ public:
+  void on_publisher_discovery(DomainParticipant*, eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERY_STATUS;
+    std::ostringstream guid;
+    guid << info.info.guid();
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& t = topics_[info.info.topicName().to_string()];
+    t.type = info.info.typeName().to_string();
+    if (info.status == S::REMOVED_WRITER) {
+      t.writers.erase(guid.str());
+    } else {
+      t.writers.insert(guid.str());
+      t.reliability = info.info.m_qos.m_reliability.kind;
+      t.durability = info.info.m_qos.m_durability.kind;
+    }
+    cv_.notify_all();
+  }
+  void on_subscriber_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
+    std::ostringstream guid;
+    guid << info.info.guid();
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& t = topics_[info.info.topicName().to_string()];
+    t.type = info.info.typeName().to_string();
+    if (info.status == S::REMOVED_READER)
+      t.readers.erase(guid.str());
+    else
+      t.readers.insert(guid.str());
+    cv_.notify_all();
+  }
+
+  std::map<std::string, TopicInfo> topics() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return topics_;
+  }
+  // Waits until some writer announces `topic`; its info, or nullopt at the deadline.
+  std::optional<TopicInfo> wait_for_writer(const std::string& topic, Clock::time_point deadline) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_signal_received()) {
+      auto it = topics_.find(topic);
+      if (it != topics_.end() && !it->second.writers.empty()) return it->second;
+      if (cv_.wait_until(lock, std::min(deadline, Clock::now() + std::chrono::milliseconds(100))) ==
+              std::cv_status::timeout &&
+          Clock::now() >= deadline)
+        break;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::map<std::string, TopicInfo> topics_;
+};
+
+struct Session {
+  DomainParticipant* participant = nullptr;
+  Discovery discovery;
+  ~Session() {
+    if (participant) {
+      participant->delete_contained_entities();
+      DomainParticipantFactory::get_instance()->delete_participant(participant);
+    }
+  }
+};
+
+// --domain / --pipeline / --transport -> a participant that listens to discovery.
+void open(Args& args, Session& s) {
+  int domain = 0;
+  std::string transport = "default";
+  if (auto file = args.value("--pipeline")) {
+    try {
+      const PipelineSpec spec = load_pipeline(*file);
+      domain = spec.domain_id();
+      transport = spec.transport();
+    } catch (const ConfigError& e) {
+      throw UsageError(std::string("cannot read --pipeline: ") + e.what());
+    }
+  }
+  if (auto d = args.value("--domain")) {
+    try {
+      domain = std::stoi(*d);
+    } catch (...) {
+      throw UsageError("--domain: found '" + *d + "'; expected a domain id from 0 to 232");
+    }
+  }
+  if (auto t = args.value("--transport")) transport = *t;
+  DomainParticipantQos qos;
+  try {
+    qos = dds::participant_qos(transport, "wysiwyf-cli");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  s.participant = DomainParticipantFactory::get_instance()->create_participant(domain, qos, &s.discovery);
+  if (!s.participant) throw std::runtime_error("cannot join DDS domain " + std::to_string(domain));
+}
+
+double seconds_option(Args& args, const std::string& name, double fallback) {
+  auto v = args.value(name);
+  if (!v) return fallback;
+  try {
+    const double s = std::stod(*v);
+    if (s >= 0 && std::isfinite(s)) return s;
+  } catch (...) {
+  }
+  throw UsageError(name + ": found '" + *v + "'; expected a number of seconds");
+}
+
+// A reader on `topic` with the QoS of the writer found there, so that it matches.
+DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& info, const MessageType*& type) {
+  type = msgs::registry().find(info.type);
+  if (!type) throw std::runtime_error("topic '" + topic + "' carries " + info.type + ", which this build does not know");
+  TypeSupport support(type->make_type());
+  support.register_type(s.participant);
+  Topic* t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
+  Subscriber* sub = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+  Qos qos = Qos::reliable(100);
+  qos.reliability = info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
+  qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
+  DataReader* reader = sub->create_datareader(t, dds::reader_qos(qos));
+  if (!reader) throw std::runtime_error("cannot create a reader on topic '" + topic + "'");
+  return reader;
+}
+
+int topic_list(Args& args) {
+  Session s;
+  open(args, s);
+  const double wait = seconds_option(args, "--wait", 2.0);
+  if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
+  std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+  const auto topics = s.discovery.topics();
+  std::cout << std::left << std::setw(32) << "topic" << std::setw(40) << "type" << "writers readers\n";
+  for (const auto& [name, t] : topics)
+    std::cout << std::left << std::setw(32) << name << std::setw(40) << t.type << std::setw(8) << t.writers.size()
+              << t.readers.size() << "\n";
+  if (topics.empty()) std::cerr << "no topics seen in " << wait << " s\n";
+  return 0;
+}
+
+int topic_echo(Args& args, const std::string& topic) {
+  Session s;
+  open(args, s);
+  const auto count = static_cast<long>(seconds_option(args, "--count", 0));
+  const double timeout = seconds_option(args, "--timeout", 10.0);
+  if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
+  install_stop_signal_handlers();
+  const auto info = s.discovery.wait_for_writer(topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                                         std::chrono::duration<double>(timeout)));
+  if (!info) {
+    std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
+    return 1;
+  }
+  const MessageType* type = nullptr;
+  DataReader* reader = subscribe(s, topic, *info, type);
+  std::cout << "# topic " << topic << " (" << info->type << ")\n" << std::flush;
+  void* sample = reader->type()->createData();
+  long printed = 0;
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  while (!stop_signal_received() && (count == 0 || printed < count)) {
+    if (count > 0 && printed == 0 && Clock::now() > deadline) break;
+    if (!reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 100'000'000))) continue;
+    SampleInfo si;
+    while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK && (count == 0 || printed < count)) {
+      if (!si.valid_data) continue;
+      std::cout << "---\n" << type->to_yaml(sample) << std::flush;
+      ++printed;
+    }
+  }
+  reader->type()->deleteData(sample);
+  return printed > 0 || count == 0 ? 0 : 1;
+}
+
+int topic_hz(Args& args, const std::string& topic) {
+  Session s;
+  open(args, s);
+  const double window = seconds_option(args, "--window", 1.0);
+  const double duration = seconds_option(args, "--duration", 0.0);
+  const double timeout = seconds_option(args, "--timeout", 10.0);
+  if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
+  install_stop_signal_handlers();
+  const auto info = s.discovery.wait_for_writer(topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                                         std::chrono::duration<double>(timeout)));
+  if (!info) {
+    std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
+    return 1;
+  }
+  const MessageType* type = nullptr;
+  DataReader* reader = subscribe(s, topic, *info, type);
+  void* sample = reader->type()->createData();
+  const auto start = Clock::now();
+  auto window_end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(window));
+  std::vector<double> gaps;
+  std::optional<Clock::time_point> last;
+  std::uint64_t total = 0;
+  while (!stop_signal_received()) {
+    if (duration > 0 && Clock::now() - start >= std::chrono::duration<double>(duration)) break;
+    if (reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 20'000'000))) {
+      SampleInfo si;
+      while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK) {
+        if (!si.valid_data) continue;
+        const auto now = Clock::now();
+        if (last) gaps.push_back(std::chrono::duration<double>(now - *last).count());
+        last = now;
+        ++total;
+      }
+    }
+    if (Clock::now() >= window_end) {
+      if (gaps.empty()) {
+        std::cout << "no new samples\n";
+      } else {
+        double sum = 0, sq = 0, lo = gaps[0], hi = gaps[0];
+        for (double g : gaps) sum += g, sq += g * g, lo = std::min(lo, g), hi = std::max(hi, g);
+        const double mean = sum / gaps.size();
+        const double sd = std::sqrt(std::max(0.0, sq / gaps.size() - mean * mean));
+        std::cout << std::fixed << std::setprecision(3) << "rate " << 1.0 / mean << " Hz  min " << lo * 1e3
+                  << " ms  max " << hi * 1e3 << " ms  std " << sd * 1e3 << " ms  n " << gaps.size() + 1 << "\n"
+                  << std::flush;
+      }
+      gaps.clear();
+      window_end += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(window));
+    }
+  }
+  reader->type()->deleteData(sample);
+  return total > 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int cmd_topic(Args args) {
+  const auto sub = args.take_front().value_or("");
+  const auto topic = sub == "list" ? std::optional<std::string>("") : args.take_front();
+  if (!topic) throw UsageError("topic " + sub + ": expected a topic name");
+  if (sub == "list") return topic_list(args);
+  if (sub == "echo") return topic_echo(args, *topic);
+  if (sub == "hz") return topic_hz(args, *topic);
+  throw UsageError("expected 'topic list', 'topic echo TOPIC' or 'topic hz TOPIC'");
+}
+
+}  // namespace wysiwyf::cli

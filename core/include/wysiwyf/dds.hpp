@@ -1,0 +1,27 @@
+#pragma once
+// How the kernel sets up Fast DDS, shared with the command line tools and the benchmarks so they
+// meet a pipeline on the same transports and QoS.
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+
+#include <string>
+#include <vector>
+
+#include "wysiwyf/qos.hpp"
+
+namespace wysiwyf::dds {
+
+// The transports a pipeline's `dds.transport` names.
+const std::vector<std::string>& transport_names();
+
+// "default": Fast DDS's built-in UDPv4 and shared memory, discoverable from other machines.
+// "local": shared memory and UDPv4 on 127.0.0.1 only (tests: nothing leaves the machine).
+// "shm": shared memory only. "udp": UDPv4 only.
+// Throws std::invalid_argument for any other name.
+eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
+
+eprosima::fastdds::dds::DataWriterQos writer_qos(const Qos& qos);
+eprosima::fastdds::dds::DataReaderQos reader_qos(const Qos& qos);
+
+}  // namespace wysiwyf::dds

@@ -1,0 +1,74 @@
+#pragma once
+// A bounded keep-last queue of samples for one input port. Slots are reused: after warm-up a
+// push copies into existing storage and a take swaps buffers, so steady state allocates nothing.
+#include <cstddef>
+#include <cstdint>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+namespace wysiwyf::detail {
+
+template <class T>
+class SubscriberQueue {
+ public:
+  explicit SubscriberQueue(int depth) : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)) {}
+
+  void push(const T& sample) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::size_t n = slots_.size();
+    if (count_ == n) {  // full: keep-last drops the oldest
+      head_ = (head_ + 1) % n;
+      --count_;
+      ++dropped_;
+    }
+    slots_[(head_ + count_) % n] = sample;
+    ++count_;
+    ++received_;
+  }
+
+  // Oldest unread sample into out; false when none.
+  bool take(T& out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (count_ == 0) return false;
+    using std::swap;
+    swap(out, slots_[head_]);
+    head_ = (head_ + 1) % slots_.size();
+    --count_;
+    return true;
+  }
+
+  // Newest unread sample into out, discarding older unread ones; false when none.
+  bool take_latest(T& out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (count_ == 0) return false;
+    using std::swap;
+    swap(out, slots_[(head_ + count_ - 1) % slots_.size()]);
+    head_ = 0;
+    count_ = 0;
+    return true;
+  }
+
+  std::size_t size() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return count_;
+  }
+  std::uint64_t received() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return received_;
+  }
+  std::uint64_t dropped() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return dropped_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<T> slots_;
+  std::size_t head_ = 0;
+  std::size_t count_ = 0;
+  std::uint64_t received_ = 0;
+  std::uint64_t dropped_ = 0;
+};
+
+}  // namespace wysiwyf::detail

@@ -1,0 +1,104 @@
+#pragma once
+// One topic inside a process: the local readers' queues, and the links to DDS that carry the
+// topic to and from other processes and monitors. Local delivery is synchronous (the sim clock's
+// determinism rests on it); DDS delivery is asynchronous.
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "wysiwyf/detail/subscriber_queue.hpp"
+#include "wysiwyf/message_traits.hpp"
+#include "wysiwyf/qos.hpp"
+
+namespace wysiwyf::detail {
+
+// The DDS side of a writer, implemented in core/src/dds_bridge.cpp.
+class DdsWriterLink {
+ public:
+  virtual ~DdsWriterLink() = default;
+  virtual void write(const void* sample) = 0;
+};
+
+class TopicChannelBase {
+ public:
+  TopicChannelBase(std::string topic, std::string type_name,
+                   eprosima::fastdds::dds::TopicDataType* (*make_type)())
+      : topic_(std::move(topic)), type_name_(std::move(type_name)), make_type_(make_type) {}
+  virtual ~TopicChannelBase() = default;
+
+  const std::string& topic() const { return topic_; }
+  const std::string& type_name() const { return type_name_; }
+  eprosima::fastdds::dds::TopicDataType* make_type() const { return make_type_(); }
+
+  int local_writers() const { return local_writers_; }
+  virtual int local_readers() const = 0;
+  // Strictest QoS among the local ports on this topic, used for the DDS endpoints.
+  const Qos& writer_qos() const { return writer_qos_; }
+  const Qos& reader_qos() const { return reader_qos_; }
+
+  void set_dds_writer(std::unique_ptr<DdsWriterLink> link) { dds_writer_ = std::move(link); }
+  // Called from a DDS listener thread with a sample of this channel's type.
+  virtual void deliver_from_dds(const void* sample) = 0;
+  virtual void* create_sample() const = 0;
+  virtual void delete_sample(void* sample) const = 0;
+
+ protected:
+  // Several local ports share one DDS endpoint: it gets the deepest history, reliability if any
+  // port asks for it, and the shortest deadline.
+  static void merge_qos(Qos& into, const Qos& port, bool first) {
+    if (first) {
+      into = port;
+      return;
+    }
+    if (port.depth > into.depth) into.depth = port.depth;
+    if (port.reliability == Reliability::kReliable) into.reliability = Reliability::kReliable;
+    if (port.durability == Durability::kTransientLocal) into.durability = Durability::kTransientLocal;
+    if (port.deadline_ns > 0 && (into.deadline_ns == 0 || port.deadline_ns < into.deadline_ns))
+      into.deadline_ns = port.deadline_ns;
+  }
+
+  std::string topic_;
+  std::string type_name_;
+  eprosima::fastdds::dds::TopicDataType* (*make_type_)();
+  int local_writers_ = 0;
+  Qos writer_qos_;
+  Qos reader_qos_;
+  std::unique_ptr<DdsWriterLink> dds_writer_;
+};
+
+template <class T>
+class TopicChannel final : public TopicChannelBase {
+ public:
+  explicit TopicChannel(std::string topic)
+      : TopicChannelBase(std::move(topic), MessageTraits<T>::type_name(), &MessageTraits<T>::make_type) {}
+
+  SubscriberQueue<T>* add_reader(const Qos& qos) {
+    merge_qos(reader_qos_, qos, queues_.empty());
+    queues_.push_back(std::make_unique<SubscriberQueue<T>>(qos.depth));
+    return queues_.back().get();
+  }
+  void add_writer(const Qos& qos) {
+    merge_qos(writer_qos_, qos, local_writers_ == 0);
+    ++local_writers_;
+  }
+  int local_readers() const override { return static_cast<int>(queues_.size()); }
+
+  void publish(const T& sample) {
+    for (auto& q : queues_) q->push(sample);
+    if (dds_writer_) dds_writer_->write(&sample);
+  }
+
+  void deliver_from_dds(const void* sample) override {
+    const T& s = *static_cast<const T*>(sample);
+    for (auto& q : queues_) q->push(s);
+  }
+  void* create_sample() const override { return new T(); }
+  void delete_sample(void* sample) const override { delete static_cast<T*>(sample); }
+
+ private:
+  std::vector<std::unique_ptr<SubscriberQueue<T>>> queues_;
+};
+
+}  // namespace wysiwyf::detail

@@ -1,0 +1,25 @@
+#pragma once
+// Quality of service of one port. A component declares defaults; the pipeline may override them.
+#include <cstdint>
+#include <string>
+
+namespace wysiwyf {
+
+enum class Reliability { kReliable, kBestEffort };
+enum class Durability { kVolatile, kTransientLocal };
+
+struct Qos {
+  Reliability reliability = Reliability::kReliable;
+  Durability durability = Durability::kVolatile;
+  int depth = 4;                 // samples kept per reader (keep-last history)
+  std::int64_t deadline_ns = 0;  // 0: none; else the longest expected gap between samples
+
+  static Qos reliable(int depth = 4) { return Qos{Reliability::kReliable, Durability::kVolatile, depth, 0}; }
+  // Latest-value streams (images, sensor data): lose a sample rather than wait for it.
+  static Qos sensor(int depth = 1) { return Qos{Reliability::kBestEffort, Durability::kVolatile, depth, 0}; }
+};
+
+std::string to_string(Reliability r);
+std::string to_string(Durability d);
+
+}  // namespace wysiwyf

@@ -1,0 +1,63 @@
+#pragma once
+// Runs one process group of a validated pipeline: loads and configures its components, connects
+// their ports locally and over DDS, then ticks them on the pipeline's clock until the duration
+// ends, a component asks to stop, another component throws, or SIGINT/SIGTERM arrives.
+#include <atomic>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "wysiwyf/loader.hpp"
+#include "wysiwyf/pipeline_spec.hpp"
+
+namespace wysiwyf {
+
+struct ComponentReport {
+  std::string name;
+  std::string type;
+  std::uint64_t ticks = 0;
+  std::uint64_t overruns = 0;
+  double tick_p50_us = 0;
+  double tick_p99_us = 0;
+  double tick_max_us = 0;
+};
+
+struct RunResult {
+  bool ok = true;
+  std::string stop_reason;   // "duration reached", "stopped by tracker: ...", "signal", ...
+  std::string error;         // set when !ok: which component failed where and why
+  std::int64_t sim_time_ns = 0;
+  double wall_seconds = 0;
+  std::vector<ComponentReport> components;
+};
+
+struct RunOptions {
+  std::string process;             // empty: every enabled component of the pipeline
+  bool progress = false;           // sim clock: a progress line on stderr
+  std::ostream* log = nullptr;     // component log lines and lifecycle messages (null: std::cerr)
+};
+
+class Runtime {
+ public:
+  Runtime(const PipelineSpec& spec, Loader& loader, RunOptions options = {});
+  ~Runtime();
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+
+  RunResult run();
+  // Thread-safe and async-signal-free: asks the executor to stop after the current step.
+  void request_stop(const std::string& reason);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Routes SIGINT and SIGTERM to a stop request of every Runtime that runs in this process.
+void install_stop_signal_handlers();
+// True once SIGINT or SIGTERM was received (after install_stop_signal_handlers()).
+bool stop_signal_received();
+
+}  // namespace wysiwyf

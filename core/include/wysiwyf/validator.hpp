@@ -1,0 +1,39 @@
+#pragma once
+// Checks a whole pipeline against the component libraries before anything starts: every
+// component type exists, every parameter is declared, of the right type and in range, every
+// topic mapping names a real port, ports sharing a topic carry one type, rates fit the clock.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "wysiwyf/loader.hpp"
+#include "wysiwyf/pipeline_spec.hpp"
+#include "wysiwyf/port.hpp"
+
+namespace wysiwyf {
+
+struct ComponentDescription {
+  std::string type;
+  std::string summary;
+  std::string library;
+  std::vector<ParamSpec> params;
+  std::vector<PortSpec> ports;
+};
+
+// Runs the type's configure() in describe mode: its parameters and ports with their defaults.
+ComponentDescription describe_component(Loader& loader, const std::string& type);
+
+struct ValidationResult {
+  std::vector<ConfigIssue> errors;
+  std::vector<ConfigIssue> warnings;
+  std::map<std::string, ComponentDescription> described;  // by instance name
+  bool ok() const { return errors.empty(); }
+};
+
+// `process` non-empty: also checks that the group exists.
+ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, const std::string& process = "");
+
+// Levenshtein-closest of `candidates` to `word`, or "" when none is reasonably close.
+std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace wysiwyf

@@ -1,0 +1,71 @@
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include "wysiwyf/dds.hpp"
+
+namespace wysiwyf::dds {
+
+using namespace eprosima::fastdds::dds;
+using eprosima::fastdds::rtps::SharedMemTransportDescriptor;
+using eprosima::fastdds::rtps::UDPv4TransportDescriptor;
+
+const std::vector<std::string>& transport_names() {
+  static const std::vector<std::string> names{"default", "local", "shm", "udp"};
+  return names;
+}
+
+DomainParticipantQos participant_qos(const std::string& transport, const std::string& name) {
+  DomainParticipantQos qos = PARTICIPANT_QOS_DEFAULT;
+  qos.name(name);
+  if (transport == "default") return qos;
+  qos.transport().use_builtin_transports = false;
+  if (transport == "local" || transport == "shm") {
+    auto shm = std::make_shared<SharedMemTransportDescriptor>();
+    shm->segment_size(8 * 1024 * 1024);  // room for a few 640x480 RGB frames in flight
+    qos.transport().user_transports.push_back(shm);
+  }
+  if (transport == "local" || transport == "udp") {
+    auto udp = std::make_shared<UDPv4TransportDescriptor>();
+    if (transport == "local") udp->interfaceWhiteList.emplace_back("127.0.0.1");
+    qos.transport().user_transports.push_back(udp);
+  }
+  if (qos.transport().user_transports.empty())
+    throw std::invalid_argument("unknown DDS transport '" + transport + "'; expected default, local, shm or udp");
+  return qos;
+}
+
+static eprosima::fastrtps::Duration_t to_duration(std::int64_t ns) {
+  return eprosima::fastrtps::Duration_t(static_cast<std::int32_t>(ns / 1'000'000'000),
+                                        static_cast<std::uint32_t>(ns % 1'000'000'000));
+}
+
+DataWriterQos writer_qos(const Qos& q) {
+  DataWriterQos qos = DATAWRITER_QOS_DEFAULT;
+  qos.reliability().kind = q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
+  qos.durability().kind = q.durability == Durability::kVolatile ? VOLATILE_DURABILITY_QOS : TRANSIENT_LOCAL_DURABILITY_QOS;
+  qos.history().kind = KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = q.depth;
+  if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);
+  // Reuse sample buffers instead of allocating per write; data sharing between processes on
+  // one host (bounded types) so frames are not copied through a socket.
+  qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  qos.data_sharing().automatic();
+  return qos;
+}
+
+DataReaderQos reader_qos(const Qos& q) {
+  DataReaderQos qos = DATAREADER_QOS_DEFAULT;
+  qos.reliability().kind = q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
+  qos.durability().kind = q.durability == Durability::kVolatile ? VOLATILE_DURABILITY_QOS : TRANSIENT_LOCAL_DURABILITY_QOS;
+  qos.history().kind = KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = q.depth;
+  if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);
+  qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  qos.data_sharing().automatic();
+  return qos;
+}
+
+}  // namespace wysiwyf::dds

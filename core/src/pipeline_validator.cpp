@@ -1,0 +1,119 @@
+// Checks a parsed pipeline against the component libraries: runs each component's configure()
+// in validate mode (parameters read and checked, nothing connected), then checks names, topics
+// and types across the whole pipeline.
+#include <map>
+#include <set>
+
+#include "wysiwyf/validator.hpp"
+
+namespace wysiwyf {
+
+ComponentDescription describe_component(Loader& loader, const std::string& type) {
+  const ComponentLibrary& lib = loader.load(type);
+  ComponentPtr component = loader.create(type);
+  Context ctx(Context::Mode::kDescribe, nullptr, nullptr);
+  component->configure(ctx);
+  return ComponentDescription{type, ctx.summary_text(), lib.path, ctx.declared_params(), ctx.declared_ports()};
+}
+
+namespace {
+
+std::string join(const std::vector<std::string>& items) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : ", ") + i;
+  return s;
+}
+
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string near = closest_name(word, candidates);
+  return near.empty() ? "" : " (did you mean '" + near + "'?)";
+}
+
+struct PortUse {
+  std::string label;  // "instance.port"
+  std::string type;
+  PortDirection direction;
+  Location where;
+};
+
+}  // namespace
+
+ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, const std::string& process) {
+  ValidationResult result;
+  auto error = [&](const Location& where, std::string msg) { result.errors.push_back({where, std::move(msg)}); };
+
+  if (!process.empty()) {
+    const auto groups = spec.processes();
+    if (std::find(groups.begin(), groups.end(), process) == groups.end())
+      error(Location{spec.file, 0, 0}, "process '" + process + "' is not in the pipeline; expected one of " +
+                                           join(groups) + did_you_mean(process, groups));
+  }
+
+  std::map<std::string, std::vector<PortUse>> topics;
+  for (const auto& c : spec.components) {
+    if (!c.is_enabled() || !c.type.set) continue;
+    const std::string label = "component '" + c.name + "' (" + c.type.value + ")";
+    ComponentPtr component;
+    try {
+      component = loader.create(c.type.value);
+    } catch (const LoadError& e) {
+      error(c.type.where, e.what());
+      continue;
+    }
+    Context ctx(Context::Mode::kValidate, &c, nullptr);
+    component->attach(nullptr, c.name);
+    try {
+      component->configure(ctx);
+    } catch (const std::exception& e) {
+      error(c.where, label + " rejected its configuration: " + e.what());
+      continue;
+    }
+    for (const auto& issue : ctx.issues()) result.errors.push_back(issue);
+
+    std::vector<std::string> param_names;
+    for (const auto& p : ctx.declared_params()) param_names.push_back(p.name);
+    for (const auto& [name, value] : c.params)
+      if (std::find(param_names.begin(), param_names.end(), name) == param_names.end())
+        error(c.param_keys.at(name), "unknown parameter '" + name + "' for " + label + "; expected one of " +
+                               (param_names.empty() ? "(it has no parameters)" : join(param_names)) +
+                               did_you_mean(name, param_names));
+
+    std::vector<std::string> port_names;
+    for (const auto& p : ctx.declared_ports()) port_names.push_back(p.name);
+    for (const auto& [port, topic] : c.topics)
+      if (std::find(port_names.begin(), port_names.end(), port) == port_names.end())
+        error(c.topic_keys.at(port), "unknown port '" + port + "' for " + label + "; expected one of " +
+                               (port_names.empty() ? "(it has no ports)" : join(port_names)) + did_you_mean(port, port_names));
+    for (const auto& [port, where] : c.qos_where)
+      if (std::find(port_names.begin(), port_names.end(), port) == port_names.end())
+        error(where, "qos for unknown port '" + port + "' of " + label + "; expected one of " + join(port_names) +
+                         did_you_mean(port, port_names));
+
+    for (const auto& p : ctx.declared_ports()) {
+      auto t = c.topics.find(p.name);
+      const Location where = t != c.topics.end() ? t->second.where : c.where;
+      topics[c.topic_for(p.name)].push_back(PortUse{c.name + "." + p.name, p.type_name, p.direction, where});
+    }
+    result.described[c.name] =
+        ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path, ctx.declared_params(),
+                             ctx.declared_ports()};
+  }
+
+  for (const auto& [topic, uses] : topics) {
+    const PortUse& first = uses.front();
+    for (const auto& use : uses)
+      if (use.type != first.type)
+        error(use.where, "topic '" + topic + "': port " + use.label + " carries " + use.type + " but port " +
+                             first.label + " (" + first.where.str() + ") carries " + first.type +
+                             "; expected one message type per topic");
+    const bool produced = std::any_of(uses.begin(), uses.end(),
+                                      [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
+    if (!produced)
+      for (const auto& use : uses)
+        result.warnings.push_back({use.where, "no component of this pipeline publishes topic '" + topic +
+                                                  "' (read by " + use.label + "); it must come from another program"});
+  }
+  return result;
+}
+
+}  // namespace wysiwyf

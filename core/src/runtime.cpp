@@ -1,0 +1,333 @@
+// The executor: lifecycle, the sim (lockstep) and real (one periodic thread per component)
+// clocks, diagnostics, and clean stops on faults and signals.
+#include "wysiwyf/runtime.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "dds_bridge.hpp"
+#include "tick_stats.hpp"
+#include "wysiwyf/kernel_msgs.hpp"
+
+namespace wysiwyf {
+
+using Clock = std::chrono::steady_clock;
+using kernel_msgs::ComponentState;
+
+namespace {
+
+std::int64_t wall_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+struct Slot {
+  const ComponentSpec* spec = nullptr;
+  ComponentPtr component;
+  std::int64_t period_ns = 0;
+  enum class Stage { kCreated, kConfigured, kActive, kDeactivated } stage = Stage::kCreated;
+  detail::TickStats stats;
+  std::string last_error;
+  std::uint64_t diag_seq = 0;
+  std::string label() const { return "component '" + spec->name + "' (" + spec->type.value + ")"; }
+};
+
+}  // namespace
+
+struct Runtime::Impl final : ComponentHost {
+  Impl(const PipelineSpec& s, Loader& l, RunOptions o) : spec(s), loader(l), options(std::move(o)) {}
+
+  const PipelineSpec& spec;
+  Loader& loader;
+  RunOptions options;
+  // Destroyed in reverse: slots (components) first, then the DDS bridge, then the topics.
+  detail::TopicBus bus;
+  std::unique_ptr<detail::DdsBridge> bridge;
+  std::vector<std::unique_ptr<Slot>> slots;
+  Output<kernel_msgs::Diagnostics> diagnostics;
+  kernel_msgs::Diagnostics diag_msg;
+
+  std::mutex stop_mutex;
+  std::condition_variable stop_cv;
+  std::atomic<bool> stopping{false};
+  std::string stop_reason;
+  std::string fault;  // first failure: who, where, what
+  std::mutex log_mutex;
+
+  std::ostream& log_stream() { return options.log ? *options.log : std::cerr; }
+
+  void request_stop(const std::string& component, const std::string& reason) override {
+    std::lock_guard<std::mutex> lock(stop_mutex);
+    if (!stopping.load()) stop_reason = component.empty() ? reason : "stopped by " + component + ": " + reason;
+    stopping.store(true);
+    stop_cv.notify_all();
+  }
+  void log(const std::string& component, const std::string& message) override {
+    std::lock_guard<std::mutex> lock(log_mutex);
+    log_stream() << "[" << component << "] " << message << "\n";
+  }
+  void fail(Slot& slot, const std::string& phase, const std::string& what) {
+    {
+      std::lock_guard<std::mutex> lock(stop_mutex);
+      slot.last_error = what;
+      if (fault.empty()) fault = slot.label() + " failed in " + phase + ": " + what;
+    }
+    request_stop("", "fault");
+  }
+
+  // Calls fn on the slot's component, turning an exception into a reported fault.
+  template <class Fn>
+  bool guarded(Slot& slot, const std::string& phase, Fn&& fn) {
+    try {
+      fn();
+      return true;
+    } catch (const std::exception& e) {
+      fail(slot, phase, e.what());
+    } catch (...) {
+      fail(slot, phase, "an exception that is not a std::exception");
+    }
+    return false;
+  }
+
+  void tick(Slot& slot, Time now) {
+    const auto t0 = Clock::now();
+    guarded(slot, "tick at t=" + std::to_string(now.ns) + " ns", [&] { slot.component->tick(now); });
+    slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+  }
+
+  void publish_diagnostics(Time now, double window_s, bool final) {
+    for (auto& slot : slots) {
+      const auto s = slot->stats.summarise();
+      auto& d = diag_msg;
+      d.header().stamp_ns(now.ns);
+      d.header().seq(slot->diag_seq++);
+      d.header().frame_id("");
+      d.instance(slot->spec->name);
+      d.type(slot->spec->type.value);
+      d.process(slot->spec->process_name());
+      d.state(!slot->last_error.empty() ? ComponentState::STATE_FAULT
+              : final                   ? ComponentState::STATE_STOPPED
+              : slot->stage == Slot::Stage::kActive ? ComponentState::STATE_ACTIVE
+                                                    : ComponentState::STATE_CONFIGURED);
+      d.rate_hz(slot->spec->rate.value);
+      d.tick_rate_hz(window_s > 0 ? static_cast<double>(s.window_ticks) / window_s : 0.0);
+      d.tick_time_p50_us(s.p50_us);
+      d.tick_time_p99_us(s.p99_us);
+      d.tick_time_max_us(s.max_us);
+      d.ticks(s.ticks);
+      d.overruns(s.overruns);
+      d.last_error(slot->last_error.substr(0, 255));
+      diagnostics.write(d);
+    }
+  }
+
+  bool setup(RunResult& result);
+  void run_sim(RunResult& result);
+  void run_real(RunResult& result);
+  void teardown(RunResult& result);
+  void progress(std::int64_t t, std::int64_t duration, Clock::time_point start, bool last);
+};
+
+bool Runtime::Impl::setup(RunResult& result) {
+  for (const auto& c : spec.components) {
+    if (!c.is_enabled() || (!options.process.empty() && c.process_name() != options.process)) continue;
+    auto slot = std::make_unique<Slot>();
+    slot->spec = &c;
+    slot->period_ns = static_cast<std::int64_t>(std::llround(1e9 / c.rate.value));
+    slots.push_back(std::move(slot));
+  }
+  if (slots.empty()) {
+    result.ok = false;
+    result.error = options.process.empty() ? "the pipeline has no enabled components"
+                                           : "process '" + options.process + "' has no enabled components";
+    return false;
+  }
+  try {
+    const std::string name = (spec.name.set ? spec.name.value : "pipeline") + "/" +
+                             (options.process.empty() ? "all" : options.process) + "/" + std::to_string(getpid());
+    bridge = std::make_unique<detail::DdsBridge>(spec.domain_id(), spec.transport(), spec.dds.profiles_file.value,
+                                                 spec.dds.participant_profile.value, name);
+  } catch (const std::exception& e) {
+    result.ok = false;
+    result.error = std::string("DDS: ") + e.what();
+    return false;
+  }
+  for (auto& slot : slots) {
+    try {
+      slot->component = loader.create(slot->spec->type.value);
+    } catch (const std::exception& e) {
+      fail(*slot, "load", e.what());
+      return false;
+    }
+    slot->component->attach(this, slot->spec->name);
+    Context ctx(Context::Mode::kRun, slot->spec, &bus);
+    if (!guarded(*slot, "configure", [&] { slot->component->configure(ctx); })) return false;
+    if (!ctx.issues().empty()) {
+      fail(*slot, "configure", ConfigError(ctx.issues()).what());
+      return false;
+    }
+    slot->stage = Slot::Stage::kConfigured;
+  }
+  Qos diag_qos = Qos::reliable(1);
+  diag_qos.durability = Durability::kTransientLocal;  // a monitor started later sees the latest state
+  auto* diag_channel = bus.channel<kernel_msgs::Diagnostics>(kDiagnosticsTopic, "kernel.diagnostics");
+  diag_channel->add_writer(diag_qos);
+  diagnostics = Output<kernel_msgs::Diagnostics>(diag_channel);
+  try {
+    for (const auto& [name, channel] : bus.channels()) bridge->connect(*channel);
+  } catch (const std::exception& e) {
+    result.ok = false;
+    result.error = std::string("DDS: ") + e.what();
+    return false;
+  }
+  for (auto& slot : slots) {
+    if (!guarded(*slot, "activate", [&] { slot->component->activate(); })) return false;
+    slot->stage = Slot::Stage::kActive;
+  }
+  return true;
+}
+
+void Runtime::Impl::progress(std::int64_t t, std::int64_t duration, Clock::time_point start, bool last) {
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  const double rtf = wall > 0 ? static_cast<double>(t) * 1e-9 / wall : 0.0;
+  if (duration > 0)
+    std::fprintf(stderr, "\rsim %9.3f s / %.3f s  (%5.1f%%)  %8.1fx real time", t * 1e-9, duration * 1e-9,
+                 100.0 * static_cast<double>(t) / static_cast<double>(duration), rtf);
+  else
+    std::fprintf(stderr, "\rsim %9.3f s  %8.1fx real time", t * 1e-9, rtf);
+  if (last) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+void Runtime::Impl::run_sim(RunResult& result) {
+  const std::int64_t step = spec.step_ns();
+  const std::int64_t duration = spec.duration_ns();
+  const double pace = spec.pace();
+  const auto start = Clock::now();
+  auto next_progress = start;
+  std::int64_t t = 0;
+  std::int64_t next_diag = 0;
+  std::uint64_t steps = 0;
+  while (true) {
+    if (duration > 0 && t >= duration) {
+      request_stop("", "duration reached");
+      break;
+    }
+    if (stop_signal_received()) request_stop("", "signal");
+    if (stopping.load(std::memory_order_relaxed)) break;
+    for (auto& slot : slots) {
+      if (t % slot->period_ns != 0) continue;
+      tick(*slot, Time{t});
+      if (!fault.empty()) break;
+    }
+    if (t >= next_diag) {
+      publish_diagnostics(Time{t}, 1.0, false);
+      next_diag += kNanosPerSecond;
+    }
+    t += step;
+    if (pace > 0) std::this_thread::sleep_until(start + std::chrono::nanoseconds(static_cast<std::int64_t>(t / pace)));
+    if (options.progress && (++steps & 0xff) == 0 && Clock::now() >= next_progress) {
+      progress(t, duration, start, false);
+      next_progress = Clock::now() + std::chrono::milliseconds(250);
+    }
+  }
+  if (options.progress) progress(t, duration, start, true);
+  result.sim_time_ns = t;
+}
+
+void Runtime::Impl::run_real(RunResult& result) {
+  const auto start = Clock::now();
+  std::vector<std::thread> threads;
+  for (auto& slot_ptr : slots) {
+    Slot* slot = slot_ptr.get();
+    threads.emplace_back([this, slot, start] {
+      const auto period = std::chrono::nanoseconds(slot->period_ns);
+      auto next = start;
+      while (true) {
+        {
+          std::unique_lock<std::mutex> lock(stop_mutex);
+          // Absolute deadlines on a fixed grid: no drift, whatever each tick costs.
+          if (stop_cv.wait_until(lock, next, [this] { return stopping.load(); })) return;
+        }
+        tick(*slot, Time{wall_now_ns()});
+        next += period;
+        const auto now = Clock::now();
+        if (now >= next) {  // late by a whole period or more: count and skip the missed ticks
+          const auto missed = (now - next) / period + 1;
+          slot->stats.add_overruns(static_cast<std::uint64_t>(missed));
+          next += missed * period;
+        }
+      }
+    });
+  }
+  const std::int64_t duration = spec.duration_ns();
+  auto next_diag = start;
+  while (!stopping.load()) {
+    if (stop_signal_received()) request_stop("", "signal");
+    if (duration > 0 && Clock::now() - start >= std::chrono::nanoseconds(duration)) request_stop("", "duration reached");
+    if (Clock::now() >= next_diag) {
+      publish_diagnostics(Time{wall_now_ns()}, 1.0, false);
+      next_diag += std::chrono::seconds(1);
+    }
+    std::unique_lock<std::mutex> lock(stop_mutex);
+    stop_cv.wait_for(lock, std::chrono::milliseconds(20), [this] { return stopping.load(); });
+  }
+  for (auto& th : threads) th.join();
+  result.sim_time_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count();
+}
+
+void Runtime::Impl::teardown(RunResult& result) {
+  if (!fault.empty()) {  // a fault: every component makes its hardware safe before anything else
+    for (auto& slot : slots)
+      if (slot->stage == Slot::Stage::kActive) slot->component->hold();
+  }
+  for (auto it = slots.rbegin(); it != slots.rend(); ++it) {
+    Slot& slot = **it;
+    if (slot.stage != Slot::Stage::kActive) continue;
+    guarded(slot, "deactivate", [&] { slot.component->deactivate(); });
+    slot.stage = Slot::Stage::kDeactivated;
+  }
+  if (diagnostics.connected()) publish_diagnostics(Time{result.sim_time_ns}, 0.0, true);
+  for (auto& slot : slots) {
+    const auto s = slot->stats.summarise();
+    result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns,
+                                                s.p50_us, s.p99_us, s.max_us});
+  }
+  // Components go first (reverse order), then DDS, then the topics they wrote to.
+  for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();
+  bridge.reset();
+  if (!fault.empty()) {
+    result.ok = false;
+    result.error = fault;
+  }
+  result.stop_reason = fault.empty() ? stop_reason : "fault";
+}
+
+Runtime::Runtime(const PipelineSpec& spec, Loader& loader, RunOptions options)
+    : impl_(std::make_unique<Impl>(spec, loader, std::move(options))) {}
+
+Runtime::~Runtime() = default;
+
+void Runtime::request_stop(const std::string& reason) { impl_->request_stop("", reason); }
+
+RunResult Runtime::run() {
+  RunResult result;
+  const auto wall_start = Clock::now();
+  if (impl_->setup(result)) {
+    if (impl_->spec.clock_mode() == ClockMode::kSim)
+      impl_->run_sim(result);
+    else
+      impl_->run_real(result);
+  }
+  impl_->teardown(result);
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  return result;
+}
+
+}  // namespace wysiwyf

@@ -1,0 +1,38 @@
+#pragma once
+// The message types of interfaces/msgs/*.idl, bound to ports, and their YAML printers.
+#include <string>
+
+#include "wysiwyf/idl/geometry_msgsPubSubTypes.h"
+#include "wysiwyf/idl/sensor_msgsPubSubTypes.h"
+#include "wysiwyf/idl/wysiwyf_msgsPubSubTypes.h"
+#include "wysiwyf/kernel_msgs.hpp"
+#include "wysiwyf/message_registry.hpp"
+
+WYSIWYF_MESSAGE(wysiwyf::msg, Image)
+WYSIWYF_MESSAGE(wysiwyf::msg, CameraInfo)
+WYSIWYF_MESSAGE(wysiwyf::msg, JointState)
+WYSIWYF_MESSAGE(wysiwyf::msg, PoseStamped)
+WYSIWYF_MESSAGE(wysiwyf::msg, PoseWithCovariance)
+WYSIWYF_MESSAGE(wysiwyf::msg, WrenchStamped)
+WYSIWYF_MESSAGE(wysiwyf::msg, CartesianSetpoint)
+WYSIWYF_MESSAGE(wysiwyf::msg, ObjectState)
+WYSIWYF_MESSAGE(wysiwyf::msg, DisplayMode)
+
+namespace wysiwyf::msgs {
+
+// YAML text of a sample, as `wysiwyf topic echo` prints it (image pixels are summarised).
+std::string to_yaml(const kernel_msgs::Diagnostics& m);
+std::string to_yaml(const msg::Image& m);
+std::string to_yaml(const msg::CameraInfo& m);
+std::string to_yaml(const msg::JointState& m);
+std::string to_yaml(const msg::PoseStamped& m);
+std::string to_yaml(const msg::PoseWithCovariance& m);
+std::string to_yaml(const msg::WrenchStamped& m);
+std::string to_yaml(const msg::CartesianSetpoint& m);
+std::string to_yaml(const msg::ObjectState& m);
+std::string to_yaml(const msg::DisplayMode& m);
+
+// Every port message type of this build, by DDS type name.
+const MessageRegistry& registry();
+
+}  // namespace wysiwyf::msgs

@@ -1,0 +1,229 @@
+#include "wysiwyf/msgs.hpp"
+
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace wysiwyf::msgs {
+
+namespace {
+
+// Accumulates "key: value" lines at an indentation level.
+class Yaml {
+ public:
+  Yaml& key(const std::string& k) {
+    line() << k << ":\n";
+    return *this;
+  }
+  template <class V>
+  Yaml& kv(const std::string& k, const V& v) {
+    line() << k << ": " << v << "\n";
+    return *this;
+  }
+  Yaml& kv(const std::string& k, double v) {
+    line() << k << ": " << num(v) << "\n";
+    return *this;
+  }
+  template <class S>  // std::string or a bounded fixed_string
+  Yaml& str(const std::string& k, const S& v) {
+    line() << k << ": \"" << v.c_str() << "\"\n";
+    return *this;
+  }
+  template <class It>
+  Yaml& list(const std::string& k, It begin, It end) {
+    line() << k << ": [";
+    for (It i = begin; i != end; ++i) out_ << (i == begin ? "" : ", ") << num(*i);
+    out_ << "]\n";
+    return *this;
+  }
+  Yaml& in() { ++depth_; return *this; }
+  Yaml& out() { --depth_; return *this; }
+  std::string text() const { return out_.str(); }
+
+  static std::string num(double v) {
+    std::ostringstream s;
+    s << std::setprecision(std::numeric_limits<double>::max_digits10) << v;
+    for (int p = 6; p <= 17; ++p) {  // shortest text that reads back the same
+      std::ostringstream t;
+      t << std::setprecision(p) << v;
+      if (std::stod(t.str()) == v) return t.str();
+    }
+    return s.str();
+  }
+
+ private:
+  std::ostream& line() { return out_ << std::string(2 * depth_, ' '); }
+  std::ostringstream out_;
+  int depth_ = 0;
+};
+
+void header(Yaml& y, const std_msgs::Header& h) {
+  y.key("header").in().kv("stamp_ns", h.stamp_ns()).kv("seq", h.seq()).str("frame_id", h.frame_id()).out();
+}
+void vec3(Yaml& y, const std::string& k, double x, double yy, double z) {
+  y.key(k).in().kv("x", x).kv("y", yy).kv("z", z).out();
+}
+void pose(Yaml& y, const geometry_msgs::Pose& p) {
+  y.key("pose").in();
+  vec3(y, "position", p.position().x(), p.position().y(), p.position().z());
+  const auto& q = p.orientation();
+  y.key("orientation").in().kv("x", q.x()).kv("y", q.y()).kv("z", q.z()).kv("w", q.w()).out();
+  y.out();
+}
+void twist(Yaml& y, const geometry_msgs::Twist& t) {
+  y.key("twist").in();
+  vec3(y, "linear", t.linear().x(), t.linear().y(), t.linear().z());
+  vec3(y, "angular", t.angular().x(), t.angular().y(), t.angular().z());
+  y.out();
+}
+
+const char* state_name(kernel_msgs::ComponentState s) {
+  switch (s) {
+    case kernel_msgs::STATE_CONFIGURED: return "configured";
+    case kernel_msgs::STATE_ACTIVE: return "active";
+    case kernel_msgs::STATE_STOPPED: return "stopped";
+    case kernel_msgs::STATE_FAULT: return "fault";
+  }
+  return "?";
+}
+const char* contact_name(msg::ContactKind k) {
+  switch (k) {
+    case msg::CONTACT_RESTING: return "resting";
+    case msg::CONTACT_COLLIDING: return "colliding";
+    case msg::CONTACT_SEPARATING: return "separating";
+  }
+  return "?";
+}
+const char* mode_name(msg::DisplayModeKind k) {
+  switch (k) {
+    case msg::MODE_IDLE: return "idle";
+    case msg::MODE_SURFACE: return "surface";
+    case msg::MODE_ADMITTANCE: return "admittance";
+    case msg::MODE_FAULT: return "fault";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string to_yaml(const kernel_msgs::Diagnostics& m) {
+  Yaml y;
+  header(y, m.header());
+  y.str("instance", m.instance()).str("type", m.type()).str("process", m.process()).kv("state", state_name(m.state()));
+  y.kv("rate_hz", m.rate_hz()).kv("tick_rate_hz", m.tick_rate_hz()).kv("tick_time_p50_us", m.tick_time_p50_us());
+  y.kv("tick_time_p99_us", m.tick_time_p99_us()).kv("tick_time_max_us", m.tick_time_max_us());
+  y.kv("ticks", m.ticks()).kv("overruns", m.overruns()).str("last_error", m.last_error());
+  return y.text();
+}
+
+std::string to_yaml(const msg::Image& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("height", m.height()).kv("width", m.width()).str("encoding", m.encoding());
+  y.kv("is_bigendian", static_cast<int>(m.is_bigendian())).kv("step", m.step());
+  std::uint64_t sum = 0;
+  for (auto b : m.data()) sum += b;
+  y.kv("data", "<" + std::to_string(m.data().size()) + " bytes, mean " +
+                   Yaml::num(m.data().empty() ? 0.0 : static_cast<double>(sum) / m.data().size()) + ">");
+  return y.text();
+}
+
+std::string to_yaml(const msg::CameraInfo& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("height", m.height()).kv("width", m.width()).str("distortion_model", m.distortion_model());
+  y.list("d", m.d().begin(), m.d().end()).list("k", m.k().begin(), m.k().end());
+  y.list("r", m.r().begin(), m.r().end()).list("p", m.p().begin(), m.p().end());
+  return y.text();
+}
+
+std::string to_yaml(const msg::JointState& m) {
+  Yaml y;
+  header(y, m.header());
+  y.list("position", m.position().begin(), m.position().end());
+  y.list("velocity", m.velocity().begin(), m.velocity().end());
+  y.list("effort", m.effort().begin(), m.effort().end());
+  return y.text();
+}
+
+std::string to_yaml(const msg::PoseStamped& m) {
+  Yaml y;
+  header(y, m.header());
+  y.str("child_frame_id", m.child_frame_id());
+  pose(y, m.pose());
+  return y.text();
+}
+
+std::string to_yaml(const msg::PoseWithCovariance& m) {
+  Yaml y;
+  header(y, m.header());
+  y.str("child_frame_id", m.child_frame_id());
+  pose(y, m.pose());
+  y.list("covariance", m.covariance().begin(), m.covariance().end());
+  return y.text();
+}
+
+std::string to_yaml(const msg::WrenchStamped& m) {
+  Yaml y;
+  header(y, m.header());
+  const auto& w = m.wrench();
+  y.key("wrench").in();
+  vec3(y, "force", w.force().x(), w.force().y(), w.force().z());
+  vec3(y, "torque", w.torque().x(), w.torque().y(), w.torque().z());
+  y.out();
+  return y.text();
+}
+
+std::string to_yaml(const msg::CartesianSetpoint& m) {
+  Yaml y;
+  header(y, m.header());
+  y.str("child_frame_id", m.child_frame_id());
+  pose(y, m.pose());
+  twist(y, m.twist());
+  y.str("source", m.source());
+  return y.text();
+}
+
+std::string to_yaml(const msg::ObjectState& m) {
+  Yaml y;
+  header(y, m.header());
+  y.str("child_frame_id", m.child_frame_id());
+  pose(y, m.pose());
+  twist(y, m.twist());
+  y.key("contacts");
+  for (const auto& c : m.contacts()) {
+    y.in().key("-").in();
+    vec3(y, "position", c.position().x(), c.position().y(), c.position().z());
+    vec3(y, "normal", c.normal().x(), c.normal().y(), c.normal().z());
+    y.kv("gap", c.gap()).kv("force", c.force()).kv("kind", contact_name(c.kind())).str("other", c.other());
+    y.out().out();
+  }
+  return y.text();
+}
+
+std::string to_yaml(const msg::DisplayMode& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("mode", mode_name(m.mode())).str("reason", m.reason());
+  return y.text();
+}
+
+const MessageRegistry& registry() {
+  static const MessageRegistry r = [] {
+    MessageRegistry reg;
+    reg.add<kernel_msgs::Diagnostics>(&to_yaml);
+    reg.add<msg::Image>(&to_yaml);
+    reg.add<msg::CameraInfo>(&to_yaml);
+    reg.add<msg::JointState>(&to_yaml);
+    reg.add<msg::PoseStamped>(&to_yaml);
+    reg.add<msg::PoseWithCovariance>(&to_yaml);
+    reg.add<msg::WrenchStamped>(&to_yaml);
+    reg.add<msg::CartesianSetpoint>(&to_yaml);
+    reg.add<msg::ObjectState>(&to_yaml);
+    reg.add<msg::DisplayMode>(&to_yaml);
+    return reg;
+  }();
+  return r;
+}
+
+}  // namespace wysiwyf::msgs

@@ -1,0 +1,77 @@
+// Test component: JointState in -> JointState out, recording what it sees, optionally failing
+// on purpose in a chosen lifecycle phase. Used by the kernel tests only.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace {
+
+class TestProbe final : public wysiwyf::Component {
+ public:
+  void configure(wysiwyf::Context& ctx) override {
+    ctx.summary("kernel test probe: JointState in, JointState out, records and fails on request");
+    gain_ = ctx.param<double>("gain", 0.5, "out.position[0] = t + gain * (sum of inputs)", wysiwyf::Range{-10, 10});
+    fail_phase_ = ctx.param_choice("fail_phase", "none", "lifecycle phase that throws on purpose",
+                                   {"none", "configure", "activate", "tick", "deactivate"});
+    fail_tick_ = ctx.param<int>("fail_tick", 0, "with fail_phase tick: the tick index that throws", wysiwyf::Range{0, 1e9});
+    record_ = ctx.param<std::string>("record", "", "file receiving every input sample (hex floats) at deactivate");
+    lifecycle_log_ = ctx.param<std::string>("lifecycle_log", "", "file to append lifecycle events to");
+    stop_after_ = ctx.param<int>("stop_after_received", 0, "ask the pipeline to stop after this many inputs (0: never)",
+                                 wysiwyf::Range{0, 1e9});
+    in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", wysiwyf::Qos::reliable(100));
+    out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]");
+    if (ctx.mode() == wysiwyf::Context::Mode::kRun) event("configure");  // validation configures too
+    if (fail_phase_ == "configure") throw std::runtime_error("configure failed on purpose");
+  }
+  void activate() override {
+    event("activate");
+    if (fail_phase_ == "activate") throw std::runtime_error("activate failed on purpose");
+  }
+  void tick(wysiwyf::Time now) override {
+    if (fail_phase_ == "tick" && ticks_ == fail_tick_) throw std::runtime_error("tick failed on purpose");
+    ++ticks_;
+    double sum = 0;
+    while (in_.take(sample_)) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%lld %llu %a %a\n", static_cast<long long>(now.ns),
+                    static_cast<unsigned long long>(sample_.header().seq()), sample_.position()[0],
+                    static_cast<double>(sample_.header().stamp_ns()));
+      recorded_ += line;
+      sum += sample_.position()[0];
+      if (stop_after_ > 0 && ++received_ == stop_after_) request_stop("received " + std::to_string(received_));
+    }
+    wysiwyf::msg::JointState out;
+    out.header().stamp_ns(now.ns);
+    out.header().seq(seq_++);
+    out.position()[0] = now.seconds() + gain_ * std::sin(sum);
+    out_.write(out);
+  }
+  void deactivate() override {
+    event("deactivate");
+    if (!record_.empty()) std::ofstream(record_) << recorded_;
+    if (fail_phase_ == "deactivate") throw std::runtime_error("deactivate failed on purpose");
+  }
+  void hold() noexcept override { event("hold"); }
+
+ private:
+  void event(const std::string& what) {
+    if (!lifecycle_log_.empty()) std::ofstream(lifecycle_log_, std::ios::app) << instance_name() << " " << what << "\n";
+  }
+
+  double gain_ = 0;
+  std::string fail_phase_, record_, lifecycle_log_;
+  int fail_tick_ = 0, stop_after_ = 0, ticks_ = 0, received_ = 0;
+  std::uint64_t seq_ = 0;
+  std::string recorded_;
+  wysiwyf::msg::JointState sample_;
+  wysiwyf::Input<wysiwyf::msg::JointState> in_;
+  wysiwyf::Output<wysiwyf::msg::JointState> out_;
+};
+
+}  // namespace
+
+WYSIWYF_COMPONENT(TestProbe, "test_probe")

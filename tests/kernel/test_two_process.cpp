@@ -1,0 +1,101 @@
+// Two process groups of one pipeline, run as two `wysiwyf run --process` processes, exchange data
+// over DDS (shared memory / loopback only); `wysiwyf topic` tools see the running pipeline.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "test_support.hpp"
+
+namespace wysiwyf::test {
+
+namespace fs = std::filesystem;
+
+// Runs the wysiwyf command line with stdout+stderr to `log`; returns the pid.
+pid_t spawn_cli(const std::vector<std::string>& args, const fs::path& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> argv{const_cast<char*>(WYSIWYF_CLI)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    setenv("WYSIWYF_COMPONENT_PATH", WYSIWYF_TEST_COMPONENT_DIR, 1);
+    execv(WYSIWYF_CLI, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Exit status, or -1 if it did not end within the limit (a hang guard, not a timing check).
+int wait_exit(pid_t pid, std::chrono::seconds limit) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+
+TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
+  const fs::path dir = scratch_dir();
+  const fs::path pipeline = dir / "split.yaml";
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: split\ndomain: 50\ndds: {transport: local}\n"
+                             "clock: {mode: sim, step: 1ms, duration: 60s, pace: 1}\n"
+                             "components:\n"
+                             "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing}}\n"
+                             "  sink: {type: test_probe, rate: 100, process: consumer, topics: {in: crossing},\n"
+                             "         params: {stop_after_received: 20, record: " << (dir / "received.txt").string()
+                          << "}}\n";
+  const pid_t producer = spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "producer.log");
+  const pid_t consumer = spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
+
+  EXPECT_EQ(wait_exit(consumer, std::chrono::seconds(60)), 0) << read_file(dir / "consumer.log");
+  EXPECT_NE(read_file(dir / "consumer.log").find("stopped: stopped by sink: received 20"), std::string::npos)
+      << read_file(dir / "consumer.log");
+
+  // The command line tools see the running producer.
+  const pid_t list = spawn_cli({"topic", "list", "--domain", "50", "--transport", "local", "--wait", "1.5"}, dir / "list.log");
+  EXPECT_EQ(wait_exit(list, std::chrono::seconds(30)), 0);
+  const std::string topics = read_file(dir / "list.log");
+  EXPECT_NE(topics.find("crossing"), std::string::npos) << topics;
+  EXPECT_NE(topics.find("wysiwyf::msg::JointState"), std::string::npos) << topics;
+  EXPECT_NE(topics.find("wysiwyf/diagnostics"), std::string::npos) << topics;
+  const pid_t echo = spawn_cli({"topic", "echo", "crossing", "--domain", "50", "--transport", "local", "--count", "2"},
+                               dir / "echo.log");
+  EXPECT_EQ(wait_exit(echo, std::chrono::seconds(30)), 0) << read_file(dir / "echo.log");
+  const std::string echoed = read_file(dir / "echo.log");
+  EXPECT_EQ(std::count(echoed.begin(), echoed.end(), '-'), 6) << echoed;  // two "---" separators
+  EXPECT_NE(echoed.find("position: ["), std::string::npos) << echoed;
+
+  // SIGTERM stops the producer cleanly.
+  kill(producer, SIGTERM);
+  EXPECT_EQ(wait_exit(producer, std::chrono::seconds(30)), 0) << read_file(dir / "producer.log");
+  EXPECT_NE(read_file(dir / "producer.log").find("stopped: signal"), std::string::npos) << read_file(dir / "producer.log");
+
+  // 20 samples, consecutive, intact: the source writes position[0] = its stamp in seconds.
+  std::istringstream lines(read_file(dir / "received.txt"));
+  std::vector<unsigned long long> seqs;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream f(line);
+    long long now = 0;
+    unsigned long long seq = 0;
+    std::string pos_hex, stamp_hex;
+    f >> now >> seq >> pos_hex >> stamp_hex;
+    const double position = std::strtod(pos_hex.c_str(), nullptr);
+    const double stamp_ns = std::strtod(stamp_hex.c_str(), nullptr);
+    EXPECT_DOUBLE_EQ(position, stamp_ns * 1e-9) << line;
+    seqs.push_back(seq);
+  }
+  ASSERT_EQ(seqs.size(), 20u);
+  for (std::size_t i = 1; i < seqs.size(); ++i) EXPECT_EQ(seqs[i], seqs[i - 1] + 1);
+}
+
+}  // namespace wysiwyf::test
