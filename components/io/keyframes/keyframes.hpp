@@ -1,0 +1,33 @@
+#pragma once
+// A table of timed rows given as one flat parameter list: [t0, v0..., t1, v1..., ...], times in
+// seconds, strictly increasing from 0. Shared by the scripted sources of the io area.
+#include <string>
+#include <vector>
+
+namespace wysiwyf::io {
+
+class Keyframes {
+ public:
+  // Throws std::invalid_argument naming `param` and what is wrong.
+  Keyframes(const std::vector<double>& flat, int values_per_row, const std::string& param);
+
+  struct Segment {
+    int from, to;    // row indices (equal after the last row)
+    double tau;      // 0..1 within the segment
+    double duration; // seconds
+  };
+  // The segment containing time t (seconds since start); after the end: the last row, tau 1.
+  Segment at(double t) const;
+
+  int rows() const { return static_cast<int>(times_.size()); }
+  double time(int row) const { return times_[row]; }
+  double end_time() const { return times_.back(); }
+  const double* values(int row) const { return &values_[static_cast<std::size_t>(row) * width_]; }
+
+ private:
+  int width_;
+  std::vector<double> times_;
+  std::vector<double> values_;
+};
+
+}  // namespace wysiwyf::io

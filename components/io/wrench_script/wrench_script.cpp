@@ -1,0 +1,56 @@
+// wrench_script: a scripted force/torque stream, linear between timed keyframes; stands in for
+// the user's hand on the wrist sensor when the haptic side is tested without a user.
+#include <cmath>
+
+#include "../keyframes/keyframes.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::io {
+
+class WrenchScript final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("scripted force/torque, linear between timed keyframes");
+    const auto keyframes = ctx.param<std::vector<double>>(
+        "keyframes", {0, 0, 0, 0, 0, 0, 0}, "rows of [t s, fx fy fz N, tx ty tz N.m], times from 0 strictly increasing");
+    loop_ = ctx.param<bool>("loop", false, "start again after the last keyframe");
+    frame_id_ = ctx.param<std::string>("frame_id", "sensor", "frame the wrench is expressed in");
+    wrench_ = ctx.output<msg::WrenchStamped>("wrench", "the scripted wrench at each tick");
+    table_ = std::make_unique<Keyframes>(keyframes, 6, "keyframes");
+  }
+
+  void tick(Time now) override {
+    if (start_ns_ < 0) start_ns_ = now.ns;
+    double t = static_cast<double>(now.ns - start_ns_) * 1e-9;
+    if (loop_ && table_->end_time() > 0) t = std::fmod(t, table_->end_time());
+    const Keyframes::Segment seg = table_->at(t);
+    const double* a = table_->values(seg.from);
+    const double* b = table_->values(seg.to);
+    double v[6];
+    for (int i = 0; i < 6; ++i) v[i] = a[i] + seg.tau * (b[i] - a[i]);
+    msg_.header().stamp_ns(now.ns);
+    msg_.header().seq(seq_++);
+    msg_.header().frame_id(frame_id_);
+    msg_.wrench().force().x(v[0]);
+    msg_.wrench().force().y(v[1]);
+    msg_.wrench().force().z(v[2]);
+    msg_.wrench().torque().x(v[3]);
+    msg_.wrench().torque().y(v[4]);
+    msg_.wrench().torque().z(v[5]);
+    wrench_.write(msg_);
+  }
+
+ private:
+  std::unique_ptr<Keyframes> table_;
+  bool loop_ = false;
+  std::string frame_id_;
+  std::int64_t start_ns_ = -1;
+  std::uint64_t seq_ = 0;
+  msg::WrenchStamped msg_;
+  Output<msg::WrenchStamped> wrench_;
+};
+
+}  // namespace wysiwyf::io
+
+WYSIWYF_COMPONENT(wysiwyf::io::WrenchScript, "wrench_script")

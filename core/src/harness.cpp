@@ -1,0 +1,47 @@
+#include "wysiwyf/harness.hpp"
+
+#include <iostream>
+
+namespace wysiwyf {
+
+Harness::Harness(const std::string& type, const std::string& params_yaml, double rate_hz, Loader* loader) {
+  if (!loader) {
+    own_loader_ = std::make_unique<Loader>();
+    loader = own_loader_.get();
+  }
+  const std::string yaml = "wysiwyf: 1\nname: harness\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
+                           "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml + "\n";
+  spec_ = load_pipeline_from_string(yaml, "<harness " + type + ">");
+  ValidationResult v = validate_pipeline(spec_, *loader);
+  if (!v.ok()) throw ConfigError(v.errors);
+  description_ = v.described.at("dut");
+  component_ = loader->create(type);
+  component_->attach(this, "dut");
+  Context ctx(Context::Mode::kRun, &spec_.components.front(), &bus_);
+  component_->configure(ctx);
+  if (!ctx.issues().empty()) throw ConfigError(ctx.issues());
+}
+
+Harness::~Harness() {
+  if (active_) deactivate();
+}
+
+void Harness::activate() {
+  component_->activate();
+  active_ = true;
+}
+
+void Harness::tick(Time now) { component_->tick(now); }
+
+void Harness::deactivate() {
+  active_ = false;
+  component_->deactivate();
+}
+
+void Harness::request_stop(const std::string&, const std::string& reason) { stop_request_ = reason; }
+
+void Harness::log(const std::string& component, const std::string& message) {
+  std::cerr << "[" << component << "] " << message << "\n";
+}
+
+}  // namespace wysiwyf

@@ -1,0 +1,116 @@
+// The scripted sources: setpoint_script and wrench_script, each run alone in a Harness.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::test {
+
+constexpr std::int64_t kMs = 1'000'000;
+
+Eigen::Vector3d position(const msg::CartesianSetpoint& s) {
+  return {s.pose().position().x(), s.pose().position().y(), s.pose().position().z()};
+}
+Eigen::Quaterniond orientation(const msg::CartesianSetpoint& s) {
+  const auto& q = s.pose().orientation();
+  return Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z());
+}
+
+TEST(SetpointScript, PassesThroughEachWaypointAtItsTimeAndHoldsAfterTheLast) {
+  Harness h("setpoint_script", "{waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0.1, 0.3, 0, 0, 1.5,  3, 0.6, 0.1, 0.5, 0.3, 0, 1.5]}");
+  auto out = h.watch<msg::CartesianSetpoint>("setpoint");
+  h.activate();
+  msg::CartesianSetpoint s;
+  for (std::int64_t t : {0 * kMs, 1000 * kMs, 3000 * kMs, 5000 * kMs}) {
+    h.tick(Time{t});
+    ASSERT_TRUE(out.take_latest(s));
+  }
+  // The last two: at and after the final waypoint.
+  EXPECT_NEAR((position(s) - Eigen::Vector3d(0.6, 0.1, 0.5)).norm(), 0, 1e-12);
+  const Eigen::Quaterniond expected = Eigen::AngleAxisd(1.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX());
+  EXPECT_NEAR(orientation(s).angularDistance(expected), 0, 1e-12);
+  EXPECT_EQ(s.twist().linear().z(), 0.0);
+  EXPECT_EQ(std::string(s.header().frame_id().c_str()), "base");
+  EXPECT_EQ(std::string(s.source().c_str()), "script");
+}
+
+TEST(SetpointScript, TwistIsTheDerivativeOfThePoseAndVelocityIsContinuous) {
+  Harness h("setpoint_script", "{waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0.1, 0.3, 0.4, -0.2, 1.0,  2.5, 0.4, 0.2, 0.45, 0, 0, 0]}");
+  auto out = h.watch<msg::CartesianSetpoint>("setpoint");
+  h.activate();
+  std::vector<msg::CartesianSetpoint> samples;
+  for (std::int64_t t = 0; t <= 2600 * kMs; t += kMs) {
+    h.tick(Time{t});
+    samples.emplace_back();
+    ASSERT_TRUE(out.take(samples.back()));
+  }
+  const double dt = 1e-3;
+  double worst_linear = 0, worst_angular = 0, worst_jump = 0;
+  for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
+    const Eigen::Vector3d fd = (position(samples[i + 1]) - position(samples[i - 1])) / (2 * dt);
+    const auto& l = samples[i].twist().linear();
+    worst_linear = std::max(worst_linear, (fd - Eigen::Vector3d(l.x(), l.y(), l.z())).norm());
+    const Eigen::AngleAxisd dq(orientation(samples[i + 1]) * orientation(samples[i - 1]).inverse());
+    const Eigen::Vector3d w_fd = dq.angle() * dq.axis() / (2 * dt);
+    const auto& a = samples[i].twist().angular();
+    worst_angular = std::max(worst_angular, (w_fd - Eigen::Vector3d(a.x(), a.y(), a.z())).norm());
+    const auto& prev = samples[i - 1].twist().linear();
+    worst_jump = std::max(worst_jump, (Eigen::Vector3d(l.x(), l.y(), l.z()) - Eigen::Vector3d(prev.x(), prev.y(), prev.z())).norm());
+  }
+  EXPECT_LT(worst_linear, 1e-5);   // central difference error of a quintic at 1 ms
+  EXPECT_LT(worst_angular, 1e-4);
+  EXPECT_LT(worst_jump, 1e-3);     // no step in velocity from one ms to the next (peak accel < 1 m/s^2)
+}
+
+TEST(SetpointScript, LoopsWhenAsked) {
+  Harness h("setpoint_script", "{loop: true, waypoints: [0, 0, 0, 0, 0, 0, 0,  2, 1, 0, 0, 0, 0, 0]}");
+  auto out = h.watch<msg::CartesianSetpoint>("setpoint");
+  h.activate();
+  msg::CartesianSetpoint a, b;
+  h.tick(Time{500 * kMs});
+  ASSERT_TRUE(out.take(a));
+  h.tick(Time{2500 * kMs});
+  ASSERT_TRUE(out.take(b));
+  EXPECT_NEAR(a.pose().position().x(), b.pose().position().x(), 1e-12);
+}
+
+TEST(SetpointScript, RejectsBadWaypointsWithAClearMessage) {
+  try {
+    Harness h("setpoint_script", "{waypoints: [0, 1, 2, 3, 0, 0, 0,  0, 1, 2, 3, 0, 0, 0]}");
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected strictly increasing times"), std::string::npos) << e.what();
+  }
+  try {
+    Harness h("setpoint_script", "{waypoints: [0, 1, 2]}");
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("found 3 numbers; expected rows of 7"), std::string::npos) << e.what();
+  }
+}
+
+TEST(WrenchScript, InterpolatesLinearlyBetweenKeyframes) {
+  Harness h("wrench_script", "{keyframes: [0, 0, 0, 0, 0, 0, 0,  1, 0, 0, -10, 0, 0, 0,  2, 4, 0, -10, 0, 0.5, 0]}");
+  auto out = h.watch<msg::WrenchStamped>("wrench");
+  h.activate();
+  msg::WrenchStamped w;
+  h.tick(Time{0});  // the script's time starts at the first tick
+  ASSERT_TRUE(out.take(w));
+  EXPECT_DOUBLE_EQ(w.wrench().force().z(), 0.0);
+  h.tick(Time{250 * kMs});
+  ASSERT_TRUE(out.take(w));
+  EXPECT_DOUBLE_EQ(w.wrench().force().z(), -2.5);
+  h.tick(Time{1500 * kMs});
+  ASSERT_TRUE(out.take(w));
+  EXPECT_DOUBLE_EQ(w.wrench().force().x(), 2.0);
+  EXPECT_DOUBLE_EQ(w.wrench().torque().y(), 0.25);
+  h.tick(Time{9000 * kMs});
+  ASSERT_TRUE(out.take(w));
+  EXPECT_DOUBLE_EQ(w.wrench().force().x(), 4.0);
+  EXPECT_EQ(w.header().seq(), 3u);
+  EXPECT_EQ(std::string(w.header().frame_id().c_str()), "sensor");
+}
+
+}  // namespace wysiwyf::test
