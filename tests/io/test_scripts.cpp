@@ -114,3 +114,29 @@ TEST(WrenchScript, InterpolatesLinearlyBetweenKeyframes) {
 }
 
 }  // namespace wysiwyf::test
+
+namespace wysiwyf::test {
+
+TEST(WrenchLowpass, FollowsTheExactFirstOrderStepResponse) {
+  Harness h("wrench_lowpass", "{cutoff_hz: 10}", 1000);
+  auto raw = h.feed<msg::WrenchStamped>("raw");
+  auto filtered = h.watch<msg::WrenchStamped>("filtered");
+  h.activate();
+  msg::WrenchStamped w;
+  for (int i = 0; i <= 100; ++i) {
+    w.header().stamp_ns(i * kMs);
+    w.wrench().force().x(i == 0 ? 0.0 : 5.0);  // a step after the first sample
+    w.wrench().torque().z(i == 0 ? 0.0 : -1.0);
+    raw.write(w);
+    h.tick(Time{i * kMs});
+  }
+  ASSERT_TRUE(filtered.take_latest(w));
+  // Each sample counts as the input over the interval that ends at its stamp, so 100 updates
+  // after the 0 sample cover 100 ms of the step.
+  const double expected = 5.0 * (1.0 - std::exp(-2 * M_PI * 10 * 0.100));
+  EXPECT_NEAR(w.wrench().force().x(), expected, 1e-9);
+  EXPECT_NEAR(w.wrench().torque().z(), -expected / 5.0, 1e-9);
+  EXPECT_EQ(w.header().stamp_ns(), 100 * kMs);
+}
+
+}  // namespace wysiwyf::test

@@ -1,0 +1,76 @@
+#pragma once
+// Two ways to move one message type between a "ping" and a "pong" topic, with the same QoS:
+// raw Fast DDS (a DataWriter and a DataReader) and the kernel (Output/Input ports over the
+// kernel's DDS bridge). The benchmark compares them hop for hop.
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <memory>
+#include <string>
+
+#include "../../core/src/dds_bridge.hpp"
+#include "wysiwyf/dds.hpp"
+#include "wysiwyf/detail/topic_bus.hpp"
+#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/port.hpp"
+
+namespace wysiwyf::bench {
+
+using namespace eprosima::fastdds::dds;
+
+template <class T>
+class RawEndpoint {
+ public:
+  RawEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos) {
+    participant_ = DomainParticipantFactory::get_instance()->create_participant(domain, dds::participant_qos("local", "bench-raw"));
+    TypeSupport type(MessageTraits<T>::make_type());
+    type.register_type(participant_);
+    Topic* out = participant_->create_topic(out_topic, type.get_type_name(), TOPIC_QOS_DEFAULT);
+    Topic* in = in_topic == out_topic ? out : participant_->create_topic(in_topic, type.get_type_name(), TOPIC_QOS_DEFAULT);
+    writer_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT)->create_datawriter(out, dds::writer_qos(qos));
+    reader_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT)->create_datareader(in, dds::reader_qos(qos));
+  }
+  ~RawEndpoint() {
+    participant_->delete_contained_entities();
+    DomainParticipantFactory::get_instance()->delete_participant(participant_);
+  }
+  void send(const T& sample) { writer_->write(const_cast<T*>(&sample)); }
+  bool poll(T& sample) {
+    SampleInfo info;
+    return reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK && info.valid_data;
+  }
+
+ private:
+  DomainParticipant* participant_ = nullptr;
+  DataWriter* writer_ = nullptr;
+  DataReader* reader_ = nullptr;
+};
+
+template <class T>
+class KernelEndpoint {
+ public:
+  KernelEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos)
+      : bridge_(domain, "local", "", "", "bench-kernel") {
+    auto* out = bus_.channel<T>(out_topic, "bench.out");
+    out->add_writer(qos);
+    out_ = Output<T>(out);
+    in_ = Input<T>(bus_.channel<T>(in_topic, "bench.in")->add_reader(qos));
+    for (const auto& [name, channel] : bus_.channels()) bridge_.connect(*channel);
+  }
+  void send(const T& sample) { out_.write(sample); }
+  bool poll(T& sample) { return in_.take(sample); }
+
+ private:
+  detail::TopicBus bus_;  // outlives the bridge
+  detail::DdsBridge bridge_;
+  Output<T> out_;
+  Input<T> in_;
+};
+
+}  // namespace wysiwyf::bench
