@@ -41,9 +41,9 @@ struct Slot {
 }  // namespace
 
 struct Runtime::Impl final : ComponentHost {
-  Impl(const PipelineSpec& s, Loader& l, RunOptions o) : spec(s), loader(l), options(std::move(o)) {}
+  Impl(PipelineSpec s, Loader& l, RunOptions o) : spec(std::move(s)), loader(l), options(std::move(o)) {}
 
-  const PipelineSpec& spec;
+  const PipelineSpec spec;
   Loader& loader;
   RunOptions options;
   // Destroyed in reverse: slots (components) first, then the DDS bridge, then the topics.
@@ -309,8 +309,8 @@ void Runtime::Impl::teardown(RunResult& result) {
   result.stop_reason = fault.empty() ? stop_reason : "fault";
 }
 
-Runtime::Runtime(const PipelineSpec& spec, Loader& loader, RunOptions options)
-    : impl_(std::make_unique<Impl>(spec, loader, std::move(options))) {}
+Runtime::Runtime(PipelineSpec spec, Loader& loader, RunOptions options)
+    : impl_(std::make_unique<Impl>(std::move(spec), loader, std::move(options))) {}
 
 Runtime::~Runtime() = default;
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <thread>
 
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -22,6 +23,7 @@ class TestProbe final : public wysiwyf::Component {
     lifecycle_log_ = ctx.param<std::string>("lifecycle_log", "", "file to append lifecycle events to");
     stop_after_ = ctx.param<int>("stop_after_received", 0, "ask the pipeline to stop after this many inputs (0: never)",
                                  wysiwyf::Range{0, 1e9});
+    tick_sleep_us_ = ctx.param<int>("tick_sleep_us", 0, "sleep this long in every tick (overrun tests)", wysiwyf::Range{0, 1e6});
     in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", wysiwyf::Qos::reliable(100));
     out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]");
     if (ctx.mode() == wysiwyf::Context::Mode::kRun) event("configure");  // validation configures too
@@ -34,6 +36,7 @@ class TestProbe final : public wysiwyf::Component {
   void tick(wysiwyf::Time now) override {
     if (fail_phase_ == "tick" && ticks_ == fail_tick_) throw std::runtime_error("tick failed on purpose");
     ++ticks_;
+    if (tick_sleep_us_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(tick_sleep_us_));
     double sum = 0;
     while (in_.take(sample_)) {
       char line[160];
@@ -64,6 +67,7 @@ class TestProbe final : public wysiwyf::Component {
 
   double gain_ = 0;
   std::string fail_phase_, record_, lifecycle_log_;
+  int tick_sleep_us_ = 0;
   int fail_tick_ = 0, stop_after_ = 0, ticks_ = 0, received_ = 0;
   std::uint64_t seq_ = 0;
   std::string recorded_;

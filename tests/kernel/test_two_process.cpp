@@ -80,6 +80,15 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   EXPECT_EQ(std::count(echoed.begin(), echoed.end(), '-'), 6) << echoed;  // two "---" separators
   EXPECT_NE(echoed.find("position: ["), std::string::npos) << echoed;
 
+  // Its diagnostics are on the domain too (transient local: the latest state of each component).
+  const pid_t diag = spawn_cli({"topic", "echo", "wysiwyf/diagnostics", "--domain", "50", "--transport", "local",
+                                "--count", "1"}, dir / "diag.log");
+  EXPECT_EQ(wait_exit(diag, std::chrono::seconds(30)), 0) << read_file(dir / "diag.log");
+  const std::string diagnostics = read_file(dir / "diag.log");
+  EXPECT_NE(diagnostics.find("instance: \"src\""), std::string::npos) << diagnostics;
+  EXPECT_NE(diagnostics.find("state: active"), std::string::npos) << diagnostics;
+  EXPECT_NE(diagnostics.find("rate_hz: 100"), std::string::npos) << diagnostics;
+
   // SIGTERM stops the producer cleanly.
   kill(producer, SIGTERM);
   EXPECT_EQ(wait_exit(producer, std::chrono::seconds(30)), 0) << read_file(dir / "producer.log");

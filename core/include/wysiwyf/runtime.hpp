@@ -41,7 +41,8 @@ struct RunOptions {
 
 class Runtime {
  public:
-  Runtime(const PipelineSpec& spec, Loader& loader, RunOptions options = {});
+  // Keeps its own copy of the spec; the loader must outlive the runtime.
+  Runtime(PipelineSpec spec, Loader& loader, RunOptions options = {});
   ~Runtime();
   Runtime(const Runtime&) = delete;
   Runtime& operator=(const Runtime&) = delete;

@@ -1,0 +1,84 @@
+// The real-time executor and the DDS set-up options. These run on the wall clock, so they check
+// behaviour (it ticks, it stops, it counts overruns), never how precise the timing is.
+#include "test_support.hpp"
+
+namespace wysiwyf::test {
+
+TEST(RealClock, TicksEveryComponentOnItsOwnThreadUntilTheDuration) {
+  const auto dir = scratch_dir();
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 51\ndds: {transport: local}\nclock: {mode: real, duration: 300ms}\ncomponents:\n"
+      "  src: {type: test_probe, rate: 200, topics: {out: x}}\n"
+      "  sink: {type: test_probe, rate: 100, topics: {in: x}, params: {record: " + (dir / "r.txt").string() + "}}\n");
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.stop_reason, "duration reached");
+  ASSERT_EQ(r.components.size(), 2u);
+  EXPECT_GT(r.components[0].ticks, 0u);
+  EXPECT_GT(r.components[1].ticks, 0u);
+  // Stamps are wall-clock time since the epoch (after 2020).
+  const std::string rec = read_file(dir / "r.txt");
+  ASSERT_FALSE(rec.empty());
+  EXPECT_GT(std::stoll(rec.substr(0, rec.find(' '))), 1'577'836'800'000'000'000LL);
+}
+
+TEST(RealClock, ATickLongerThanItsPeriodIsCountedAsAnOverrun) {
+  // 1 ms period, 5 ms ticks: at least four periods are missed on every tick.
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 52\ndds: {transport: local}\nclock: {mode: real, duration: 100ms}\ncomponents:\n"
+      "  slow: {type: test_probe, rate: 1000, params: {tick_sleep_us: 5000}}\n");
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.components.size(), 1u);
+  EXPECT_GT(r.components[0].ticks, 0u);
+  EXPECT_GE(r.components[0].overruns, 4 * (r.components[0].ticks - 1));
+}
+
+TEST(DdsSetup, AFastDdsXmlParticipantProfileCanBeNamed) {
+  const auto dir = scratch_dir();
+  std::ofstream(dir / "profiles.xml") << R"(<?xml version="1.0" encoding="UTF-8" ?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles>
+    <transport_descriptors>
+      <transport_descriptor><transport_id>shm_only</transport_id><type>SHM</type></transport_descriptor>
+    </transport_descriptors>
+    <participant profile_name="wysiwyf_test_shm">
+      <rtps>
+        <userTransports><transport_id>shm_only</transport_id></userTransports>
+        <useBuiltinTransports>false</useBuiltinTransports>
+      </rtps>
+    </participant>
+  </profiles>
+</dds>
+)";
+  std::ofstream(dir / "p.yaml") << "wysiwyf: 1\ndomain: 53\ndds: {profiles: profiles.xml, participant_profile: wysiwyf_test_shm}\n"
+                                   "clock: {mode: sim, step: 1ms, duration: 20ms}\ncomponents:\n"
+                                   "  a: {type: test_probe, rate: 1000}\n";
+  Loader loader(test_search_dirs());
+  const PipelineSpec spec = load_pipeline((dir / "p.yaml").string());
+  EXPECT_TRUE(validate_pipeline(spec, loader).ok());
+  std::ostringstream log;
+  Runtime runtime(spec, loader, RunOptions{"", false, &log});
+  const RunResult r = runtime.run();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.components.at(0).ticks, 20u);
+}
+
+TEST(DdsSetup, AnUnknownProfileNameFailsTheRunWithAClearError) {
+  const auto dir = scratch_dir();
+  std::ofstream(dir / "profiles.xml") << R"(<?xml version="1.0" encoding="UTF-8" ?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles><participant profile_name="another"><rtps/></participant></profiles>
+</dds>
+)";
+  std::ofstream(dir / "p.yaml") << "wysiwyf: 1\ndomain: 54\ndds: {profiles: profiles.xml, participant_profile: nope}\n"
+                                   "clock: {mode: sim, step: 1ms, duration: 20ms}\ncomponents:\n"
+                                   "  a: {type: test_probe, rate: 1000, params: {lifecycle_log: " + (dir / "log").string() + "}}\n";
+  Loader loader(test_search_dirs());
+  std::ostringstream log;
+  Runtime runtime(load_pipeline((dir / "p.yaml").string()), loader, RunOptions{"", false, &log});
+  const RunResult r = runtime.run();
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("cannot create a DDS participant on domain 54 with profile 'nope'"), std::string::npos) << r.error;
+  EXPECT_FALSE(std::filesystem::exists(dir / "log"));  // nothing was configured
+}
+
+}  // namespace wysiwyf::test
