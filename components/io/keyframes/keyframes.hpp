@@ -1,6 +1,8 @@
 #pragma once
 // A table of timed rows given as one flat parameter list: [t0, v0..., t1, v1..., ...], times in
 // seconds, strictly increasing from 0. Shared by the scripted sources of the io area.
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,20 @@ class Keyframes {
   int width_;
   std::vector<double> times_;
   std::vector<double> values_;
+};
+
+// A script's own time: seconds since its first tick (so a script starts when the pipeline does,
+// on the sim clock and on the wall clock alike), wrapped to the script's length when looping.
+class ScriptTime {
+ public:
+  double at(std::int64_t now_ns, double length_s, bool loop) {
+    if (start_ns_ < 0) start_ns_ = now_ns;
+    const double t = static_cast<double>(now_ns - start_ns_) * 1e-9;
+    return loop && length_s > 0 ? std::fmod(t, length_s) : t;
+  }
+
+ private:
+  std::int64_t start_ns_ = -1;
 };
 
 }  // namespace wysiwyf::io

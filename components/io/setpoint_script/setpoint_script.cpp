@@ -32,10 +32,7 @@ class SetpointScript final : public Component {
   }
 
   void tick(Time now) override {
-    if (start_ns_ < 0) start_ns_ = now.ns;
-    double t = static_cast<double>(now.ns - start_ns_) * 1e-9;
-    if (loop_ && table_->end_time() > 0) t = std::fmod(t, table_->end_time());
-    const Keyframes::Segment seg = table_->at(t);
+    const Keyframes::Segment seg = table_->at(time_.at(now.ns, table_->end_time(), loop_));
     const double tau = seg.tau, tau2 = tau * tau;
     const double s = tau2 * tau * (10 - 15 * tau + 6 * tau2);                                // min-jerk
     const double ds = seg.duration > 0 ? 30 * tau2 * (1 - 2 * tau + tau2) / seg.duration : 0;  // d s / d t
@@ -73,7 +70,7 @@ class SetpointScript final : public Component {
   std::vector<Eigen::Quaterniond> rotations_;
   bool loop_ = false;
   std::string frame_id_, child_frame_id_, source_;
-  std::int64_t start_ns_ = -1;
+  ScriptTime time_;
   std::uint64_t seq_ = 0;
   msg::CartesianSetpoint msg_;
   Output<msg::CartesianSetpoint> setpoint_;

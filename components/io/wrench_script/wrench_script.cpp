@@ -21,10 +21,7 @@ class WrenchScript final : public Component {
   }
 
   void tick(Time now) override {
-    if (start_ns_ < 0) start_ns_ = now.ns;
-    double t = static_cast<double>(now.ns - start_ns_) * 1e-9;
-    if (loop_ && table_->end_time() > 0) t = std::fmod(t, table_->end_time());
-    const Keyframes::Segment seg = table_->at(t);
+    const Keyframes::Segment seg = table_->at(time_.at(now.ns, table_->end_time(), loop_));
     const double* a = table_->values(seg.from);
     const double* b = table_->values(seg.to);
     double v[6];
@@ -45,7 +42,7 @@ class WrenchScript final : public Component {
   std::unique_ptr<Keyframes> table_;
   bool loop_ = false;
   std::string frame_id_;
-  std::int64_t start_ns_ = -1;
+  ScriptTime time_;
   std::uint64_t seq_ = 0;
   msg::WrenchStamped msg_;
   Output<msg::WrenchStamped> wrench_;
