@@ -82,3 +82,20 @@ TEST(SubscriberQueue, ReusesImageBuffersInSteadyState) {
 }
 
 }  // namespace wysiwyf::test
+
+namespace wysiwyf::test {
+
+TEST(SubscriberQueue, PushSwapMovesTheBufferInWithoutCopying) {
+  detail::SubscriberQueue<msg::Image> q(2);
+  msg::Image frame;
+  frame.data().assign(1000, 7);
+  const auto* buffer = frame.data().data();
+  q.push_swap(frame);
+  EXPECT_TRUE(frame.data().empty());  // it now holds the empty slot's buffer
+  msg::Image out;
+  ASSERT_TRUE(q.take(out));
+  EXPECT_EQ(out.data().data(), buffer);  // the very same buffer reached the reader
+  EXPECT_EQ(out.data().size(), 1000u);
+}
+
+}  // namespace wysiwyf::test

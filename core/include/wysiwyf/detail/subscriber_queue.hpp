@@ -27,6 +27,22 @@ class SubscriberQueue {
     ++received_;
   }
 
+  // Like push, but moves the sample in by swapping buffers with the slot it lands in: no copy.
+  // `sample` is left holding that slot's previous contents.
+  void push_swap(T& sample) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::size_t n = slots_.size();
+    if (count_ == n) {
+      head_ = (head_ + 1) % n;
+      --count_;
+      ++dropped_;
+    }
+    using std::swap;
+    swap(slots_[(head_ + count_) % n], sample);
+    ++count_;
+    ++received_;
+  }
+
   // Oldest unread sample into out; false when none.
   bool take(T& out) {
     std::lock_guard<std::mutex> lock(mutex_);

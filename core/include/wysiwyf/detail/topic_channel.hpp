@@ -39,8 +39,9 @@ class TopicChannelBase {
   const Qos& reader_qos() const { return reader_qos_; }
 
   void set_dds_writer(std::unique_ptr<DdsWriterLink> link) { dds_writer_ = std::move(link); }
-  // Called from a DDS listener thread with a sample of this channel's type.
-  virtual void deliver_from_dds(const void* sample) = 0;
+  // Called from a DDS listener thread with a sample of this channel's type, which it may take
+  // the contents of (the caller reuses it only as a buffer for the next take).
+  virtual void deliver_from_dds(void* sample) = 0;
   virtual void* create_sample() const = 0;
   virtual void delete_sample(void* sample) const = 0;
 
@@ -90,9 +91,11 @@ class TopicChannel final : public TopicChannelBase {
     if (dds_writer_) dds_writer_->write(&sample);
   }
 
-  void deliver_from_dds(const void* sample) override {
-    const T& s = *static_cast<const T*>(sample);
-    for (auto& q : queues_) q->push(s);
+  void deliver_from_dds(void* sample) override {
+    T& s = *static_cast<T*>(sample);
+    if (queues_.empty()) return;
+    for (std::size_t i = 0; i + 1 < queues_.size(); ++i) queues_[i]->push(s);
+    queues_.back()->push_swap(s);  // the last reader gets the buffer itself: no copy
   }
   void* create_sample() const override { return new T(); }
   void delete_sample(void* sample) const override { delete static_cast<T*>(sample); }
