@@ -1,0 +1,190 @@
+// Haptics benchmarks: one haptic step of the admittance simulation (the paper's cube resting on
+// its table, 4 contacts, a user push), the contact LCP against contact count, a 1 kHz real-time
+// loop, and the peer: MuJoCo stepping the same 1 kg, 20 cm cube on a frictionless plane at 1 ms
+// with the same push, in the same run.
+#include <benchmark/benchmark.h>
+#ifdef WYSIWYF_HAVE_MUJOCO
+#include <mujoco/mujoco.h>
+#endif
+#include <sys/prctl.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "rigid_body/world.hpp"
+
+namespace wysiwyf::haptics {
+
+using Clock = std::chrono::steady_clock;
+
+World cube_on_table(double rtol = 1e-8) {
+  BodyModel cube;
+  cube.name = "cube";
+  cube.half_extents = Vec3::Constant(0.1);
+  cube.mass = 1.0;
+  cube.inertia_body = BodyModel::box_inertia(1.0, cube.half_extents);
+  BodyModel table;
+  table.name = "table";
+  table.dynamic = false;
+  table.half_extents = Vec3(50, 50, 0.05);  // large: the push never reaches its edge
+  BodyState c, t;
+  c.x = Vec3(0, 0, 0.1);
+  t.x = Vec3(0, 0, -0.05);
+  WorldParams p;
+  p.rtol = rtol;  // admittance_sim's default: 1e-8
+  p.atol = rtol * 1e-2;
+  return World({cube, table}, {c, t}, p);
+}
+
+void percentiles(benchmark::State& state, std::vector<double>& us) {
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[us.size() * 99 / 100];
+}
+
+// A new sensor sample every step (noise on a 2 N push): the integrator restarts every step.
+void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
+  World w = cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0))));
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0, 0.05);
+  std::vector<double> us;
+  for (auto _ : state) {
+    w.set_external_wrench(0, Vec3(2 + noise(rng), noise(rng), noise(rng)), Vec3::Zero());
+    const auto t0 = Clock::now();
+    w.step(1e-3);
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    us.push_back(dt * 1e6);
+  }
+  state.counters["contacts"] = static_cast<double>(w.resting_contacts().size());
+  percentiles(state, us);
+}
+// Argument: -log10 of CVODE's relative tolerance.
+BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(8)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+
+// The same push held constant: CVODE keeps its history across steps.
+void BM_HapticStep_RestingCube_ConstantPush(benchmark::State& state) {
+  World w = cube_on_table();
+  w.set_external_wrench(0, Vec3(2, 0, 0), Vec3::Zero());
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  std::vector<double> us;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    w.step(1e-3);
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    us.push_back(dt * 1e6);
+  }
+  state.counters["sink_mm"] = std::max(0.0, (0.1 - w.state(0).x.z()) * 1e3);
+  percentiles(state, us);
+}
+BENCHMARK(BM_HapticStep_RestingCube_ConstantPush)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+
+// The LCP alone: n contacts spread over the bottom face of a resting cube.
+void BM_Lcp(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-0.1, 0.1);
+  Eigen::MatrixXd J(n, 6);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 r(u(rng), u(rng), -0.1), nrm = Vec3::UnitZ();
+    J.row(i) << nrm.transpose(), r.cross(nrm).transpose();
+  }
+  Eigen::MatrixXd Minv = Eigen::MatrixXd::Identity(6, 6);
+  Minv.bottomRightCorner<3, 3>() *= 1.0 / (0.04 / 6);
+  const Eigen::MatrixXd A = J * Minv * J.transpose();
+  Eigen::VectorXd F(6);
+  F << 2, 0, -9.81, 0.1, -0.05, 0;
+  const Eigen::VectorXd b = J * Minv * F;
+  LcpSolver solver;
+  for (auto _ : state) benchmark::DoNotOptimize(solver.solve(A, b));
+}
+BENCHMARK(BM_Lcp)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMicrosecond);
+
+// A 1 kHz loop on the wall clock for 10 s: absolute deadlines, one haptic step per tick.
+void BM_RealTimeLoop_1kHz_10s(benchmark::State& state) {
+  prctl(PR_SET_TIMERSLACK, 1UL);  // Linux lets a normal thread wake up to 50 us late by default
+  for (auto _ : state) {
+    World w = cube_on_table();
+    std::vector<double> late_us;
+    timespec next{};
+    clock_gettime(CLOCK_MONOTONIC, &next);
+    const auto start = Clock::now();
+    int ticks = 0;
+    while (Clock::now() - start < std::chrono::seconds(10)) {
+      next.tv_nsec += 1'000'000;
+      if (next.tv_nsec >= 1'000'000'000) next.tv_nsec -= 1'000'000'000, ++next.tv_sec;
+      clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+      timespec now{};
+      clock_gettime(CLOCK_MONOTONIC, &now);
+      late_us.push_back(((now.tv_sec - next.tv_sec) * 1e9 + (now.tv_nsec - next.tv_nsec)) * 1e-3);
+      w.set_external_wrench(0, Vec3(1.0, 0, 0), Vec3::Zero());
+      w.step(1e-3);
+      ++ticks;
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    state.counters["rate_hz"] = ticks / seconds;
+    std::sort(late_us.begin(), late_us.end());
+    state.counters["jitter_p50_us"] = late_us[late_us.size() / 2];
+    state.counters["jitter_p99_us"] = late_us[late_us.size() * 99 / 100];
+    state.counters["jitter_max_us"] = late_us.back();
+  }
+}
+BENCHMARK(BM_RealTimeLoop_1kHz_10s)->Iterations(1)->Unit(benchmark::kSecond);
+
+#ifdef WYSIWYF_HAVE_MUJOCO
+// The peer: MuJoCo, the same cube on a frictionless plane, 1 ms steps, the same 2 N push.
+void BM_MuJoCo_Step_RestingCube_Push(benchmark::State& state) {
+  static const char* xml = R"(
+<mujoco>
+  <option timestep="0.001"/>
+  <worldbody>
+    <geom type="plane" size="50 50 0.1" condim="1"/>
+    <body pos="0 0 0.1">
+      <freejoint/>
+      <geom type="box" size="0.1 0.1 0.1" mass="1" condim="1"/>
+    </body>
+  </worldbody>
+</mujoco>)";
+  char error[1000] = "";
+  auto vfs = std::make_unique<mjVFS>();  // large: not on the stack
+  mj_defaultVFS(vfs.get());
+  mj_makeEmptyFileVFS(vfs.get(), "cube.xml", static_cast<int>(std::strlen(xml)));
+  std::memcpy(vfs->filedata[vfs->nfile - 1], xml, std::strlen(xml));
+  mjModel* m = mj_loadXML("cube.xml", vfs.get(), error, sizeof error);
+  if (!m) {
+    state.SkipWithError(error);
+    return;
+  }
+  mjData* d = mj_makeData(m);
+  for (int i = 0; i < 500; ++i) mj_step(m, d);  // settle on the plane
+  d->xfrc_applied[6 * 1 + 0] = 2.0;          // body 1, force x
+  std::vector<double> us;
+  double sink = 0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    mj_step(m, d);
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    us.push_back(dt * 1e6);
+    sink = std::max(sink, 0.1 - d->qpos[2]);
+  }
+  state.counters["sink_mm"] = sink * 1e3;
+  percentiles(state, us);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  mj_deleteVFS(vfs.get());
+}
+BENCHMARK(BM_MuJoCo_Step_RestingCube_Push)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+#endif
+
+}  // namespace wysiwyf::haptics
+
+BENCHMARK_MAIN();

@@ -1,0 +1,167 @@
+// admittance_sim: the admittance display mode (paper sections 2.3 and 4). Every tick it takes
+// the force the user applies (the wrist F/T sensor), moves the virtual object by rigid-body
+// dynamics with non-penetration constraints (Baraff's contact LCP on SUNDIALS CVODE) and sends
+// the object's motion to the robot as the device setpoint: base_T_dev = base_T_obj * obj_T_dev
+// (the virtual environment frame is the robot base, eq. 6).
+#include <cmath>
+#include <filesystem>
+
+#include "rigid_body/scene.hpp"
+#include "rigid_body/world.hpp"
+#include "rigid_body/wrench_path.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::haptics {
+
+namespace {
+
+void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
+  const Quat q(T.linear());
+  p.position().x(T.translation().x());
+  p.position().y(T.translation().y());
+  p.position().z(T.translation().z());
+  p.orientation().x(q.x());
+  p.orientation().y(q.y());
+  p.orientation().z(q.z());
+  p.orientation().w(q.w());
+}
+void to_msg(const Vec3& v, const Vec3& w, geometry_msgs::Twist& t) {
+  t.linear().x(v.x()), t.linear().y(v.y()), t.linear().z(v.z());
+  t.angular().x(w.x()), t.angular().y(w.y()), t.angular().z(w.z());
+}
+bool finite(const msg::WrenchStamped& m) {
+  const auto& f = m.wrench().force();
+  const auto& t = m.wrench().torque();
+  return std::isfinite(f.x()) && std::isfinite(f.y()) && std::isfinite(f.z()) && std::isfinite(t.x()) &&
+         std::isfinite(t.y()) && std::isfinite(t.z());
+}
+
+}  // namespace
+
+class AdmittanceSim final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("admittance display: rigid bodies with contact LCP on CVODE, driven by the user's wrench");
+    scene_path_ = ctx.param<std::string>("scene", "scenes/cube_on_table.yaml",
+                                         "scene file; relative paths are tried from the working directory, then config/");
+    max_force_ = ctx.param<double>("max_user_force", 200.0, "user forces above this are clipped (N)", Range{1, 2000});
+    rtol_ = ctx.param<double>("rtol", 1e-8, "CVODE relative tolerance", Range{1e-14, 1e-3});
+    wrench_ = ctx.input<msg::WrenchStamped>("wrench", "the wrist F/T sensor: user push plus tool weight, sensor frame",
+                                            Qos::sensor(8));
+    setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist for the robot (source admittance)");
+    objects_ = ctx.output<msg::ObjectState>("objects", "pose, twist and contacts of every dynamic body",
+                                            Qos::reliable(16));
+    dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
+    scene_ = load_scene(resolve(scene_path_));  // throws with file:line: reported before anything starts
+    if (scene_.device.body < 0) throw std::invalid_argument("scene '" + scene_path_ + "' has no device: attachment");
+  }
+
+  void activate() override {
+    WorldParams p;
+    p.gravity = scene_.gravity;
+    p.rtol = rtol_;
+    p.atol = rtol_ * 1e-2;
+    world_ = std::make_unique<World>(scene_.models, scene_.initial, p);
+  }
+
+  void tick(Time now) override {
+    // STEP 1: the user's wrench, held until the next sample.
+    while (wrench_.take(sample_)) {
+      if (!finite(sample_)) {  // a corrupt sample: ignore it, never move on it
+        ++rejected_;
+        if (rejected_ == 1) log("rejected a non-finite wrench sample (further ones are counted silently)");
+        continue;
+      }
+      const auto& f = sample_.wrench().force();
+      const auto& t = sample_.wrench().torque();
+      reading_.force = Vec3(f.x(), f.y(), f.z());
+      reading_.torque = Vec3(t.x(), t.y(), t.z());
+      if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
+    }
+    const int body = scene_.device.body;
+    const Eigen::Isometry3d base_T_obj = pose_of(body);
+    const Eigen::Isometry3d base_T_sensor = base_T_obj * scene_.device.obj_T_dev * scene_.device.dev_T_sensor;
+    const BodyWrench user = user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
+                                                scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity);
+    world_->set_external_wrench(body, user.force, user.torque);
+    // STEP 2-6.
+    const StepReport report = world_->step(dt_);
+    if (report.lcp_failures > 0) log("contact LCP found no solution in this step (" + std::to_string(report.lcp_failures) + " time(s))");
+    // STEP 7: the motion command.
+    publish(now);
+  }
+
+ private:
+  std::string resolve(const std::string& path) const {
+    namespace fs = std::filesystem;
+    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
+    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
+    if (fs::exists(in_config)) return in_config.string();
+    throw std::invalid_argument("scene file '" + path + "' not found (looked in the working directory and " +
+                                std::string(WYSIWYF_CONFIG_DIR) + ")");
+  }
+
+  Eigen::Isometry3d pose_of(int body) const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = world_->state(body).q.normalized().toRotationMatrix();
+    T.translation() = world_->state(body).x;
+    return T;
+  }
+
+  void publish(Time now) {
+    const int body = scene_.device.body;
+    const auto k = world_->kinematics(body);
+    const Eigen::Isometry3d base_T_dev = pose_of(body) * scene_.device.obj_T_dev;
+    setpoint_msg_.header().stamp_ns(now.ns);
+    setpoint_msg_.header().seq(seq_);
+    setpoint_msg_.header().frame_id("base");
+    setpoint_msg_.child_frame_id("dev");
+    to_msg(base_T_dev, setpoint_msg_.pose());
+    to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body).x), k.omega, setpoint_msg_.twist());
+    setpoint_msg_.source("admittance");
+    setpoint_.write(setpoint_msg_);
+
+    for (int i = 0; i < world_->body_count(); ++i) {
+      if (!world_->model(i).dynamic) continue;
+      const auto ki = world_->kinematics(i);
+      object_msg_.header().stamp_ns(now.ns);
+      object_msg_.header().seq(seq_);
+      object_msg_.header().frame_id("v_env");
+      object_msg_.child_frame_id(world_->model(i).name);
+      to_msg(pose_of(i), object_msg_.pose());
+      to_msg(ki.v, ki.omega, object_msg_.twist());
+      object_msg_.contacts().clear();
+      for (const auto& c : world_->resting_contacts()) {
+        if ((c.feature.a != i && c.feature.b != i) || object_msg_.contacts().size() >= 32) continue;
+        msg::Contact m;
+        m.position().x(c.point.p.x()), m.position().y(c.point.p.y()), m.position().z(c.point.p.z());
+        m.normal().x(c.point.n.x()), m.normal().y(c.point.n.y()), m.normal().z(c.point.n.z());
+        m.gap(c.point.gap);
+        m.force(c.force);
+        m.kind(msg::CONTACT_RESTING);
+        m.other(world_->model(c.feature.a == i ? c.feature.b : c.feature.a).name);
+        object_msg_.contacts().push_back(m);
+      }
+      objects_.write(object_msg_);
+    }
+    ++seq_;
+  }
+
+  std::string scene_path_;
+  double max_force_ = 200, rtol_ = 1e-8, dt_ = 1e-3;
+  Scene scene_;
+  std::unique_ptr<World> world_;
+  SensorReading reading_;
+  std::uint64_t rejected_ = 0, seq_ = 0;
+  msg::WrenchStamped sample_;
+  msg::CartesianSetpoint setpoint_msg_;
+  msg::ObjectState object_msg_;
+  Input<msg::WrenchStamped> wrench_;
+  Output<msg::CartesianSetpoint> setpoint_;
+  Output<msg::ObjectState> objects_;
+};
+
+}  // namespace wysiwyf::haptics
+
+WYSIWYF_COMPONENT(wysiwyf::haptics::AdmittanceSim, "admittance_sim")

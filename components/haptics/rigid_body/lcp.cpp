@@ -1,0 +1,143 @@
+#include "lcp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace wysiwyf::haptics {
+
+namespace {
+constexpr char kUnset = 0, kClamped = 1, kNotClamped = 2;
+}
+
+double LcpResult::residual() const {
+  double r = 0;
+  for (Eigen::Index i = 0; i < f.size(); ++i) r = std::max(r, std::abs(std::min(f[i], a[i])));
+  return r;
+}
+
+// The force direction that keeps every clamped contact's acceleration at zero while f_d grows by 1.
+Eigen::VectorXd LcpSolver::direction(const Eigen::MatrixXd& A, int d) {
+  const Eigen::Index n = A.rows();
+  Eigen::VectorXd df = Eigen::VectorXd::Zero(n);
+  df[d] = 1;
+  const auto nc = static_cast<Eigen::Index>(clamped_.size());
+  if (nc == 0) return df;
+  Eigen::MatrixXd Acc(nc, nc);
+  Eigen::VectorXd rhs(nc);
+  for (Eigen::Index i = 0; i < nc; ++i) {
+    rhs[i] = -A(clamped_[i], d);
+    for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
+  }
+  // Minimum-norm solution: exact even where round-off let A_CC become singular.
+  const Eigen::VectorXd x = Acc.completeOrthogonalDecomposition().solve(rhs);
+  for (Eigen::Index i = 0; i < nc; ++i) df[clamped_[i]] = x[i];
+  return df;
+}
+
+// With redundant contacts the forces are not unique, and the pivoting path can leave large
+// opposing forces that cancel (a squeeze), whose round-off spoils a = A f + b. The minimum-norm
+// forces of the final clamped set carry no such squeeze; they replace the pivoting result when
+// they are still a solution.
+void LcpSolver::polish(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, LcpResult& r) {
+  const auto nc = static_cast<Eigen::Index>(clamped_.size());
+  if (nc == 0) return;
+  Eigen::MatrixXd Acc(nc, nc);
+  Eigen::VectorXd rhs(nc);
+  for (Eigen::Index i = 0; i < nc; ++i) {
+    rhs[i] = -b[clamped_[i]];
+    for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
+  }
+  const Eigen::VectorXd x = Acc.completeOrthogonalDecomposition().solve(rhs);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(b.size());
+  for (Eigen::Index i = 0; i < nc; ++i) f[clamped_[i]] = x[i];
+  const Eigen::VectorXd a = A * f + b;
+  const double tol = 1e-12 * std::max(1.0, b.cwiseAbs().maxCoeff());
+  if (f.minCoeff() < -tol || a.minCoeff() < -tol) return;  // not a solution: keep the pivoting one
+  if (f.cwiseAbs().maxCoeff() < r.f.cwiseAbs().maxCoeff()) r.f = f;
+}
+
+LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+  const Eigen::Index n = b.size();
+  LcpResult r;
+  r.f = Eigen::VectorXd::Zero(n);
+  r.a = b;
+  clamped_.clear();
+  state_.assign(static_cast<std::size_t>(n), kUnset);
+  const double scale_A = std::max(A.size() ? A.cwiseAbs().maxCoeff() : 0.0, 1e-300);
+  const double scale_b = b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
+  const int max_pivots = static_cast<int>(50 * n + 100);  // a guard against cycling
+  // Round-off in a = A f + b grows with the forces; "satisfied" and "blocking" are judged against it.
+  auto accel_tolerance = [&] { return tol_ * std::max({1.0, scale_b, scale_A * r.f.cwiseAbs().maxCoeff()}); };
+
+  for (Eigen::Index d = 0; d < n; ++d) {
+    if (r.a[d] >= -accel_tolerance()) {  // already satisfied with f_d = 0
+      state_[d] = kNotClamped;
+      continue;
+    }
+    // Drive a_d to zero (Baraff's drive-to-zero).
+    while (true) {
+      if (++r.pivots > max_pivots) return r;
+      const Eigen::VectorXd df = direction(A, static_cast<int>(d));
+      const Eigen::VectorXd da = A * df;
+      // A change smaller than this is round-off: it neither blocks nor moves a_d. Judging it so
+      // keeps dependent contacts out of the clamped set, which then stays non-singular (Baraff's
+      // argument for the frictionless case).
+      const double df_scale = df.cwiseAbs().maxCoeff();
+      const double da_eps = 1e-10 * scale_A * df_scale;
+      const double df_eps = 1e-10 * df_scale;
+      double step = std::numeric_limits<double>::infinity();
+      Eigen::Index blocking = -1;
+      if (da[d] > da_eps) {
+        step = -r.a[d] / da[d];
+        blocking = d;
+      }
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (i == d) continue;
+        if (state_[i] == kClamped && df[i] < -df_eps) {
+          const double s = -r.f[i] / df[i];
+          if (s < step) step = s, blocking = i;
+        } else if (state_[i] == kNotClamped && da[i] < -da_eps) {
+          const double s = -r.a[i] / da[i];
+          if (s < step) step = s, blocking = i;
+        }
+      }
+      if (blocking < 0) {
+        // Nothing blocks and a_d does not move: d depends on the clamped contacts, and in exact
+        // arithmetic a_d is then already 0 (Baraff 1994, section 5); what is left is round-off.
+        if (r.a[d] >= -1e3 * accel_tolerance()) {
+          r.a[d] = 0;
+          state_[d] = kNotClamped;
+          break;
+        }
+        return r;  // unbounded: A is not PSD on this set, or b is infeasible
+      }
+      step = std::max(step, 0.0);
+      r.f += step * df;
+      r.a += step * da;
+      if (blocking == d) {
+        r.a[d] = 0;
+        state_[d] = kClamped;
+        clamped_.push_back(static_cast<int>(d));
+        break;
+      }
+      if (state_[blocking] == kClamped) {  // its force reached zero: release it
+        r.f[blocking] = 0;
+        state_[blocking] = kNotClamped;
+        clamped_.erase(std::find(clamped_.begin(), clamped_.end(), static_cast<int>(blocking)));
+      } else {  // its acceleration reached zero: clamp it
+        r.a[blocking] = 0;
+        state_[blocking] = kClamped;
+        clamped_.push_back(static_cast<int>(blocking));
+      }
+    }
+  }
+  polish(A, b, r);
+  // Clean round-off: forces never negative, accelerations consistent with them.
+  for (Eigen::Index i = 0; i < n; ++i) r.f[i] = std::max(r.f[i], 0.0);
+  r.a = A * r.f + b;
+  r.ok = true;
+  return r;
+}
+
+}  // namespace wysiwyf::haptics

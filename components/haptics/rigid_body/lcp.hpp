@@ -1,0 +1,38 @@
+#pragma once
+// The linear complementarity problem of the paper's eqs. (9)-(10) and (15)-(16):
+//   find f >= 0 with a = A f + b >= 0 and f . a = 0,
+// for a symmetric positive semi-definite A (contact space inverse inertia). Solved by Baraff's
+// pivoting method ("Fast contact force computation for nonpenetrating rigid bodies", SIGGRAPH
+// 1994, section 5): contacts are driven to complementarity one at a time, keeping the clamped
+// set C (f > 0, a = 0) and the not-clamped set NC (f = 0, a > 0) consistent. Redundant contacts
+// (four coplanar corners of a resting cube) make A_CC singular; the direction solve uses a
+// rank-revealing decomposition, which Baraff shows always has a solution in the frictionless case.
+#include <Eigen/Dense>
+
+namespace wysiwyf::haptics {
+
+struct LcpResult {
+  Eigen::VectorXd f;     // the forces (or impulses), >= 0
+  Eigen::VectorXd a;     // A f + b, >= 0
+  int pivots = 0;
+  bool ok = false;       // false: no solution within the pivot limit (A not PSD, or degenerate cycling)
+  // The natural complementarity residual max_i |min(f_i, a_i)|: 0 exactly at a solution.
+  double residual() const;
+};
+
+class LcpSolver {
+ public:
+  // tolerance: how negative a_i may be and still count as satisfied (scaled by max |A|, |b|).
+  explicit LcpSolver(double tolerance = 1e-12) : tol_(tolerance) {}
+  LcpResult solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
+
+ private:
+  Eigen::VectorXd direction(const Eigen::MatrixXd& A, int d);
+  void polish(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, LcpResult& r);
+
+  double tol_;
+  std::vector<int> clamped_;      // C, in insertion order
+  std::vector<char> state_;       // per contact: 0 unset, 1 clamped, 2 not clamped
+};
+
+}  // namespace wysiwyf::haptics

@@ -1,0 +1,373 @@
+#include "world.hpp"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace wysiwyf::haptics {
+
+constexpr int kStateSize = 13;  // x(3) q(4: w x y z) P(3) L(3)
+
+struct World::Cvode {
+  SUNContext ctx = nullptr;
+  N_Vector y = nullptr;
+  void* mem = nullptr;
+  SUNNonlinearSolver nls = nullptr;
+  bool initialised = false;
+
+  explicit Cvode(int n) {
+    if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
+    y = N_VNew_Serial(n, ctx);
+    mem = CVodeCreate(CV_ADAMS, ctx);  // non-stiff rigid-body dynamics: Adams-Moulton
+    if (!y || !mem) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
+  }
+  ~Cvode() {
+    if (mem) CVodeFree(&mem);
+    if (nls) SUNNonlinSolFree(nls);
+    if (y) N_VDestroy(y);
+    if (ctx) SUNContext_Free(&ctx);
+  }
+  static int rhs(realtype, N_Vector y, N_Vector ydot, void* user) {
+    static_cast<World*>(user)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    return 0;
+  }
+  static int roots(realtype, N_Vector y, realtype* g, void* user) {
+    static_cast<World*>(user)->roots(N_VGetArrayPointer(y), g);
+    return 0;
+  }
+  static void check(int flag, const char* call) {
+    if (flag < 0) throw std::runtime_error(std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag));
+  }
+};
+
+World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
+    : models_(std::move(models)), states_(std::move(initial)), params_(params) {
+  if (models_.size() != states_.size()) throw std::invalid_argument("World: one initial state per body expected");
+  slot_.assign(models_.size(), -1);
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    const auto& m = models_[i];
+    if ((m.half_extents.array() <= 0).any())
+      throw std::invalid_argument("body '" + m.name + "': half extents must be positive");
+    if (m.dynamic && !(m.mass > 0)) throw std::invalid_argument("body '" + m.name + "': mass must be positive");
+    if (m.restitution < 0 || m.restitution > 1)
+      throw std::invalid_argument("body '" + m.name + "': restitution must be within [0, 1]");
+    if (m.dynamic) {
+      slot_[i] = static_cast<int>(dynamic_.size());
+      dynamic_.push_back(static_cast<int>(i));
+    }
+    states_[i].q.normalize();
+  }
+  ext_force_.assign(models_.size(), Vec3::Zero());
+  ext_torque_.assign(models_.size(), Vec3::Zero());
+  cvode_ = std::make_unique<Cvode>(std::max<int>(1, kStateSize * static_cast<int>(dynamic_.size())));
+}
+
+World::~World() = default;
+
+void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque) {
+  // A new sample is a discontinuity of the right-hand side: the multistep history is invalid.
+  if (force != ext_force_[body] || torque != ext_torque_[body]) restart_ = true;
+  ext_force_[body] = force;
+  ext_torque_[body] = torque;
+}
+
+void World::set_state(int i, const BodyState& s) {
+  states_[i] = s;
+  states_[i].q.normalize();
+  restart_ = true;
+}
+
+double World::energy() const {
+  double e = 0;
+  for (int i : dynamic_) {
+    const BodyKinematics k(models_[i], states_[i]);
+    e += 0.5 * models_[i].mass * k.v.squaredNorm() + 0.5 * k.omega.dot(states_[i].L) -
+         models_[i].mass * params_.gravity.dot(states_[i].x);
+  }
+  return e;
+}
+
+void World::pack(double* y) const {
+  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
+    const BodyState& s = states_[dynamic_[k]];
+    double* o = y + kStateSize * k;
+    o[0] = s.x.x(), o[1] = s.x.y(), o[2] = s.x.z();
+    o[3] = s.q.w(), o[4] = s.q.x(), o[5] = s.q.y(), o[6] = s.q.z();
+    o[7] = s.P.x(), o[8] = s.P.y(), o[9] = s.P.z();
+    o[10] = s.L.x(), o[11] = s.L.y(), o[12] = s.L.z();
+  }
+}
+
+void World::unpack(const double* y, std::vector<BodyState>& states) const {
+  states = states_;
+  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
+    const double* o = y + kStateSize * k;
+    BodyState& s = states[dynamic_[k]];
+    s.x = Vec3(o[0], o[1], o[2]);
+    s.q = Quat(o[3], o[4], o[5], o[6]);
+    s.P = Vec3(o[7], o[8], o[9]);
+    s.L = Vec3(o[10], o[11], o[12]);
+  }
+}
+
+void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const {
+  poses.resize(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const BodyKinematics k(models_[i], states[i]);
+    poses[i] = Pose{states[i].x, k.R, k.v, k.omega, k.inv_mass, k.inv_inertia_world};
+  }
+}
+
+// J (contacts x 6 per dynamic body), then A = J M^-1 J^T.
+void World::contact_matrix(const std::vector<ActiveContact>& contacts, const std::vector<Pose>& poses) {
+  const auto m = static_cast<Eigen::Index>(contacts.size());
+  const auto n = static_cast<Eigen::Index>(6 * dynamic_.size());
+  J_.setZero(m, n);
+  MinvJt_.resize(n, m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto& c = contacts[i];
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? c.feature.a : c.feature.b;
+      if (slot_[body] < 0) continue;
+      const double sgn = side == 0 ? 1.0 : -1.0;
+      const Vec3 r = c.point.p - poses[body].x;
+      J_.block<1, 3>(i, 6 * slot_[body]) += sgn * c.point.n.transpose();
+      J_.block<1, 3>(i, 6 * slot_[body] + 3) += sgn * r.cross(c.point.n).transpose();
+    }
+  }
+  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
+    const Pose& p = poses[dynamic_[k]];
+    const auto cols = static_cast<Eigen::Index>(6 * k);
+    MinvJt_.middleRows<3>(cols) = p.inv_mass * J_.middleCols<3>(cols).transpose();
+    MinvJt_.middleRows<3>(cols + 3) = p.inv_inertia * J_.middleCols<3>(cols + 3).transpose();
+  }
+  A_.noalias() = J_ * MinvJt_;
+}
+
+void World::rhs(const double* y, double* ydot) {
+  ++report_.rhs_evaluations;
+  unpack(y, scratch_states_);
+  poses_of(scratch_states_, scratch_poses_);
+  // External forces and the free motion.
+  std::vector<Vec3> force(models_.size()), torque(models_.size());
+  for (int i : dynamic_) {
+    force[i] = models_[i].mass * params_.gravity + ext_force_[i];
+    torque[i] = ext_torque_[i];
+  }
+  // Resting contacts: the forces of eqs. (9)-(10) at this very state.
+  std::size_t live = 0;
+  for (auto& c : resting_) {
+    c.point = evaluate(c.feature, models_, scratch_poses_);
+    c.force = 0;
+    if (c.point.valid) std::swap(c, resting_[live++]);
+  }
+  if (live > 0) {
+    std::vector<ActiveContact> active(resting_.begin(), resting_.begin() + static_cast<long>(live));
+    contact_matrix(active, scratch_poses_);
+    b_.resize(static_cast<Eigen::Index>(live));
+    const double ws = 2 * M_PI * params_.stabilisation_hz;
+    for (std::size_t i = 0; i < live; ++i) {
+      const auto& c = active[i].point;
+      double acc = 0, gap_rate = 0;
+      for (int side = 0; side < 2; ++side) {
+        const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
+        const double sgn = side == 0 ? 1.0 : -1.0;
+        const Pose& p = scratch_poses_[body];
+        const Vec3 r = c.p - p.x;
+        Vec3 a = p.omega.cross(p.omega.cross(r));  // centripetal
+        if (slot_[body] >= 0) {
+          const Vec3 alpha = p.inv_inertia * (torque[body] - p.omega.cross(scratch_states_[body].L));
+          a += force[body] * p.inv_mass + alpha.cross(r);
+        }
+        const Vec3 vp = p.v + p.omega.cross(r);
+        acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
+        gap_rate += sgn * c.n.dot(vp);
+      }
+      b_[static_cast<Eigen::Index>(i)] = acc + 2 * ws * gap_rate + ws * ws * c.gap;
+    }
+    const LcpResult r = lcp_.solve(A_, b_);
+    if (!r.ok) ++report_.lcp_failures;
+    for (std::size_t i = 0; i < live; ++i) {
+      const double f = r.f[static_cast<Eigen::Index>(i)];
+      resting_[i].force = f;
+      const auto& c = active[i].point;
+      for (int side = 0; side < 2; ++side) {
+        const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
+        if (slot_[body] < 0) continue;
+        const Vec3 fn = (side == 0 ? f : -f) * c.n;
+        force[body] += fn;
+        torque[body] += (c.p - scratch_poses_[body].x).cross(fn);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
+    const int i = dynamic_[k];
+    const Pose& p = scratch_poses_[i];
+    const Quat& q = scratch_states_[i].q;
+    double* d = ydot + kStateSize * k;
+    d[0] = p.v.x(), d[1] = p.v.y(), d[2] = p.v.z();
+    // dq/dt = 1/2 (0, omega) q
+    d[3] = -0.5 * p.omega.dot(q.vec());
+    const Vec3 qv = 0.5 * (q.w() * p.omega + p.omega.cross(q.vec()));
+    d[4] = qv.x(), d[5] = qv.y(), d[6] = qv.z();
+    d[7] = force[i].x(), d[8] = force[i].y(), d[9] = force[i].z();
+    d[10] = torque[i].x(), d[11] = torque[i].y(), d[12] = torque[i].z();
+  }
+}
+
+void World::roots(const double* y, double* g) {
+  unpack(y, scratch_states_);
+  poses_of(scratch_states_, scratch_poses_);
+  for (std::size_t k = 0; k < watched_.size(); ++k) {
+    const ContactPoint c = evaluate(watched_[k], models_, scratch_poses_);
+    g[k] = c.valid ? c.gap : params_.margin;  // a feature that no longer faces the other cannot hit it
+  }
+}
+
+bool World::collide(std::vector<ActiveContact>& contacts) {
+  if (contacts.empty()) return true;
+  std::vector<Pose> poses;
+  poses_of(states_, poses);
+  for (auto& c : contacts) c.point = evaluate(c.feature, models_, poses);
+  contact_matrix(contacts, poses);
+  const auto m = static_cast<Eigen::Index>(contacts.size());
+  Eigen::VectorXd c(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto& ct = contacts[i];
+    const Vec3& pa = ct.point.p;
+    const double v_rel = ct.point.n.dot(poses[ct.feature.a].v + poses[ct.feature.a].omega.cross(pa - poses[ct.feature.a].x) -
+                                        poses[ct.feature.b].v - poses[ct.feature.b].omega.cross(pa - poses[ct.feature.b].x));
+    double e = std::min(models_[ct.feature.a].restitution, models_[ct.feature.b].restitution);
+    if (v_rel > -params_.resting_speed) e = 0;  // a slow approach ends the bounce sequence
+    c[i] = (1 + e) * v_rel;                     // eq. (14): v+ + e v- >= 0
+  }
+  const LcpResult r = lcp_.solve(A_, c);
+  if (!r.ok) return false;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto& ct = contacts[i];
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? ct.feature.a : ct.feature.b;
+      if (slot_[body] < 0) continue;
+      const Vec3 jn = (side == 0 ? r.f[i] : -r.f[i]) * ct.point.n;
+      states_[body].P += jn;
+      states_[body].L += (ct.point.p - poses[body].x).cross(jn);
+    }
+  }
+  return true;
+}
+
+void World::classify_contacts() {
+  std::vector<Pose> poses;
+  poses_of(states_, poses);
+  std::vector<ContactFeature> candidates;
+  for (int a : dynamic_)
+    for (int b = 0; b < body_count(); ++b)
+      if (b != a && (!models_[b].dynamic || a < b)) find_candidates(a, b, models_, poses, params_.margin, candidates);
+  std::vector<ActiveContact> touching;
+  std::vector<ContactFeature> watched;
+  bool colliding = false;
+  for (const auto& f : candidates) {
+    const ContactPoint c = evaluate(f, models_, poses);
+    if (!c.valid) continue;
+    if (c.gap > params_.contact_tolerance) {
+      watched.push_back(f);
+      continue;
+    }
+    touching.push_back(ActiveContact{f, c, 0});
+    const Vec3 r_a = c.p - poses[f.a].x, r_b = c.p - poses[f.b].x;
+    const double v_rel = c.n.dot(poses[f.a].v + poses[f.a].omega.cross(r_a) - poses[f.b].v - poses[f.b].omega.cross(r_b));
+    if (v_rel < -params_.resting_speed) colliding = true;
+  }
+  if (colliding) {  // approaching faster than resting: an impact at the start of the step
+    if (!collide(touching)) ++report_.lcp_failures;
+    ++report_.collisions;
+    restart_ = true;
+  }
+  auto same = [](const std::vector<ContactFeature>& x, const std::vector<ActiveContact>& y) {
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (!(x[i] == y[i].feature)) return false;
+    return true;
+  };
+  std::vector<ContactFeature> old_resting;
+  for (const auto& c : resting_) old_resting.push_back(c.feature);
+  if (!same(old_resting, touching) || watched != watched_) restart_ = true;
+  resting_ = std::move(touching);
+  watched_ = std::move(watched);
+}
+
+StepReport World::step(double dt) {
+  report_ = StepReport{};
+  if (dynamic_.empty()) {
+    t_ += dt;
+    return report_;
+  }
+  classify_contacts();
+  auto& cv = *cvode_;
+  double* y = N_VGetArrayPointer(cv.y);
+  auto reinit_roots = [&] {
+    std::vector<int> directions(watched_.size(), -1);  // approaching only
+    Cvode::check(CVodeRootInit(cv.mem, static_cast<int>(watched_.size()), watched_.empty() ? nullptr : &Cvode::roots),
+                 "CVodeRootInit");
+    if (!watched_.empty()) Cvode::check(CVodeSetRootDirection(cv.mem, directions.data()), "CVodeSetRootDirection");
+  };
+  if (restart_) {
+    for (int i : dynamic_) states_[i].q.normalize();
+    pack(y);
+    if (!cv.initialised) {
+      Cvode::check(CVodeInit(cv.mem, &Cvode::rhs, t_, cv.y), "CVodeInit");
+      Cvode::check(CVodeSetUserData(cv.mem, this), "CVodeSetUserData");
+      cv.nls = SUNNonlinSol_FixedPoint(cv.y, 0, cv.ctx);
+      Cvode::check(CVodeSetNonlinearSolver(cv.mem, cv.nls), "CVodeSetNonlinearSolver");
+      Cvode::check(CVodeSetMaxNumSteps(cv.mem, 100000), "CVodeSetMaxNumSteps");
+      cv.initialised = true;
+    } else {
+      Cvode::check(CVodeReInit(cv.mem, t_, cv.y), "CVodeReInit");
+    }
+    Cvode::check(CVodeSStolerances(cv.mem, params_.rtol, params_.atol), "CVodeSStolerances");
+    reinit_roots();
+    restart_ = false;
+  }
+  const double t_end = t_ + dt;
+  Cvode::check(CVodeSetStopTime(cv.mem, t_end), "CVodeSetStopTime");
+  while (true) {
+    realtype t_reached = t_;
+    const int flag = CVode(cv.mem, t_end, cv.y, &t_reached, CV_NORMAL);
+    Cvode::check(flag, "CVode");
+    unpack(y, states_);
+    t_ = t_reached;
+    if (flag != CV_ROOT_RETURN) break;
+    // An impact (STEP 4-6): impulses over every touching contact, then restart from here.
+    std::vector<int> found(watched_.size(), 0);
+    Cvode::check(CVodeGetRootInfo(cv.mem, found.data()), "CVodeGetRootInfo");
+    // Every watched feature that touches now takes part, flagged or not: the four corners of a
+    // cube landing flat hit together, whichever of them the root finder happened to report.
+    std::vector<ActiveContact> contacts = resting_;
+    std::vector<ContactFeature> still_watched;
+    std::vector<Pose> poses;
+    poses_of(states_, poses);
+    for (std::size_t k = 0; k < watched_.size(); ++k) {
+      const ContactPoint c = evaluate(watched_[k], models_, poses);
+      if (found[k] != 0 || (c.valid && c.gap <= params_.contact_tolerance))
+        contacts.push_back(ActiveContact{watched_[k], c, 0});
+      else
+        still_watched.push_back(watched_[k]);
+    }
+    if (!collide(contacts)) ++report_.lcp_failures;
+    ++report_.collisions;
+    resting_ = std::move(contacts);
+    watched_ = std::move(still_watched);
+    if (report_.collisions >= params_.max_collisions_per_step) watched_.clear();  // no more events this step
+    pack(y);
+    Cvode::check(CVodeReInit(cv.mem, t_, cv.y), "CVodeReInit");
+    reinit_roots();
+    if (t_ >= t_end) break;
+  }
+  return report_;
+}
+
+}  // namespace wysiwyf::haptics

@@ -1,0 +1,98 @@
+#pragma once
+// The physically based simulation of the paper's section 4: rigid boxes under gravity, external
+// (user) wrenches and non-penetration constraints, integrated with SUNDIALS CVODE.
+//
+// One step(dt) is the paper's section 4.3 cycle. The contacts found at its start (STEP 4 of the
+// previous cycle) that touch are resting contacts: their forces come from the LCP of eqs. (9)-(10)
+// at every right-hand-side evaluation, so the constraint holds in acceleration throughout the
+// step (STEP 2-3). Contacts that are near but apart are CVODE root functions on their gaps,
+// approaching direction only: at a root the integration stops at the exact time of impact, the
+// impulses come from the LCP of eqs. (15)-(16) with the restitution of each contact, the momenta
+// are reset and CVODE is restarted (CVodeReInit) from there (STEP 4-6).
+#include <memory>
+#include <vector>
+
+#include "body.hpp"
+#include "contact.hpp"
+#include "lcp.hpp"
+
+namespace wysiwyf::haptics {
+
+struct WorldParams {
+  Vec3 gravity{0, 0, -9.81};
+  double rtol = 1e-9;
+  double atol = 1e-11;
+  double contact_tolerance = 1e-5;  // gap below this: touching (above the scale of integration error)
+  double margin = 0.01;             // features closer than this are watched (resting or root)
+  double resting_speed = 0.01;      // approach slower than this: inelastic (ends bounce sequences)
+  double stabilisation_hz = 20.0;   // Baumgarte feedback on resting gaps (0: off)
+  int max_collisions_per_step = 32;
+};
+
+struct ActiveContact {
+  ContactFeature feature;
+  ContactPoint point;
+  double force = 0;  // N, from the last LCP
+};
+
+struct StepReport {
+  int collisions = 0;       // impact events (roots) inside the step
+  int rhs_evaluations = 0;
+  int lcp_failures = 0;
+};
+
+class World {
+ public:
+  World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params = {});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // A wrench on body i's centre of mass (world frame), held until changed (zero-order hold).
+  void set_external_wrench(int body, const Vec3& force, const Vec3& torque);
+  StepReport step(double dt);
+
+  double time() const { return t_; }
+  int body_count() const { return static_cast<int>(models_.size()); }
+  const BodyModel& model(int i) const { return models_[i]; }
+  const BodyState& state(int i) const { return states_[i]; }
+  void set_state(int i, const BodyState& s);
+  BodyKinematics kinematics(int i) const { return BodyKinematics(models_[i], states_[i]); }
+  const std::vector<ActiveContact>& resting_contacts() const { return resting_; }
+  // Kinetic plus gravitational potential energy of the dynamic bodies.
+  double energy() const;
+
+ private:
+  struct Cvode;
+  friend struct Cvode;
+  void pack(double* y) const;
+  void unpack(const double* y, std::vector<BodyState>& states) const;
+  void poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
+  void rhs(const double* y, double* ydot);
+  void roots(const double* y, double* g);
+  void classify_contacts();
+  // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to states_; returns false if it failed.
+  bool collide(std::vector<ActiveContact>& contacts);
+  void contact_matrix(const std::vector<ActiveContact>& contacts, const std::vector<Pose>& poses);
+
+  std::vector<BodyModel> models_;
+  std::vector<BodyState> states_;
+  WorldParams params_;
+  double t_ = 0;
+  std::vector<int> dynamic_;                 // indices of dynamic bodies, in state-vector order
+  std::vector<int> slot_;                    // body -> position in dynamic_, or -1
+  std::vector<Vec3> ext_force_, ext_torque_;
+  std::vector<ActiveContact> resting_;
+  std::vector<ContactFeature> watched_;      // root functions
+  bool restart_ = true;                      // CVODE must be (re)initialised before integrating
+  std::unique_ptr<Cvode> cvode_;
+  LcpSolver lcp_;
+  // Scratch, reused across right-hand-side evaluations.
+  std::vector<BodyState> scratch_states_;
+  std::vector<Pose> scratch_poses_;
+  Eigen::MatrixXd J_, MinvJt_, A_;
+  Eigen::VectorXd b_;
+  StepReport report_;
+};
+
+}  // namespace wysiwyf::haptics

@@ -1,0 +1,126 @@
+// The user's wrench path, scenes, and the admittance_sim component driven like the robot would.
+#include <gtest/gtest.h>
+
+#include "rigid_body/scene.hpp"
+#include "rigid_body/wrench_path.hpp"
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::haptics {
+
+TEST(WrenchPath, RemovesTheToolWeightAndMovesTheWrenchToTheBody) {
+  // Sensor 0.5 m above the body's centre, turned 90 degrees about z.
+  Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
+  world_T_sensor.linear() = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()).toRotationMatrix();
+  world_T_sensor.translation() = Vec3(1.0, 0.0, 0.5);
+  const Vec3 com(1.0, 0.0, 0.0);
+  const Vec3 gravity(0, 0, -9.81);
+  const double tool_mass = 0.5;
+  const Vec3 tool_com(0.0, 0.0, 0.1);  // in the sensor frame (sensor z = world z here)
+  // The sensor sees the user's 10 N push along world +y (sensor +x after the turn) plus the tool's weight.
+  SensorReading measured;
+  const Vec3 weight_sensor = world_T_sensor.linear().transpose() * (tool_mass * gravity);
+  measured.force = Vec3(10.0, 0.0, 0.0) + weight_sensor;
+  measured.torque = tool_com.cross(weight_sensor);  // the weight acts at the tool's centre of mass
+  const BodyWrench w = user_wrench_on_body(measured, world_T_sensor, com, tool_mass, tool_com, gravity);
+  EXPECT_LE((w.force - Vec3(0, 10, 0)).norm(), 1e-12);
+  // The push at the sensor, 0.5 m above the centre: torque r x F = (0,0,0.5) x (0,10,0) = (-5, 0, 0).
+  EXPECT_LE((w.torque - Vec3(-5, 0, 0)).norm(), 1e-12);
+}
+
+TEST(WrenchPath, AToolHangingStillGivesNoUserWrenchInAnyOrientation) {
+  for (double angle : {0.0, 0.7, 2.1, -1.3}) {
+    Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
+    world_T_sensor.linear() = Eigen::AngleAxisd(angle, Vec3(0.3, 1, 0.2).normalized()).toRotationMatrix();
+    const Vec3 g(0, 0, -9.81), tool_com(0.01, -0.02, 0.05);
+    SensorReading measured;
+    measured.force = world_T_sensor.linear().transpose() * (0.35 * g);
+    measured.torque = tool_com.cross(measured.force);
+    const BodyWrench w = user_wrench_on_body(measured, world_T_sensor, Vec3::Zero(), 0.35, tool_com, g);
+    EXPECT_LE(w.force.norm(), 1e-12);
+    EXPECT_LE(w.torque.norm(), 1e-12);
+  }
+}
+
+TEST(Scene, ThePapersCubeOnTableLoads) {
+  const Scene s = load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/scenes/cube_on_table.yaml");
+  ASSERT_EQ(s.models.size(), 2u);
+  EXPECT_EQ(s.models[1].name, "cube");
+  EXPECT_EQ(s.models[1].half_extents, Vec3::Constant(0.1));
+  EXPECT_EQ(s.device.body, 1);
+  // The plate is the +x face: z out of the face.
+  EXPECT_LE((s.device.obj_T_dev.linear().col(2) - Vec3::UnitX()).norm(), 1e-12);
+  EXPECT_LE((s.device.obj_T_dev.translation() - Vec3(0.1, 0, 0)).norm(), 1e-12);
+}
+
+TEST(Scene, MistakesAreReportedWithTheirLine) {
+  try {
+    load_scene_from_string("scene: 1\nbodies:\n  cube:\n    size: [0.2, 0.2]\n    mass: 1\n", "bad.yaml");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "bad.yaml:4:11: body 'cube' size: expected a list of three numbers");
+  }
+  try {
+    load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: 0.4}\n", "f.yaml");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("frictionless: expected 0"), std::string::npos) << e.what();
+  }
+}
+
+constexpr std::int64_t kMs = 1'000'000;
+
+TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
+  Harness h("admittance_sim", "{scene: scenes/cube_on_table.yaml}", 1000);
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
+  auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
+  auto objects = h.watch<msg::ObjectState>("objects");
+  h.activate();
+  // The sensor (plate frame: z along world +x, out of the cube) carries the tool; the user pushes
+  // the plate with 2 N toward the robot (world -x, plate -z).
+  const Scene s = load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/scenes/cube_on_table.yaml");
+  const Eigen::Matrix3d R = (s.device.obj_T_dev * s.device.dev_T_sensor).linear();
+  const Vec3 weight = R.transpose() * (s.device.tool_mass * s.gravity);
+  msg::WrenchStamped w;
+  const Vec3 f = Vec3(0, 0, -2.0) + weight;
+  const Vec3 t = s.device.tool_com.cross(weight);
+  w.wrench().force().x(f.x()), w.wrench().force().y(f.y()), w.wrench().force().z(f.z());
+  w.wrench().torque().x(t.x()), w.wrench().torque().y(t.y()), w.wrench().torque().z(t.z());
+  for (int i = 0; i <= 500; ++i) {
+    wrench.write(w);
+    h.tick(Time{i * kMs});
+  }
+  msg::CartesianSetpoint sp;
+  ASSERT_TRUE(setpoints.take_latest(sp));
+  // 501 steps of 1 ms under 2 N on 1 kg, frictionless: x = 0.7 - 1/2 * 2 * 0.501^2.
+  const double expected_face = 0.7 - 0.5 * 2.0 * 0.501 * 0.501;
+  EXPECT_NEAR(sp.pose().position().x(), expected_face, 1e-6);
+  EXPECT_NEAR(sp.twist().linear().x(), -2.0 * 0.501, 1e-6);
+  EXPECT_EQ(std::string(sp.source().c_str()), "admittance");
+  msg::ObjectState o;
+  ASSERT_TRUE(objects.take_latest(o));
+  EXPECT_EQ(std::string(o.child_frame_id().c_str()), "cube");
+  EXPECT_EQ(o.contacts().size(), 4u);  // resting on its four bottom corners
+  double weight_carried = 0;
+  for (const auto& c : o.contacts()) weight_carried += c.force();
+  EXPECT_NEAR(weight_carried, 9.81, 1e-3);
+}
+
+TEST(AdmittanceSim, ANonFiniteWrenchIsIgnored) {
+  Harness h("admittance_sim", "{scene: scenes/cube_on_table.yaml}", 1000);
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
+  auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
+  h.activate();
+  msg::WrenchStamped w;
+  w.wrench().force().x(std::nan(""));
+  for (int i = 0; i < 100; ++i) {
+    wrench.write(w);
+    h.tick(Time{i * kMs});
+  }
+  msg::CartesianSetpoint sp;
+  ASSERT_TRUE(setpoints.take_latest(sp));
+  EXPECT_TRUE(std::isfinite(sp.pose().position().x()));
+  EXPECT_NEAR(sp.pose().position().x(), 0.7, 1e-6);  // the cube did not move
+}
+
+}  // namespace wysiwyf::haptics

@@ -1,0 +1,124 @@
+// Baraff's pivoting LCP on random and degenerate contact problems.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+
+#include "rigid_body/lcp.hpp"
+
+namespace wysiwyf::haptics {
+
+// A contact problem as physics poses it: `contacts` contacts at random points of three mutually
+// adjacent faces of `bodies` 20 cm boxes (each box sits in a corner of floor and walls, or of
+// other boxes), each pushing into its face, so
+// A = J M^-1 J^T is symmetric positive semi-definite and singular as soon as contacts outnumber
+// 6 * bodies or several lie on one face; b = J M^-1 F for a random applied wrench F. (An
+// arbitrary b outside the range of J can make an LCP infeasible; a physical one cannot.)
+struct Problem {
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+};
+
+Problem contact_problem(std::mt19937& rng, int contacts, int bodies) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(contacts, 6 * bodies);
+  Eigen::MatrixXd Minv = Eigen::MatrixXd::Zero(6 * bodies, 6 * bodies);
+  for (int k = 0; k < bodies; ++k) {
+    const double mass = 0.2 + 2 * std::abs(u(rng));
+    Minv.block<3, 3>(6 * k, 6 * k) = Eigen::Matrix3d::Identity() / mass;
+    Minv.block<3, 3>(6 * k + 3, 6 * k + 3) = Eigen::Matrix3d::Identity() / (mass * 0.04 / 6);
+  }
+  std::vector<std::array<int, 3>> corner(bodies);  // per body: which side of each axis is held
+  for (auto& c : corner)
+    for (int axis = 0; axis < 3; ++axis) c[axis] = 2 * axis + std::uniform_int_distribution<int>(0, 1)(rng);
+  for (int i = 0; i < contacts; ++i) {
+    const int body = std::uniform_int_distribution<int>(0, bodies - 1)(rng);
+    const int face = corner[body][std::uniform_int_distribution<int>(0, 2)(rng)];
+    Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+    outward[face / 2] = face % 2 ? 1 : -1;
+    Eigen::Vector3d r(0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng));
+    r[face / 2] = 0.1 * outward[face / 2];
+    const Eigen::Vector3d n = -outward;  // from the surroundings into the box
+    J.block<1, 3>(i, 6 * body) = n.transpose();
+    J.block<1, 3>(i, 6 * body + 3) = r.cross(n).transpose();
+  }
+  Eigen::VectorXd F(6 * bodies);
+  for (Eigen::Index i = 0; i < F.size(); ++i) F[i] = 10 * u(rng);
+  return Problem{J * Minv * J.transpose(), J * Minv * F};
+}
+
+// The four bottom corners of a resting cube (plus a duplicate corner): rank 3 for 4 or 5 contacts.
+Eigen::MatrixXd resting_cube_matrix(bool duplicate) {
+  const double m = 1.0, h = 0.1;
+  const Eigen::Matrix3d Iinv = Eigen::Matrix3d::Identity() / (m * (2 * h) * (2 * h) / 6);
+  std::vector<Eigen::Vector3d> corners = {{-h, -h, -h}, {h, -h, -h}, {-h, h, -h}, {h, h, -h}};
+  if (duplicate) corners.push_back({h, h, -h});
+  Eigen::MatrixXd J(corners.size(), 6);
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+    J.block<1, 3>(i, 0) = n.transpose();
+    J.block<1, 3>(i, 3) = corners[i].cross(n).transpose();
+  }
+  Eigen::MatrixXd Minv = Eigen::MatrixXd::Zero(6, 6);
+  Minv.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / m;
+  Minv.bottomRightCorner<3, 3>() = Iinv;
+  return J * Minv * J.transpose();
+}
+
+TEST(Lcp, SolvesTenThousandRandomAndDegenerateProblemsToComplementarity) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  LcpSolver solver;
+  double worst = 0;
+  int failures = 0;
+  for (int trial = 0; trial < 10000; ++trial) {
+    Problem p;
+    switch (trial % 4) {
+      case 0: p = contact_problem(rng, 1 + trial % 12, 3); break;  // mostly regular
+      case 1: p = contact_problem(rng, 8 + trial % 9, 1); break;   // more contacts than DOF: singular
+      case 2: {                                                     // coplanar, redundant, under gravity and a random push
+        p.A = resting_cube_matrix(trial % 8 == 2);
+        const Eigen::Vector3d push(u(rng), u(rng), 5 * u(rng));
+        p.b = Eigen::VectorXd::Constant(p.A.rows(), -9.81 + push.z());
+        break;
+      }
+      default: p = contact_problem(rng, 1 + trial % 24, 2); break;
+    }
+    const Eigen::MatrixXd& A = p.A;
+    const Eigen::VectorXd& b = p.b;
+    const LcpResult r = solver.solve(A, b);
+    if (!r.ok) {
+      ++failures;
+      if (failures <= 8) ADD_FAILURE() << "trial " << trial << " (kind " << trial % 4 << ", " << b.size() << " contacts): no solution after " << r.pivots << " pivots, min a " << r.a.minCoeff() << ", max f " << r.f.maxCoeff();
+      continue;
+    }
+    EXPECT_LE((A * r.f + b - r.a).cwiseAbs().maxCoeff(), 1e-9);
+    if (r.residual() > 1e-9 && failures < 8) {
+      ++failures;
+      ADD_FAILURE() << "trial " << trial << " (kind " << trial % 4 << ", " << b.size() << " contacts): residual "
+                    << r.residual() << " after " << r.pivots << " pivots, max f " << r.f.maxCoeff();
+    }
+    worst = std::max(worst, r.residual());
+  }
+  EXPECT_EQ(failures, 0);
+  EXPECT_LE(worst, 1e-9);
+}
+
+TEST(Lcp, ACubeRestingOnFourCornersCarriesItsWeight) {
+  const Eigen::MatrixXd A = resting_cube_matrix(false);
+  const Eigen::VectorXd b = Eigen::VectorXd::Constant(4, -9.81);  // gravity pulls every corner down
+  const LcpResult r = LcpSolver().solve(A, b);
+  ASSERT_TRUE(r.ok);
+  EXPECT_NEAR(r.f.sum(), 9.81, 1e-9);  // m g, shared among the corners
+  EXPECT_LE(r.a.cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(Lcp, SeparatingContactsGetNoForce) {
+  const Eigen::MatrixXd A = resting_cube_matrix(false);
+  const Eigen::VectorXd b = Eigen::VectorXd::Constant(4, 2.0);
+  const LcpResult r = LcpSolver().solve(A, b);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.f.cwiseAbs().maxCoeff(), 0.0);
+}
+
+}  // namespace wysiwyf::haptics
