@@ -1,0 +1,138 @@
+// PUMA 560 model benchmarks: forward kinematics, Jacobian, closed-form IK (all 8 and nearest),
+// damped least squares step, RNEA, mass matrix and forward dynamics, each over 1024 random
+// configurations within the joint limits (cycled, so branches are not learnt from one pose).
+// Counter allocs_per_call: operator new calls per call (the hot calls must make none).
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <random>
+#include <vector>
+
+#include "puma_model/drive_params.hpp"
+#include "puma_model/puma_model.hpp"
+
+// --- every operator new in this process is counted ---
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+static std::atomic<std::uint64_t> g_allocations{0};
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+using wysiwyf::robot::PumaModel;
+using wysiwyf::robot::Vector6d;
+
+const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf";
+const std::string kDrive = std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560_drive.yaml";
+constexpr std::size_t kPoses = 1024;
+
+struct Fixture {
+  PumaModel model{kUrdf};
+  std::vector<Vector6d> q, qd, qdd;
+  std::vector<Eigen::Isometry3d> base_T_flange;
+
+  Fixture() {
+    model.set_rotor_inertia(wysiwyf::robot::load_drive_params(kDrive, model).reflected_inertia());
+    std::mt19937_64 rng(42);
+    for (std::size_t n = 0; n < kPoses; ++n) {
+      Vector6d a, b, c;
+      for (int j = 0; j < 6; ++j) {
+        a[j] = std::uniform_real_distribution<double>(model.limits().lower[j], model.limits().upper[j])(rng);
+        b[j] = std::uniform_real_distribution<double>(-2.0, 2.0)(rng);
+        c[j] = std::uniform_real_distribution<double>(-5.0, 5.0)(rng);
+      }
+      q.push_back(a);
+      qd.push_back(b);
+      qdd.push_back(c);
+      base_T_flange.push_back(model.fk(a));
+    }
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+// Runs `call(i)` over the poses; reports allocations per call.
+template <typename Call>
+void run(benchmark::State& state, Call call) {
+  std::size_t i = 0;
+  const std::uint64_t allocs_before = g_allocations.load();
+  for (auto _ : state) {
+    call(i);
+    i = (i + 1) % kPoses;
+  }
+  state.counters["allocs_per_call"] = benchmark::Counter(
+      static_cast<double>(g_allocations.load() - allocs_before) / static_cast<double>(state.iterations()));
+}
+
+void BM_ForwardKinematics(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) { benchmark::DoNotOptimize(f.model.fk(f.q[i])); });
+}
+BENCHMARK(BM_ForwardKinematics);
+
+void BM_Jacobian(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) { benchmark::DoNotOptimize(f.model.jacobian(f.q[i])); });
+}
+BENCHMARK(BM_Jacobian);
+
+void BM_InverseKinematicsAll8(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) {
+    benchmark::DoNotOptimize(f.model.ik(f.base_T_flange[i], f.q[(i + 1) % kPoses]));
+  });
+}
+BENCHMARK(BM_InverseKinematicsAll8);
+
+void BM_InverseKinematicsNearest(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) {
+    benchmark::DoNotOptimize(f.model.ik_nearest(f.base_T_flange[i], f.q[(i + 1) % kPoses]));
+  });
+}
+BENCHMARK(BM_InverseKinematicsNearest);
+
+void BM_DampedLeastSquaresStep(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) {
+    benchmark::DoNotOptimize(f.model.dls_step(f.q[i], f.base_T_flange[(i + 1) % kPoses], 0.05));
+  });
+}
+BENCHMARK(BM_DampedLeastSquaresStep);
+
+void BM_Rnea(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) { benchmark::DoNotOptimize(f.model.rnea(f.q[i], f.qd[i], f.qdd[i])); });
+}
+BENCHMARK(BM_Rnea);
+
+void BM_MassMatrix(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) { benchmark::DoNotOptimize(f.model.mass_matrix(f.q[i])); });
+}
+BENCHMARK(BM_MassMatrix);
+
+void BM_ForwardDynamics(benchmark::State& state) {
+  Fixture& f = fixture();
+  run(state, [&](std::size_t i) {
+    benchmark::DoNotOptimize(f.model.forward_dynamics(f.q[i], f.qd[i], f.qdd[i]));
+  });
+}
+BENCHMARK(BM_ForwardDynamics);
+
+}  // namespace
+
+BENCHMARK_MAIN();
