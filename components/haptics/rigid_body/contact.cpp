@@ -1,5 +1,6 @@
 #include "contact.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace wysiwyf::haptics {
@@ -69,27 +70,45 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   if ((poses[a].x - poses[b].x).squaredNorm() > reach * reach) return;  // bounding spheres apart
   // Deeper than this is the far side of the other box, not a contact.
   const double depth = 0.5 * std::min(ma.half_extents.minCoeff(), mb.half_extents.minCoeff());
-  auto add_vertex_faces = [&](int va, int vb) {
-    for (int v = 0; v < 8; ++v)
-      for (int face = 0; face < 6; ++face) {
-        ContactFeature f{ContactKind::kVertexFace, va, vb, v, face, 1};
-        const ContactPoint c = evaluate(f, models, poses);
-        if (c.valid && c.gap < margin && c.gap > -depth) out.push_back(f);
+  std::array<Vec3, 8> ca, cb;  // world corners, computed once
+  for (int i = 0; i < 8; ++i) {
+    ca[i] = corner_world(ma, poses[a], i);
+    cb[i] = corner_world(mb, poses[b], i);
+  }
+  // Corners of one box against the faces of the other, in the other's frame.
+  auto vertex_faces = [&](int va, int vb, const std::array<Vec3, 8>& corners) {
+    const BodyModel& other = models[vb];
+    const Pose& pose = poses[vb];
+    for (int v = 0; v < 8; ++v) {
+      const Vec3 local = pose.R.transpose() * (corners[v] - pose.x);
+      for (int axis = 0; axis < 3; ++axis) {
+        const int j = (axis + 1) % 3, k = (axis + 2) % 3;
+        if (std::abs(local[j]) > other.half_extents[j] || std::abs(local[k]) > other.half_extents[k]) continue;
+        for (int side = 0; side < 2; ++side) {
+          const double gap = (side ? local[axis] : -local[axis]) - other.half_extents[axis];
+          if (gap < margin && gap > -depth) out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, 2 * axis + side, 1});
+        }
       }
+    }
   };
-  add_vertex_faces(a, b);
-  add_vertex_faces(b, a);  // corners of b on faces of a (a table corner under the cube)
-  for (int ea = 0; ea < 12; ++ea)
+  vertex_faces(a, b, ca);
+  vertex_faces(b, a, cb);  // corners of b on faces of a (a table corner under the cube)
+  const auto& edges = BoxTopology::edges();
+  for (int ea = 0; ea < 12; ++ea) {
+    const Vec3 a0 = ca[edges[ea][0]], da = ca[edges[ea][1]] - a0;
     for (int eb = 0; eb < 12; ++eb) {
+      const Vec3 b0 = cb[edges[eb][0]], db = cb[edges[eb][1]] - b0;
+      // Cheap rejection: the edges' bounding spheres.
+      const double r = 0.5 * (da.norm() + db.norm()) + margin;
+      if (((a0 + 0.5 * da) - (b0 + 0.5 * db)).squaredNorm() > r * r) continue;
       ContactFeature f{ContactKind::kEdgeEdge, a, b, ea, eb, 1};
+      // Strictly inside both edges: a contact at an edge's end is a vertex-face contact.
       ContactPoint c = evaluate(f, models, poses, -1e-6);
       if (!c.valid || std::abs(c.gap) > margin) continue;
-      // Strictly inside both edges: a contact at an edge's end is a vertex-face contact.
-      const Vec3 pb_out = c.p - poses[b].x;
-      if (c.n.dot(pb_out) < 0) f.sign = -1;  // point the normal out of b
-      c = evaluate(f, models, poses, -1e-6);
+      if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.gap = -c.gap;  // point the normal out of b
       if (c.gap > -depth) out.push_back(f);
     }
+  }
 }
 
 }  // namespace wysiwyf::haptics

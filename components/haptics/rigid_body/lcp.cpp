@@ -3,11 +3,26 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace wysiwyf::haptics {
 
 namespace {
 constexpr char kUnset = 0, kClamped = 1, kNotClamped = 2;
+
+// Solves A_CC x = rhs. The clamped set is kept non-singular, so a Cholesky (LDLT) factorisation
+// does; where round-off made it singular after all, the minimum-norm solution of a complete
+// orthogonal decomposition.
+LcpVector solve_clamped(const LcpMatrix& Acc, const LcpVector& rhs) {
+  const Eigen::LDLT<LcpMatrix> ldlt(Acc);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+    const double smallest = ldlt.vectorD().cwiseAbs().minCoeff();
+    const double largest = ldlt.vectorD().cwiseAbs().maxCoeff();
+    if (smallest > 1e-12 * largest) return ldlt.solve(rhs);
+  }
+  return Acc.completeOrthogonalDecomposition().solve(rhs);
+}
 }
 
 double LcpResult::residual() const {
@@ -17,20 +32,19 @@ double LcpResult::residual() const {
 }
 
 // The force direction that keeps every clamped contact's acceleration at zero while f_d grows by 1.
-Eigen::VectorXd LcpSolver::direction(const Eigen::MatrixXd& A, int d) {
+LcpVector LcpSolver::direction(const LcpMatrix& A, int d) {
   const Eigen::Index n = A.rows();
-  Eigen::VectorXd df = Eigen::VectorXd::Zero(n);
+  LcpVector df = LcpVector::Zero(n);
   df[d] = 1;
   const auto nc = static_cast<Eigen::Index>(clamped_.size());
   if (nc == 0) return df;
-  Eigen::MatrixXd Acc(nc, nc);
-  Eigen::VectorXd rhs(nc);
+  LcpMatrix Acc(nc, nc);
+  LcpVector rhs(nc);
   for (Eigen::Index i = 0; i < nc; ++i) {
     rhs[i] = -A(clamped_[i], d);
     for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
   }
-  // Minimum-norm solution: exact even where round-off let A_CC become singular.
-  const Eigen::VectorXd x = Acc.completeOrthogonalDecomposition().solve(rhs);
+  const LcpVector x = solve_clamped(Acc, rhs);
   for (Eigen::Index i = 0; i < nc; ++i) df[clamped_[i]] = x[i];
   return df;
 }
@@ -39,28 +53,35 @@ Eigen::VectorXd LcpSolver::direction(const Eigen::MatrixXd& A, int d) {
 // opposing forces that cancel (a squeeze), whose round-off spoils a = A f + b. The minimum-norm
 // forces of the final clamped set carry no such squeeze; they replace the pivoting result when
 // they are still a solution.
-void LcpSolver::polish(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, LcpResult& r) {
+void LcpSolver::polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r) {
   const auto nc = static_cast<Eigen::Index>(clamped_.size());
   if (nc == 0) return;
-  Eigen::MatrixXd Acc(nc, nc);
-  Eigen::VectorXd rhs(nc);
+  LcpMatrix Acc(nc, nc);
+  LcpVector rhs(nc);
   for (Eigen::Index i = 0; i < nc; ++i) {
     rhs[i] = -b[clamped_[i]];
     for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
   }
-  const Eigen::VectorXd x = Acc.completeOrthogonalDecomposition().solve(rhs);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(b.size());
+  const LcpVector x = solve_clamped(Acc, rhs);
+  LcpVector f = LcpVector::Zero(b.size());
   for (Eigen::Index i = 0; i < nc; ++i) f[clamped_[i]] = x[i];
-  const Eigen::VectorXd a = A * f + b;
+  const LcpVector a = A * f + b;
   const double tol = 1e-12 * std::max(1.0, b.cwiseAbs().maxCoeff());
   if (f.minCoeff() < -tol || a.minCoeff() < -tol) return;  // not a solution: keep the pivoting one
   if (f.cwiseAbs().maxCoeff() < r.f.cwiseAbs().maxCoeff()) r.f = f;
 }
 
 LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+  if (b.size() > kMaxLcpSize)
+    throw std::length_error("LCP with " + std::to_string(b.size()) + " contacts; at most " +
+                            std::to_string(kMaxLcpSize) + " are supported");
+  return solve_small(A, b);
+}
+
+LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
   const Eigen::Index n = b.size();
   LcpResult r;
-  r.f = Eigen::VectorXd::Zero(n);
+  r.f = LcpVector::Zero(n);
   r.a = b;
   clamped_.clear();
   state_.assign(static_cast<std::size_t>(n), kUnset);
@@ -78,8 +99,8 @@ LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
     // Drive a_d to zero (Baraff's drive-to-zero).
     while (true) {
       if (++r.pivots > max_pivots) return r;
-      const Eigen::VectorXd df = direction(A, static_cast<int>(d));
-      const Eigen::VectorXd da = A * df;
+      const LcpVector df = direction(A, static_cast<int>(d));
+      const LcpVector da = A * df;
       // A change smaller than this is round-off: it neither blocks nor moves a_d. Judging it so
       // keeps dependent contacts out of the clamped set, which then stays non-singular (Baraff's
       // argument for the frictionless case).

@@ -11,9 +11,14 @@
 
 namespace wysiwyf::haptics {
 
+// Up to this many contacts the solver works on the stack: no heap allocation per solve.
+constexpr int kMaxLcpSize = 48;
+using LcpVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
+using LcpMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLcpSize, kMaxLcpSize>;
+
 struct LcpResult {
-  Eigen::VectorXd f;     // the forces (or impulses), >= 0
-  Eigen::VectorXd a;     // A f + b, >= 0
+  LcpVector f;     // the forces (or impulses), >= 0
+  LcpVector a;     // A f + b, >= 0
   int pivots = 0;
   bool ok = false;       // false: no solution within the pivot limit (A not PSD, or degenerate cycling)
   // The natural complementarity residual max_i |min(f_i, a_i)|: 0 exactly at a solution.
@@ -27,8 +32,10 @@ class LcpSolver {
   LcpResult solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
 
  private:
-  Eigen::VectorXd direction(const Eigen::MatrixXd& A, int d);
-  void polish(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, LcpResult& r);
+  // Throws std::length_error beyond kMaxLcpSize contacts.
+  LcpResult solve_small(const LcpMatrix& A, const LcpVector& b);
+  LcpVector direction(const LcpMatrix& A, int d);
+  void polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
 
   double tol_;
   std::vector<int> clamped_;      // C, in insertion order

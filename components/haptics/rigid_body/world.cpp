@@ -70,7 +70,9 @@ World::~World() = default;
 
 void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque) {
   // A new sample is a discontinuity of the right-hand side: the multistep history is invalid.
-  if (force != ext_force_[body] || torque != ext_torque_[body]) restart_ = true;
+  // (A change at the level of round-off, from a wrench rotated through a pose, is none.)
+  const auto changed = [](const Vec3& a, const Vec3& b) { return (a - b).norm() > 1e-12 * std::max(1.0, b.norm()); };
+  if (changed(force, ext_force_[body]) || changed(torque, ext_torque_[body])) restart_ = true;
   ext_force_[body] = force;
   ext_torque_[body] = torque;
 }
@@ -123,8 +125,8 @@ void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& po
 }
 
 // J (contacts x 6 per dynamic body), then A = J M^-1 J^T.
-void World::contact_matrix(const std::vector<ActiveContact>& contacts, const std::vector<Pose>& poses) {
-  const auto m = static_cast<Eigen::Index>(contacts.size());
+void World::contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses) {
+  const auto m = static_cast<Eigen::Index>(count);
   const auto n = static_cast<Eigen::Index>(6 * dynamic_.size());
   J_.setZero(m, n);
   MinvJt_.resize(n, m);
@@ -153,7 +155,10 @@ void World::rhs(const double* y, double* ydot) {
   unpack(y, scratch_states_);
   poses_of(scratch_states_, scratch_poses_);
   // External forces and the free motion.
-  std::vector<Vec3> force(models_.size()), torque(models_.size());
+  std::vector<Vec3>& force = force_;
+  std::vector<Vec3>& torque = torque_;
+  force.resize(models_.size());
+  torque.resize(models_.size());
   for (int i : dynamic_) {
     force[i] = models_[i].mass * params_.gravity + ext_force_[i];
     torque[i] = ext_torque_[i];
@@ -166,8 +171,8 @@ void World::rhs(const double* y, double* ydot) {
     if (c.point.valid) std::swap(c, resting_[live++]);
   }
   if (live > 0) {
-    std::vector<ActiveContact> active(resting_.begin(), resting_.begin() + static_cast<long>(live));
-    contact_matrix(active, scratch_poses_);
+    const ActiveContact* active = resting_.data();
+    contact_matrix(active, live, scratch_poses_);
     b_.resize(static_cast<Eigen::Index>(live));
     const double ws = 2 * M_PI * params_.stabilisation_hz;
     for (std::size_t i = 0; i < live; ++i) {
@@ -233,7 +238,7 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
   std::vector<Pose> poses;
   poses_of(states_, poses);
   for (auto& c : contacts) c.point = evaluate(c.feature, models_, poses);
-  contact_matrix(contacts, poses);
+  contact_matrix(contacts.data(), contacts.size(), poses);
   const auto m = static_cast<Eigen::Index>(contacts.size());
   Eigen::VectorXd c(m);
   for (Eigen::Index i = 0; i < m; ++i) {
@@ -295,7 +300,8 @@ void World::classify_contacts() {
   };
   std::vector<ContactFeature> old_resting;
   for (const auto& c : resting_) old_resting.push_back(c.feature);
-  if (!same(old_resting, touching) || watched != watched_) restart_ = true;
+  if (watched != watched_) restart_ = roots_changed_ = true;
+  if (!same(old_resting, touching)) restart_ = true;
   resting_ = std::move(touching);
   watched_ = std::move(watched);
 }
@@ -310,6 +316,7 @@ StepReport World::step(double dt) {
   auto& cv = *cvode_;
   double* y = N_VGetArrayPointer(cv.y);
   auto reinit_roots = [&] {
+    roots_changed_ = false;
     std::vector<int> directions(watched_.size(), -1);  // approaching only
     Cvode::check(CVodeRootInit(cv.mem, static_cast<int>(watched_.size()), watched_.empty() ? nullptr : &Cvode::roots),
                  "CVodeRootInit");
@@ -329,7 +336,7 @@ StepReport World::step(double dt) {
       Cvode::check(CVodeReInit(cv.mem, t_, cv.y), "CVodeReInit");
     }
     Cvode::check(CVodeSStolerances(cv.mem, params_.rtol, params_.atol), "CVodeSStolerances");
-    reinit_roots();
+    if (roots_changed_) reinit_roots();
     restart_ = false;
   }
   const double t_end = t_ + dt;

@@ -73,7 +73,8 @@ class World {
   void classify_contacts();
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to states_; returns false if it failed.
   bool collide(std::vector<ActiveContact>& contacts);
-  void contact_matrix(const std::vector<ActiveContact>& contacts, const std::vector<Pose>& poses);
+  // A = J M^-1 J^T over the first `count` of `contacts`.
+  void contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses);
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> states_;
@@ -85,11 +86,13 @@ class World {
   std::vector<ActiveContact> resting_;
   std::vector<ContactFeature> watched_;      // root functions
   bool restart_ = true;                      // CVODE must be (re)initialised before integrating
+  bool roots_changed_ = true;                // CVodeRootInit must be called again
   std::unique_ptr<Cvode> cvode_;
   LcpSolver lcp_;
   // Scratch, reused across right-hand-side evaluations.
   std::vector<BodyState> scratch_states_;
   std::vector<Pose> scratch_poses_;
+  std::vector<Vec3> force_, torque_;
   Eigen::MatrixXd J_, MinvJt_, A_;
   Eigen::VectorXd b_;
   StepReport report_;
