@@ -16,28 +16,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
-#include <new>
 #include <thread>
 #include <vector>
 
+#include "../common/allocation_counter.hpp"
 #include "endpoints.hpp"
-
-// --- every operator new in this process is counted ---
-// (GCC cannot see that these replace the global operators, and warns about malloc/free.)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-static std::atomic<std::uint64_t> g_allocations{0};
-static std::atomic<std::uint64_t> g_allocated_bytes{0};
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  g_allocated_bytes.fetch_add(n, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace wysiwyf::bench {
 
@@ -77,7 +60,7 @@ int echo(int domain, bool image) {
       continue;
     }
     if (sample.header().seq() == kEnd) {
-      sample.header().stamp_ns(static_cast<std::int64_t>(g_allocations.load() - allocs_at_warm));
+      sample.header().stamp_ns(static_cast<std::int64_t>(allocation_count() - allocs_at_warm));
       sample.header().frame_id(std::to_string(echoed > kWarmup ? echoed - kWarmup : 0));
       for (int i = 0; i < 20; ++i) {  // best effort: say it a few times
         ep.send(sample);
@@ -85,7 +68,7 @@ int echo(int domain, bool image) {
       }
       return 0;
     }
-    if (++echoed == kWarmup) allocs_at_warm = g_allocations.load();
+    if (++echoed == kWarmup) allocs_at_warm = allocation_count();
     ep.send(sample);
   }
 }
@@ -125,8 +108,8 @@ void in_process(benchmark::State& state, int domain) {
     while (!ep.poll(in)) std::this_thread::yield();
   }
   std::vector<double> hops;
-  const auto allocs = g_allocations.load();
-  const auto bytes = g_allocated_bytes.load();
+  const auto allocs = allocation_count();
+  const auto bytes = allocated_bytes();
   for (auto _ : state) {
     const auto t0 = Clock::now();
     out.header().seq(out.header().seq() + 1);
@@ -136,8 +119,8 @@ void in_process(benchmark::State& state, int domain) {
     state.SetIterationTime(dt);
     hops.push_back(dt * 1e6);
   }
-  state.counters["allocs_per_hop"] = static_cast<double>(g_allocations.load() - allocs) / static_cast<double>(hops.size());
-  state.counters["alloc_bytes_per_hop"] = static_cast<double>(g_allocated_bytes.load() - bytes) / static_cast<double>(hops.size());
+  state.counters["allocs_per_hop"] = static_cast<double>(allocation_count() - allocs) / static_cast<double>(hops.size());
+  state.counters["alloc_bytes_per_hop"] = static_cast<double>(allocated_bytes() - bytes) / static_cast<double>(hops.size());
   state.counters["hops_per_s"] = benchmark::Counter(static_cast<double>(hops.size()), benchmark::Counter::kIsRate);
   percentiles(state, hops);
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * (image ? 640 * 480 * 3 : 152));
@@ -170,8 +153,8 @@ void two_process(benchmark::State& state, const std::string& impl, int domain) {
   }
   std::vector<double> hops;
   std::uint64_t lost = 0;
-  const auto allocs = g_allocations.load();
-  const auto bytes = g_allocated_bytes.load();
+  const auto allocs = allocation_count();
+  const auto bytes = allocated_bytes();
   std::uint64_t seq = 1'000'000;
   for (auto _ : state) {
     out.header().seq(++seq);
@@ -188,8 +171,8 @@ void two_process(benchmark::State& state, const std::string& impl, int domain) {
     state.SetIterationTime(hop);
     hops.push_back(hop * 1e6);
   }
-  state.counters["allocs_per_hop"] = static_cast<double>(g_allocations.load() - allocs) / static_cast<double>(hops.size());
-  state.counters["alloc_bytes_per_hop"] = static_cast<double>(g_allocated_bytes.load() - bytes) / static_cast<double>(hops.size());
+  state.counters["allocs_per_hop"] = static_cast<double>(allocation_count() - allocs) / static_cast<double>(hops.size());
+  state.counters["alloc_bytes_per_hop"] = static_cast<double>(allocated_bytes() - bytes) / static_cast<double>(hops.size());
   state.counters["lost"] = static_cast<double>(lost);
   percentiles(state, hops);
   // Ask the child for its own allocation count.

@@ -6,26 +6,12 @@
 
 #include <atomic>
 #include <cstdlib>
-#include <new>
 #include <random>
 #include <vector>
 
+#include "../common/allocation_counter.hpp"
 #include "puma_model/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
-
-// --- every operator new in this process is counted ---
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-static std::atomic<std::uint64_t> g_allocations{0};
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -68,13 +54,13 @@ Fixture& fixture() {
 template <typename Call>
 void run(benchmark::State& state, Call call) {
   std::size_t i = 0;
-  const std::uint64_t allocs_before = g_allocations.load();
+  const std::uint64_t allocs_before = wysiwyf::bench::allocation_count();
   for (auto _ : state) {
     call(i);
     i = (i + 1) % kPoses;
   }
   state.counters["allocs_per_call"] = benchmark::Counter(
-      static_cast<double>(g_allocations.load() - allocs_before) / static_cast<double>(state.iterations()));
+      static_cast<double>(wysiwyf::bench::allocation_count() - allocs_before) / static_cast<double>(state.iterations()));
 }
 
 void BM_ForwardKinematics(benchmark::State& state) {
