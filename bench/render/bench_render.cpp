@@ -1,0 +1,41 @@
+// Rendering benchmarks: one renderer frame at 640x480 (draw the scene, read back colour and
+// depth, publish both), headless on whatever EGL finds (llvmpipe on a machine without a GPU).
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::render {
+
+void BM_Renderer_640x480(benchmark::State& state) {
+  const std::string params = "{samples: " + std::to_string(state.range(0)) + "}";
+  Harness h("renderer", params, 60);
+  auto pose_in = h.feed<msg::PoseStamped>("eye_T_base");
+  auto color = h.watch<msg::Image>("color", 2);
+  h.activate();
+  Eigen::Isometry3d base_T_eye = Eigen::Isometry3d::Identity();
+  base_T_eye.linear() << 1, 0, 0, 0, 0.6, 0.8, 0, -0.8, 0.6;  // looking down at the table
+  base_T_eye.translation() = Eigen::Vector3d(0.6, -0.7, 0.6);
+  const Eigen::Isometry3d eye_T_base = base_T_eye.inverse();
+  const Eigen::Quaterniond q(eye_T_base.linear());
+  msg::PoseStamped p;
+  p.pose().position().x(eye_T_base.translation().x()), p.pose().position().y(eye_T_base.translation().y()),
+      p.pose().position().z(eye_T_base.translation().z());
+  p.pose().orientation().x(q.x()), p.pose().orientation().y(q.y()), p.pose().orientation().z(q.z()),
+      p.pose().orientation().w(q.w());
+  pose_in.write(p);
+  std::int64_t t = 0;
+  msg::Image img;
+  for (auto _ : state) {
+    h.tick(Time{t += 16'666'667});
+    color.take_latest(img);
+  }
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Renderer_640x480)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+}  // namespace wysiwyf::render
+
+BENCHMARK_MAIN();
