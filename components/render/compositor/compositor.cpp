@@ -1,0 +1,88 @@
+// compositor: the user's view (paper section 2.2, STEP 2 and Fig. 3): the keyed live image of the
+// hand over the rendered virtual scene. The hand comes premultiplied (RGBA from chroma_keyer):
+// out = hand + (1 - alpha) * scene. When the real scene's depth is known (stereo), it z-keys per
+// pixel instead: the hand shows only where it is nearer than the virtual surface (section 3.2's
+// answer to the hand always being drawn on top).
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::render {
+
+namespace {
+
+cv::Mat view(msg::Image& m, int type) {
+  return cv::Mat(static_cast<int>(m.height()), static_cast<int>(m.width()), type, m.data().data(), m.step());
+}
+bool valid(const msg::Image& m, const char* encoding, std::size_t bytes_per_pixel) {
+  return std::string(m.encoding().c_str()) == encoding && m.width() > 0 && m.height() > 0 &&
+         m.step() >= m.width() * bytes_per_pixel && m.data().size() >= static_cast<std::size_t>(m.step()) * m.height();
+}
+
+}  // namespace
+
+class Compositor final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("the keyed hand over the rendered scene: premultiplied alpha, or z-keying with depth");
+    use_depth_ = ctx.param<bool>("z_keying", true, "z-key when the real scene's depth arrives (else alpha only)");
+    scene_in_ = ctx.input<msg::Image>("scene", "the rendered virtual scene, rgb8", Qos::sensor(2));
+    scene_depth_in_ = ctx.input<msg::Image>("scene_depth", "its metric depth, 32FC1 (0: nothing)", Qos::sensor(2));
+    hand_in_ = ctx.input<msg::Image>("hand", "the keyed hand, rgba8 premultiplied", Qos::sensor(2));
+    real_depth_in_ = ctx.input<msg::Image>("real_depth", "metric depth of the real scene, 32FC1 (0: unknown)", Qos::sensor(2));
+    out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
+  }
+
+  void tick(Time now) override {
+    bool fresh = scene_in_.take_latest(scene_);
+    fresh |= hand_in_.take_latest(hand_);
+    scene_depth_in_.take_latest(scene_depth_);
+    real_depth_in_.take_latest(real_depth_);
+    if (!fresh || !valid(scene_, "rgb8", 3)) return;
+    out_msg_ = scene_;  // same size and header; reuses the buffer after the first frame
+    out_msg_.header().stamp_ns(now.ns);
+    out_msg_.header().seq(seq_++);
+    cv::Mat out = view(out_msg_, CV_8UC3);
+    if (valid(hand_, "rgba8", 4) && hand_.width() == scene_.width() && hand_.height() == scene_.height()) {
+      cv::Mat hand = view(hand_, CV_8UC4);
+      cv::Mat alpha;
+      cv::extractChannel(hand, alpha, 3);
+      if (use_depth_ && valid(real_depth_, "32FC1", 4) && valid(scene_depth_, "32FC1", 4) &&
+          real_depth_.width() == scene_.width() && scene_depth_.width() == scene_.width() &&
+          real_depth_.height() == scene_.height() && scene_depth_.height() == scene_.height()) {
+        // The hand is hidden wherever the virtual surface is nearer than the real one.
+        const cv::Mat real = view(real_depth_, CV_32FC1), virt = view(scene_depth_, CV_32FC1);
+        cv::Mat behind = (virt > 0) & (real > 0) & (virt < real);
+        alpha.setTo(0, behind);
+        hand_premultiplied_.create(hand.size(), CV_8UC3);
+        cv::cvtColor(hand, hand_premultiplied_, cv::COLOR_RGBA2RGB);
+        hand_premultiplied_.setTo(0, behind);
+      } else {
+        cv::cvtColor(hand, hand_premultiplied_, cv::COLOR_RGBA2RGB);
+      }
+      // out = hand + scene * (255 - alpha) / 255, vectorised in 16 bits.
+      cv::Mat inverse;
+      cv::subtract(cv::Scalar(255), alpha, inverse);
+      cv::Mat inverse3;
+      cv::merge(std::vector<cv::Mat>{inverse, inverse, inverse}, inverse3);
+      cv::Mat scaled;
+      cv::multiply(out, inverse3, scaled, 1.0 / 255.0);
+      cv::add(scaled, hand_premultiplied_, out);
+    }
+    out_.write(out_msg_);
+  }
+
+ private:
+  bool use_depth_ = true;
+  std::uint64_t seq_ = 0;
+  msg::Image scene_, scene_depth_, hand_, real_depth_, out_msg_;
+  cv::Mat hand_premultiplied_;
+  Input<msg::Image> scene_in_, scene_depth_in_, hand_in_, real_depth_in_;
+  Output<msg::Image> out_;
+};
+
+}  // namespace wysiwyf::render
+
+WYSIWYF_COMPONENT(wysiwyf::render::Compositor, "compositor")

@@ -1,0 +1,85 @@
+// The compositor on hand-made images: premultiplied alpha, and z-keying.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::render {
+
+msg::Image image(int w, int h, const char* encoding, int channels_bytes) {
+  msg::Image m;
+  m.width(w), m.height(h), m.encoding(encoding), m.step(static_cast<std::uint32_t>(w * channels_bytes));
+  m.data().assign(static_cast<std::size_t>(w) * h * channels_bytes, 0);
+  return m;
+}
+void set_depth(msg::Image& d, int u, int v, float z) { std::memcpy(&d.data()[(static_cast<std::size_t>(v) * d.width() + u) * 4], &z, 4); }
+
+TEST(Compositor, BlendsThePremultipliedHandOverTheScene) {
+  Harness h("compositor", "{}", 60);
+  auto scene = h.feed<msg::Image>("scene");
+  auto hand = h.feed<msg::Image>("hand");
+  auto out = h.watch<msg::Image>("composite");
+  h.activate();
+  msg::Image s = image(3, 1, "rgb8", 3), k = image(3, 1, "rgba8", 4);
+  for (int u = 0; u < 3; ++u) s.data()[u * 3] = 100, s.data()[u * 3 + 1] = 150, s.data()[u * 3 + 2] = 200;
+  // Pixel 0: no hand. Pixel 1: opaque hand (10, 20, 30). Pixel 2: half-transparent skin, premultiplied.
+  const std::uint8_t hand_px[3][4] = {{0, 0, 0, 0}, {10, 20, 30, 255}, {100, 60, 40, 128}};
+  std::memcpy(k.data().data(), hand_px, 12);
+  scene.write(s);
+  hand.write(k);
+  h.tick(Time{0});
+  msg::Image c;
+  ASSERT_TRUE(out.take_latest(c));
+  ASSERT_EQ(c.data().size(), 9u);
+  const std::uint8_t* p = c.data().data();
+  EXPECT_EQ((std::vector<int>{p[0], p[1], p[2]}), (std::vector<int>{100, 150, 200}));
+  EXPECT_EQ((std::vector<int>{p[3], p[4], p[5]}), (std::vector<int>{10, 20, 30}));
+  for (int ch = 0; ch < 3; ++ch) {
+    const int expected = hand_px[2][ch] + static_cast<int>(std::lround(s.data()[6 + ch] * (255 - 128) / 255.0));
+    EXPECT_NEAR(p[6 + ch], expected, 1) << ch;
+  }
+}
+
+TEST(Compositor, ZKeyingHidesTheHandBehindTheVirtualObject) {
+  Harness h("compositor", "{}", 60);
+  auto scene = h.feed<msg::Image>("scene");
+  auto scene_depth = h.feed<msg::Image>("scene_depth");
+  auto hand = h.feed<msg::Image>("hand");
+  auto real_depth = h.feed<msg::Image>("real_depth");
+  auto out = h.watch<msg::Image>("composite");
+  h.activate();
+  msg::Image s = image(3, 1, "rgb8", 3), sd = image(3, 1, "32FC1", 4), k = image(3, 1, "rgba8", 4), rd = image(3, 1, "32FC1", 4);
+  for (int u = 0; u < 3; ++u) {
+    s.data()[u * 3] = 200;                                    // the virtual object: red
+    k.data()[u * 4 + 1] = 255, k.data()[u * 4 + 3] = 255;    // the hand: opaque green
+    set_depth(rd, u, 0, 0.5f);                                // the hand is 0.5 m away
+  }
+  set_depth(sd, 0, 0, 0.4f);  // the virtual surface in front of the hand: the hand is hidden
+  set_depth(sd, 1, 0, 0.6f);  // behind the hand: the hand shows
+  set_depth(sd, 2, 0, 0.0f);  // no virtual surface: the hand shows
+  scene.write(s), scene_depth.write(sd), hand.write(k), real_depth.write(rd);
+  h.tick(Time{0});
+  msg::Image c;
+  ASSERT_TRUE(out.take_latest(c));
+  const std::uint8_t* p = c.data().data();
+  EXPECT_EQ((std::vector<int>{p[0], p[1], p[2]}), (std::vector<int>{200, 0, 0}));
+  EXPECT_EQ((std::vector<int>{p[3], p[4], p[5]}), (std::vector<int>{0, 255, 0}));
+  EXPECT_EQ((std::vector<int>{p[6], p[7], p[8]}), (std::vector<int>{0, 255, 0}));
+}
+
+TEST(Compositor, AMalformedImageIsIgnored) {
+  Harness h("compositor", "{}", 60);
+  auto scene = h.feed<msg::Image>("scene");
+  auto out = h.watch<msg::Image>("composite");
+  h.activate();
+  msg::Image s = image(4, 4, "rgb8", 3);
+  s.data().resize(10);  // shorter than height * step
+  scene.write(s);
+  h.tick(Time{0});
+  EXPECT_EQ(out.received(), 0u);
+}
+
+}  // namespace wysiwyf::render
