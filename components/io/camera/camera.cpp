@@ -1,0 +1,118 @@
+// camera: a real camera (or a recording) through OpenCV's VideoCapture: a V4L2 device
+// ("/dev/video0" or "0"), a video file, or a GStreamer pipeline string. Intrinsics come from an
+// OpenCV calibration file (camera_matrix, distortion_coefficients). A missing source is an
+// error at activation; a source lost while running is reported and reopened, and the pipeline
+// keeps running.
+#include <opencv2/core/persistence.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::io {
+
+class Camera final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("a camera, video file or GStreamer pipeline through OpenCV VideoCapture");
+    source_ = ctx.param<std::string>("source", "0", "device index or path, video file, or GStreamer pipeline");
+    backend_ = ctx.param_choice("backend", "any", "VideoCapture API", {"any", "v4l2", "ffmpeg", "gstreamer"});
+    calibration_ = ctx.param<std::string>("calibration", "", "OpenCV calibration YAML (camera_matrix, distortion_coefficients)");
+    at_end_ = ctx.param_choice("at_end", "stop", "when a file ends", {"stop", "loop", "hold"});
+    reopen_s_ = ctx.param<double>("reopen_after", 1.0, "seconds without frames before reopening a lost source", Range{0.05, 60});
+    image_ = ctx.output<msg::Image>("image", "frames, rgb8", Qos::sensor(2));
+    info_ = ctx.output<msg::CameraInfo>("camera_info", "the calibration, with every frame", Qos::sensor(2));
+    if (!calibration_.empty()) load_calibration();
+  }
+
+  void activate() override {
+    if (!open()) throw std::runtime_error("cannot open camera source '" + source_ + "' (backend " + backend_ + ")");
+  }
+
+  void tick(Time now) override {
+    if (!capture_.isOpened()) {
+      if (now.ns - lost_since_ns_ > static_cast<std::int64_t>(reopen_s_ * 1e9)) {
+        lost_since_ns_ = now.ns;
+        if (open()) log("camera source '" + source_ + "' is back");
+      }
+      return;
+    }
+    if (!capture_.read(bgr_) || bgr_.empty()) {
+      if (is_file_ && at_end_ == "loop" && frames_ > 0) {
+        capture_.set(cv::CAP_PROP_POS_FRAMES, 0);
+        return;
+      }
+      if (is_file_ && at_end_ == "stop") {
+        request_stop("end of " + source_ + " after " + std::to_string(frames_) + " frames");
+        return;
+      }
+      if (is_file_) return;  // hold: nothing new
+      log("lost camera source '" + source_ + "'; reopening every " + std::to_string(reopen_s_) + " s");
+      capture_.release();
+      lost_since_ns_ = now.ns;
+      return;
+    }
+    cv::cvtColor(bgr_, rgb_, cv::COLOR_BGR2RGB);
+    msg_.header().stamp_ns(now.ns);
+    msg_.header().seq(frames_++);
+    msg_.header().frame_id("eye");
+    msg_.width(static_cast<std::uint32_t>(rgb_.cols));
+    msg_.height(static_cast<std::uint32_t>(rgb_.rows));
+    msg_.encoding("rgb8");
+    msg_.step(static_cast<std::uint32_t>(rgb_.cols * 3));
+    msg_.data().assign(rgb_.data, rgb_.data + rgb_.total() * 3);
+    image_.write(msg_);
+    if (!calibration_.empty()) {
+      info_msg_.header() = msg_.header();
+      info_.write(info_msg_);
+    }
+  }
+
+  void deactivate() override { capture_.release(); }
+
+ private:
+  bool open() {
+    const int api = backend_ == "v4l2" ? cv::CAP_V4L2 : backend_ == "ffmpeg" ? cv::CAP_FFMPEG
+                  : backend_ == "gstreamer" ? cv::CAP_GSTREAMER : cv::CAP_ANY;
+    const bool index = !source_.empty() && source_.find_first_not_of("0123456789") == std::string::npos;
+    is_file_ = !index && source_.find('!') == std::string::npos && source_.rfind("/dev/", 0) != 0;
+    return index ? capture_.open(std::stoi(source_), api) : capture_.open(source_, api);
+  }
+
+  void load_calibration() {
+    cv::FileStorage fs(calibration_, cv::FileStorage::READ);
+    if (!fs.isOpened()) throw std::invalid_argument("calibration: cannot read '" + calibration_ + "'");
+    cv::Mat K, D;
+    fs["camera_matrix"] >> K;
+    fs["distortion_coefficients"] >> D;
+    if (K.rows != 3 || K.cols != 3)
+      throw std::invalid_argument("calibration '" + calibration_ + "': expected a 3x3 camera_matrix");
+    K.convertTo(K, CV_64F);
+    info_msg_.width(static_cast<std::uint32_t>(static_cast<int>(fs["image_width"])));
+    info_msg_.height(static_cast<std::uint32_t>(static_cast<int>(fs["image_height"])));
+    info_msg_.distortion_model("plumb_bob");
+    info_msg_.d().clear();
+    D.convertTo(D, CV_64F);
+    for (int i = 0; i < static_cast<int>(D.total()) && i < 14; ++i) info_msg_.d().push_back(D.at<double>(i));
+    for (int i = 0; i < 9; ++i) info_msg_.k()[i] = K.at<double>(i / 3, i % 3);
+    info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    info_msg_.p() = {K.at<double>(0, 0), 0, K.at<double>(0, 2), 0, 0, K.at<double>(1, 1), K.at<double>(1, 2), 0, 0, 0, 1, 0};
+  }
+
+  std::string source_, backend_, calibration_, at_end_;
+  double reopen_s_ = 1.0;
+  bool is_file_ = false;
+  cv::VideoCapture capture_;
+  cv::Mat bgr_, rgb_;
+  std::uint64_t frames_ = 0;
+  std::int64_t lost_since_ns_ = 0;
+  msg::Image msg_;
+  msg::CameraInfo info_msg_;
+  Output<msg::Image> image_;
+  Output<msg::CameraInfo> info_;
+};
+
+}  // namespace wysiwyf::io
+
+WYSIWYF_COMPONENT(wysiwyf::io::Camera, "camera")

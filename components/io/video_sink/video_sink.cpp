@@ -1,0 +1,84 @@
+// video_sink: writes an image stream to an MP4 file (OpenCV's FFmpeg backend) or to numbered
+// PNG frames, at the frame rate of the stream.
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::io {
+
+class VideoSink final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("writes images to an MP4 file or to PNG frames");
+    path_ = ctx.param<std::string>("path", "out/video.mp4", "the MP4 file, or the folder for PNG frames");
+    format_ = ctx.param_choice("format", "mp4", "container", {"mp4", "png"});
+    fps_ = ctx.param<double>("fps", 30.0, "frame rate written into the MP4", Range{1, 240});
+    in_ = ctx.input<msg::Image>("image", "frames, rgb8 or bgr8", Qos::reliable(8));
+  }
+
+  void activate() override {
+    namespace fs = std::filesystem;
+    const fs::path dir = format_ == "png" ? fs::path(path_) : fs::path(path_).parent_path();
+    if (!dir.empty()) fs::create_directories(dir);
+  }
+
+  void tick(Time) override {
+    while (in_.take(frame_)) {
+      const std::string enc = frame_.encoding().c_str();
+      if ((enc != "rgb8" && enc != "bgr8") || frame_.data().size() < static_cast<std::size_t>(frame_.step()) * frame_.height() ||
+          frame_.step() < frame_.width() * 3) {
+        if (rejected_++ == 0) log("skipped a frame that is not rgb8/bgr8 or is short (further ones are counted)");
+        continue;
+      }
+      const cv::Mat view(static_cast<int>(frame_.height()), static_cast<int>(frame_.width()), CV_8UC3, frame_.data().data(),
+                         frame_.step());
+      if (enc == "rgb8") cv::cvtColor(view, bgr_, cv::COLOR_RGB2BGR);
+      else view.copyTo(bgr_);
+      write(bgr_);
+    }
+  }
+
+  void deactivate() override {
+    writer_.release();
+    log("wrote " + std::to_string(written_) + " frames to " + path_);
+  }
+
+ private:
+  void write(const cv::Mat& bgr) {
+    if (format_ == "png") {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(written_));
+      if (!cv::imwrite((std::filesystem::path(path_) / name).string(), bgr))
+        throw std::runtime_error("cannot write PNG frames into " + path_);
+    } else {
+      if (!writer_.isOpened()) {
+        size_ = bgr.size();
+        if (!writer_.open(path_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_))
+          throw std::runtime_error("cannot open " + path_ + " for writing with OpenCV's FFmpeg backend");
+      }
+      if (bgr.size() != size_) {  // a video has one frame size
+        if (rejected_++ == 0) log("skipped a frame of another size than the first");
+        return;
+      }
+      writer_.write(bgr);
+    }
+    ++written_;
+  }
+
+  std::string path_, format_;
+  double fps_ = 30;
+  cv::VideoWriter writer_;
+  cv::Size size_;
+  cv::Mat bgr_;
+  std::uint64_t written_ = 0, rejected_ = 0;
+  msg::Image frame_;
+  Input<msg::Image> in_;
+};
+
+}  // namespace wysiwyf::io
+
+WYSIWYF_COMPONENT(wysiwyf::io::VideoSink, "video_sink")
