@@ -36,6 +36,26 @@ void BM_Renderer_640x480(benchmark::State& state) {
 }
 BENCHMARK(BM_Renderer_640x480)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
+// camera_sim: colour pass, mask pass, depth read-back, spill, blur, noise, ground truth.
+void BM_CameraSim_640x480(benchmark::State& state) {
+  Harness h("camera_sim", "{}", 30);
+  auto joints = h.feed<msg::JointState>("joint_state");
+  auto image = h.watch<msg::Image>("image", 2);
+  h.activate();
+  msg::JointState js;
+  const double q[6] = {0.37, 0.47, -3.17, 0.96, 1.62, 1.19};  // the plate in view
+  for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+  joints.write(js);
+  std::int64_t t = 0;
+  msg::Image img;
+  for (auto _ : state) {
+    h.tick(Time{t += 33'333'333});
+    image.take_latest(img);
+  }
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_CameraSim_640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
 }  // namespace wysiwyf::render
 
 BENCHMARK_MAIN();

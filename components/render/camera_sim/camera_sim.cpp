@@ -1,0 +1,320 @@
+// camera_sim: what the real camera would see (paper section 5.1, Fig. 6a): blue cloth on the
+// table and behind it, the PUMA's links wrapped in blue (posed from joint state through the
+// robot model), the aluminium plate with its four lamp markers and the knob, and the user's hand
+// (skin, at the true hand pose); with lighting variation, sensor noise, optical blur and blue
+// spill on the hand's edges. Beside the image it publishes ground truth for tests and metrics:
+// eye_T_base, eye_T_dev, the hand mask and the metric depth; optionally a stereo right image.
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+#include "gl/gl_context.hpp"
+#include "gl/offscreen_renderer.hpp"
+#include "puma_model/puma_model.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::render {
+
+namespace {
+
+Eigen::Isometry3d from_msg(const geometry_msgs::Pose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z())
+                   .normalized()
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
+  return T;
+}
+void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
+  const Eigen::Quaterniond q(T.linear());
+  p.position().x(T.translation().x()), p.position().y(T.translation().y()), p.position().z(T.translation().z());
+  p.orientation().x(q.x()), p.orientation().y(q.y()), p.orientation().z(q.z()), p.orientation().w(q.w());
+}
+
+// A camera at `eye` looking at `target`, base z up: base_T_eye in OpenCV axes (x right, y down).
+Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
+  const Eigen::Vector3d z = (target - eye).normalized();
+  Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ());
+  if (x.norm() < 1e-9) x = Eigen::Vector3d::UnitX();
+  x.normalize();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear().col(0) = x, T.linear().col(1) = y, T.linear().col(2) = z;
+  T.translation() = eye;
+  return T;
+}
+
+// A segment a -> b as the pose of a z-aligned mesh centred between them.
+Eigen::Isometry3d segment_pose(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d z = (b - a).normalized();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), z).toRotationMatrix();
+  T.translation() = 0.5 * (a + b);
+  return T;
+}
+
+const Eigen::Vector4f kCloth(0.10f, 0.16f, 0.62f, 1), kAluminium(0.72f, 0.72f, 0.74f, 1), kLamp(1.0f, 0.97f, 0.85f, 1),
+    kSkin(0.86f, 0.62f, 0.50f, 1), kBlack(0, 0, 0, 1), kWhite(1, 1, 1, 1);
+
+}  // namespace
+
+class CameraSim final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("simulated camera: cloth, blue-wrapped PUMA, plate with lamps, hand; with ground truth");
+    urdf_ = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description (cwd, then config/)");
+    camera_.width = ctx.param<int>("width", 640, "image width, px", Range{16, 1280});
+    camera_.height = ctx.param<int>("height", 480, "image height, px", Range{16, 720});
+    const auto K = ctx.param<std::vector<double>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px");
+    const auto eye = ctx.param<std::vector<double>>("eye", {1.3, -0.5, 0.75}, "camera position in the base frame, m");
+    const auto target = ctx.param<std::vector<double>>("look_at", {0.55, 0.0, 0.35}, "where the camera looks, base frame, m");
+    path_ = ctx.param<std::vector<double>>("path", {}, "moving camera: rows [t s, eye x y z, look_at x y z], times from 0");
+    noise_ = ctx.param<double>("noise", 2.0, "sensor noise, grey levels (sigma)", Range{0, 50});
+    blur_ = ctx.param<double>("blur", 0.7, "optical blur, px (sigma; 0: none)", Range{0, 5});
+    flicker_ = ctx.param<double>("light_variation", 0.04, "relative amplitude of slow lighting changes", Range{0, 0.5});
+    spill_ = ctx.param<double>("spill", 0.3, "blue spill on the hand's edges, 0..1", Range{0, 1});
+    baseline_ = ctx.param<double>("stereo_baseline", 0.0, "0: mono; else also render a right camera this far along x, m",
+                                  Range{0, 1});
+    seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
+    joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints", Qos::sensor(4));
+    hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "base_T_hand: palm centre, z out of the palm, fingers along x",
+                                           Qos::sensor(4));
+    image_ = ctx.output<msg::Image>("image", "the camera image, rgb8", Qos::sensor(2));
+    right_ = ctx.output<msg::Image>("image_right", "the right camera's image (stereo), rgb8", Qos::sensor(2));
+    info_ = ctx.output<msg::CameraInfo>("camera_info", "intrinsics (no distortion)", Qos::sensor(2));
+    true_eye_T_base_ = ctx.output<msg::PoseStamped>("true_eye_T_base", "ground truth", Qos::sensor(4));
+    true_eye_T_dev_ = ctx.output<msg::PoseStamped>("true_eye_T_dev", "ground truth", Qos::sensor(4));
+    true_mask_ = ctx.output<msg::Image>("true_hand_mask", "ground truth: 255 where the hand is seen, mono8", Qos::sensor(2));
+    true_depth_ = ctx.output<msg::Image>("true_depth", "ground truth metric depth, 32FC1", Qos::sensor(2));
+    if (K.size() != 4 || eye.size() != 3 || target.size() != 3)
+      throw std::invalid_argument("intrinsics needs 4 numbers, eye and look_at 3 each");
+    if (!path_.empty() && path_.size() % 7 != 0) throw std::invalid_argument("path: expected rows of 7 numbers");
+    camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
+    camera_.near_m = 0.05, camera_.far_m = 10;
+    base_T_eye_ = look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
+    model_ = std::make_unique<robot::PumaModel>(resolve(urdf_), "flange");
+  }
+
+  void activate() override {
+    gl_ = std::make_unique<GlContext>();
+    renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, 4);
+    renderer_->set_light(Eigen::Vector3f(-0.3f, 0.8f, 0.6f), 0.45f);
+    table_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(1.0f, 1.0f, 0.025f)));
+    backdrop_ = renderer_->add_mesh(Mesh::plane(3.0f, 3.0f));
+    plate_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.1f, 0.1f, 0.005f)));
+    knob_ = renderer_->add_mesh(Mesh::cylinder(0.015f, 0.02f));
+    lamp_ = renderer_->add_mesh(Mesh::sphere(0.006f));
+    palm_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.045f, 0.04f, 0.012f)));
+    finger_ = renderer_->add_mesh(Mesh::capsule(0.009f, 0.03f));
+    // The arm: one capsule per segment between joint origins (rigid: lengths are constant).
+    const robot::Vector6d q0 = robot::Vector6d::Zero();
+    const auto points = arm_points(q0);
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+      const double length = (points[i + 1] - points[i]).norm();
+      const float radius = i == 0 ? 0.09f : i == 1 ? 0.07f : i == 2 ? 0.055f : 0.04f;
+      link_meshes_.push_back(length > 1e-3 ? renderer_->add_mesh(Mesh::capsule(radius, static_cast<float>(length / 2))) : -1);
+    }
+    rng_ = cv::RNG(static_cast<std::uint64_t>(seed_));
+  }
+
+  void tick(Time now) override {
+    while (joints_in_.take(joints_msg_)) {
+      robot::Vector6d q;
+      for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
+      if (q.allFinite()) q_ = q, have_joints_ = true;
+    }
+    while (hand_in_.take(hand_msg_)) {
+      const Eigen::Isometry3d T = from_msg(hand_msg_.pose());
+      if (T.matrix().allFinite()) base_T_hand_ = T, have_hand_ = true;
+    }
+    if (start_ns_ < 0) start_ns_ = now.ns;
+    const double t = static_cast<double>(now.ns - start_ns_) * 1e-9;
+    if (!path_.empty()) base_T_eye_ = path_pose(t);
+    const Eigen::Isometry3d eye_T_base = base_T_eye_.inverse();
+    const double gain = 1.0 + flicker_ * std::sin(2 * M_PI * t / 7.0);
+
+    render(eye_T_base, false);
+    renderer_->read_depth(depth_);
+    renderer_->read_rgb(rgb_);
+    render(eye_T_base, true);  // the hand alone, white, everything else black: the true mask
+    renderer_->read_rgb(mask_rgb_);
+    cv::Mat mask;
+    cv::extractChannel(cv::Mat(camera_.height, camera_.width, CV_8UC3, mask_rgb_.data()), mask, 0);
+    cv::threshold(mask, mask, 127, 255, cv::THRESH_BINARY);
+    cv::Mat img(camera_.height, camera_.width, CV_8UC3, rgb_.data());
+    finish(img, mask, gain);
+    publish_image(image_, img, "rgb8", now);
+    publish_image(true_mask_, mask, "mono8", now);
+    publish_image(true_depth_, cv::Mat(camera_.height, camera_.width, CV_32FC1, depth_.data()), "32FC1", now);
+    if (baseline_ > 0) {
+      Eigen::Isometry3d eye_T_right = Eigen::Isometry3d::Identity();
+      eye_T_right.translation().x() = baseline_;
+      render((base_T_eye_ * eye_T_right).inverse(), false);
+      renderer_->read_rgb(right_rgb_);
+      cv::Mat right(camera_.height, camera_.width, CV_8UC3, right_rgb_.data());
+      finish(right, cv::Mat(), gain);
+      publish_image(right_, right, "rgb8", now);
+    }
+    // Ground truth and intrinsics.
+    pose_msg_.header().stamp_ns(now.ns);
+    pose_msg_.header().seq(seq_);
+    pose_msg_.header().frame_id("eye");
+    pose_msg_.child_frame_id("base");
+    to_msg(eye_T_base, pose_msg_.pose());
+    true_eye_T_base_.write(pose_msg_);
+    if (have_joints_) {
+      pose_msg_.child_frame_id("dev");
+      to_msg(eye_T_base * model_->fk(q_, model_->frame("dev")), pose_msg_.pose());
+      true_eye_T_dev_.write(pose_msg_);
+    }
+    info_msg_.header() = pose_msg_.header();
+    info_msg_.width(static_cast<std::uint32_t>(camera_.width)), info_msg_.height(static_cast<std::uint32_t>(camera_.height));
+    info_msg_.distortion_model("plumb_bob");
+    info_msg_.k() = {camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1};
+    info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    info_msg_.p() = {camera_.fx, 0, camera_.cx, 0, 0, camera_.fy, camera_.cy, 0, 0, 0, 1, 0};
+    info_.write(info_msg_);
+    ++seq_;
+  }
+
+  void deactivate() override {
+    renderer_.reset();
+    gl_.reset();
+  }
+
+ private:
+  std::string resolve(const std::string& path) const {
+    namespace fs = std::filesystem;
+    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
+    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
+    if (fs::exists(in_config)) return in_config.string();
+    throw std::invalid_argument("robot file '" + path + "' not found (looked in the working directory and config/)");
+  }
+
+  std::vector<Eigen::Vector3d> arm_points(const robot::Vector6d& q) const {
+    std::vector<Eigen::Vector3d> p{Eigen::Vector3d(0, 0, -0.6)};  // the pedestal's foot
+    for (const char* f : {"link1", "link3", "link4", "flange"}) p.push_back(model_->fk(q, model_->frame(f)).translation());
+    return p;
+  }
+
+  Eigen::Isometry3d path_pose(double t) const {
+    const std::size_t rows = path_.size() / 7;
+    std::size_t i = 0;
+    while (i + 1 < rows && path_[7 * (i + 1)] <= t) ++i;
+    const double* a = &path_[7 * i];
+    const double* b = &path_[7 * std::min(i + 1, rows - 1)];
+    const double s = (b[0] > a[0]) ? std::clamp((t - a[0]) / (b[0] - a[0]), 0.0, 1.0) : 0.0;
+    auto lerp = [&](int k) { return Eigen::Vector3d(a[k] + s * (b[k] - a[k]), a[k + 1] + s * (b[k + 1] - a[k + 1]), a[k + 2] + s * (b[k + 2] - a[k + 2])); };
+    return look_at(lerp(1), lerp(4));
+  }
+
+  // One pass of the scene; mask_pass: the hand white and unlit, everything else black.
+  void render(const Eigen::Isometry3d& eye_T_base, bool mask_pass) {
+    auto color = [&](const Eigen::Vector4f& c, bool is_hand) { return mask_pass ? (is_hand ? kWhite : kBlack) : c; };
+    renderer_->begin(mask_pass ? Eigen::Vector4f(0, 0, 0, 1) : kCloth * 0.8f);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(0.6, 0, -0.025);
+    renderer_->draw(table_, eye_T_base * T, color(kCloth, false), !mask_pass);
+    // Cloth hanging behind the table, facing the camera.
+    Eigen::Isometry3d back = segment_pose(Eigen::Vector3d(1.8, 0, 0), Eigen::Vector3d(1.7, 0, 0));
+    back.translation() = Eigen::Vector3d(1.8, 0, 0.5);
+    renderer_->draw(backdrop_, eye_T_base * back, color(kCloth, false), !mask_pass);
+    if (have_joints_) {
+      const auto p = arm_points(q_);
+      for (std::size_t i = 0; i + 1 < p.size(); ++i)
+        if (link_meshes_[i] >= 0) renderer_->draw(link_meshes_[i], eye_T_base * segment_pose(p[i], p[i + 1]), color(kCloth, false), !mask_pass);
+      const Eigen::Isometry3d base_T_dev = model_->fk(q_, model_->frame("dev"));
+      Eigen::Isometry3d plate = base_T_dev;
+      plate.translate(Eigen::Vector3d(0, 0, -0.005));  // the plate's front face is the dev frame's z = 0
+      renderer_->draw(plate_, eye_T_base * plate, color(kAluminium, false), !mask_pass);
+      Eigen::Isometry3d knob = base_T_dev;
+      knob.translate(Eigen::Vector3d(0, 0, 0.02));
+      renderer_->draw(knob_, eye_T_base * knob, color(kAluminium, false), !mask_pass);
+      for (const char* m : {"marker_0", "marker_1", "marker_2", "marker_3"})
+        renderer_->draw(lamp_, eye_T_base * model_->fk(q_, model_->frame(m)), color(kLamp, false), false);
+    }
+    if (have_hand_) {
+      const Eigen::Isometry3d eye_T_hand = eye_T_base * base_T_hand_;
+      renderer_->draw(palm_, eye_T_hand, color(kSkin, true), !mask_pass);
+      for (int f = 0; f < 4; ++f) {  // four fingers along +x from the palm's front edge
+        Eigen::Isometry3d finger = Eigen::Isometry3d::Identity();
+        finger.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+        finger.translation() = Eigen::Vector3d(0.045 + 0.035, -0.03 + 0.02 * f, 0.0);
+        renderer_->draw(finger_, eye_T_hand * finger, color(kSkin, true), !mask_pass);
+      }
+      Eigen::Isometry3d thumb = Eigen::Isometry3d::Identity();
+      thumb.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+      thumb.translation() = Eigen::Vector3d(0.0, 0.065, 0.0);
+      renderer_->draw(finger_, eye_T_hand * thumb, color(kSkin, true), !mask_pass);
+    }
+  }
+
+  // Lighting variation, blue spill on the hand's edge, optical blur, sensor noise.
+  void finish(cv::Mat& img, const cv::Mat& mask, double gain) {
+    img.convertTo(work_, CV_32FC3, gain);
+    if (!mask.empty() && spill_ > 0) {
+      cv::Mat inner;
+      cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+      const cv::Mat edge = mask & ~inner;  // the hand's outer 2 px
+      cv::Mat tinted;
+      cv::addWeighted(work_, 1.0 - spill_, cv::Mat(work_.size(), CV_32FC3, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)),
+                      spill_, 0, tinted);
+      tinted.copyTo(work_, edge);
+    }
+    if (blur_ > 0) cv::GaussianBlur(work_, work_, cv::Size(0, 0), blur_);
+    if (noise_ > 0) {
+      noise_img_.create(work_.size(), CV_32FC3);
+      rng_.fill(noise_img_, cv::RNG::NORMAL, 0, noise_);
+      work_ += noise_img_;
+    }
+    work_.convertTo(img, CV_8UC3);  // saturates
+  }
+
+  void publish_image(Output<msg::Image>& out, const cv::Mat& m, const char* encoding, Time now) {
+    out_msg_.header().stamp_ns(now.ns);
+    out_msg_.header().seq(seq_);
+    out_msg_.header().frame_id("eye");
+    out_msg_.width(static_cast<std::uint32_t>(m.cols)), out_msg_.height(static_cast<std::uint32_t>(m.rows));
+    out_msg_.encoding(encoding);
+    out_msg_.is_bigendian(0);
+    out_msg_.step(static_cast<std::uint32_t>(m.cols * m.elemSize()));
+    const cv::Mat c = m.isContinuous() ? m : m.clone();
+    out_msg_.data().assign(c.data, c.data + c.total() * c.elemSize());
+    out.write(out_msg_);
+  }
+
+  std::string urdf_;
+  Pinhole camera_;
+  std::vector<double> path_;
+  double noise_ = 2, blur_ = 0.7, flicker_ = 0.04, spill_ = 0.3, baseline_ = 0;
+  int seed_ = 1;
+  Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity(), base_T_hand_ = Eigen::Isometry3d::Identity();
+  std::unique_ptr<robot::PumaModel> model_;
+  std::unique_ptr<GlContext> gl_;
+  std::unique_ptr<OffscreenRenderer> renderer_;
+  int table_ = -1, backdrop_ = -1, plate_ = -1, knob_ = -1, lamp_ = -1, palm_ = -1, finger_ = -1;
+  std::vector<int> link_meshes_;
+  robot::Vector6d q_ = robot::Vector6d::Zero();
+  bool have_joints_ = false, have_hand_ = false;
+  std::int64_t start_ns_ = -1;
+  std::uint64_t seq_ = 0;
+  cv::RNG rng_;
+  std::vector<std::uint8_t> rgb_, mask_rgb_, right_rgb_;
+  std::vector<float> depth_;
+  cv::Mat work_, noise_img_;
+  msg::JointState joints_msg_;
+  msg::PoseStamped hand_msg_, pose_msg_;
+  msg::Image out_msg_;
+  msg::CameraInfo info_msg_;
+  Input<msg::JointState> joints_in_;
+  Input<msg::PoseStamped> hand_in_;
+  Output<msg::Image> image_, right_, true_mask_, true_depth_;
+  Output<msg::CameraInfo> info_;
+  Output<msg::PoseStamped> true_eye_T_base_, true_eye_T_dev_;
+};
+
+}  // namespace wysiwyf::render
+
+WYSIWYF_COMPONENT(wysiwyf::render::CameraSim, "camera_sim")

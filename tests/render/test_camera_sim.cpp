@@ -1,0 +1,95 @@
+// camera_sim: its image against its own ground truth (mask, poses), on llvmpipe.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "puma_model/puma_model.hpp"
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::render {
+
+void set_pose(geometry_msgs::Pose& p, const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  p.position().x(T.translation().x()), p.position().y(T.translation().y()), p.position().z(T.translation().z());
+  p.orientation().x(q.x()), p.orientation().y(q.y()), p.orientation().z(q.z()), p.orientation().w(q.w());
+}
+Eigen::Isometry3d from_pose(const geometry_msgs::Pose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
+  return T;
+}
+
+// The arm with the plate at (0.6, 0, 0.5), facing the camera at (1.3, -0.5, 0.75).
+robot::Vector6d ready_pose(const robot::PumaModel& model) {
+  Eigen::Isometry3d base_T_dev = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d p(0.6, 0, 0.5), eye(1.3, -0.5, 0.75);
+  const Eigen::Vector3d z = (eye - p).normalized();
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitZ().cross(z).normalized();
+  base_T_dev.linear().col(0) = x, base_T_dev.linear().col(1) = z.cross(x), base_T_dev.linear().col(2) = z;
+  base_T_dev.translation() = p;
+  robot::Vector6d q0;
+  q0 << 0, 0.5, -0.5, 0, 0.5, 0;
+  const auto r = model.ik_nearest(base_T_dev, q0, model.frame("dev"));
+  EXPECT_TRUE(r.ok());
+  return r.q;
+}
+
+TEST(CameraSim, ItsHandMaskAgreesWithItsImageAndItsPosesWithTheModel) {
+  const robot::PumaModel model(std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf", "flange");
+  const robot::Vector6d q = ready_pose(model);
+  Harness h("camera_sim", "{intrinsics: [600, 600, 319.5, 239.5], look_at: [0.6, 0.0, 0.45], noise: 2, seed: 3}", 30);
+  auto joints = h.feed<msg::JointState>("joint_state");
+  auto hand = h.feed<msg::PoseStamped>("hand_pose");
+  auto image = h.watch<msg::Image>("image");
+  auto mask = h.watch<msg::Image>("true_hand_mask");
+  auto eye_T_dev = h.watch<msg::PoseStamped>("true_eye_T_dev");
+  auto eye_T_base = h.watch<msg::PoseStamped>("true_eye_T_base");
+  h.activate();
+  msg::JointState js;
+  for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+  joints.write(js);
+  // The hand 12 cm in front of the plate, palm toward it.
+  Eigen::Isometry3d base_T_hand = model.fk(q, model.frame("dev"));
+  base_T_hand.translate(Eigen::Vector3d(0.02, 0.0, 0.12));
+  base_T_hand.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
+  msg::PoseStamped hp;
+  set_pose(hp.pose(), base_T_hand);
+  hand.write(hp);
+  h.tick(Time{0});
+  msg::Image img, m;
+  ASSERT_TRUE(image.take_latest(img));
+  ASSERT_TRUE(mask.take_latest(m));
+  const cv::Mat rgb(static_cast<int>(img.height()), static_cast<int>(img.width()), CV_8UC3, img.data().data());
+  const cv::Mat hand_mask(static_cast<int>(m.height()), static_cast<int>(m.width()), CV_8UC1, m.data().data());
+  if (const char* dump = std::getenv("WYSIWYF_DUMP_DIR")) {
+    cv::Mat bgr;
+    cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+    cv::imwrite(std::string(dump) + "/camera_sim.png", bgr);
+    cv::imwrite(std::string(dump) + "/camera_sim_mask.png", hand_mask);
+  }
+  const int hand_pixels = cv::countNonZero(hand_mask);
+  EXPECT_GT(hand_pixels, 2000);
+  // Inside the mask (away from its spilled edge) the image is skin; outside there is no skin.
+  cv::Mat inner;
+  cv::erode(hand_mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(9, 9)));
+  const cv::Scalar skin = cv::mean(rgb, inner), rest = cv::mean(rgb, ~hand_mask);
+  EXPECT_GT(skin[0], skin[2] + 40) << "red over blue inside the mask";
+  EXPECT_LT(rest[0], rest[2]) << "blue dominates outside it";
+  cv::Mat hsv;
+  cv::cvtColor(rgb, hsv, cv::COLOR_RGB2HSV);
+  cv::Mat skin_like;
+  cv::inRange(hsv, cv::Scalar(0, 60, 80), cv::Scalar(25, 255, 255), skin_like);
+  const int skin_outside = cv::countNonZero(skin_like & ~hand_mask);
+  EXPECT_LT(skin_outside, hand_pixels / 50) << "skin-coloured pixels outside the true mask";
+  // Ground-truth poses: eye_T_dev = eye_T_base * base_T_dev (FK).
+  msg::PoseStamped a, b;
+  ASSERT_TRUE(eye_T_dev.take_latest(a));
+  ASSERT_TRUE(eye_T_base.take_latest(b));
+  const Eigen::Isometry3d expected = from_pose(b.pose()) * model.fk(q, model.frame("dev"));
+  EXPECT_LE((from_pose(a.pose()).matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+}  // namespace wysiwyf::render
