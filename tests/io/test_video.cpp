@@ -58,3 +58,24 @@ TEST(Video, AMissingCameraSourceIsAClearErrorAtActivation) {
 }
 
 }  // namespace wysiwyf::test
+
+namespace wysiwyf::test {
+
+TEST(Display, WithoutADisplayItSaysSoAndKeepsRunning) {
+  unsetenv("DISPLAY");
+  unsetenv("WAYLAND_DISPLAY");
+  Harness d("display", "{}", 30);
+  auto in = d.feed<msg::Image>("image");
+  d.activate();
+  msg::Image f;
+  f.width(4), f.height(4), f.encoding("rgb8"), f.step(12);
+  f.data().assign(48, 100);
+  for (int i = 0; i < 3; ++i) {
+    in.write(f);
+    d.tick(Time{i * 33'000'000LL});
+  }
+  EXPECT_EQ(in.written(), 3u);
+  EXPECT_TRUE(d.stop_request().empty());
+}
+
+}  // namespace wysiwyf::test

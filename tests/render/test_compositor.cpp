@@ -83,3 +83,26 @@ TEST(Compositor, AMalformedImageIsIgnored) {
 }
 
 }  // namespace wysiwyf::render
+
+namespace wysiwyf::render {
+
+TEST(Compositor, TakesTheHandFromACameraImageAndAMask) {
+  Harness h("compositor", "{}", 60);
+  auto scene = h.feed<msg::Image>("scene");
+  auto camera = h.feed<msg::Image>("camera");
+  auto mask = h.feed<msg::Image>("hand_mask");
+  auto out = h.watch<msg::Image>("composite");
+  h.activate();
+  msg::Image s = image(2, 1, "rgb8", 3), c = image(2, 1, "rgb8", 3), m = image(2, 1, "mono8", 1);
+  for (int u = 0; u < 2; ++u) s.data()[u * 3 + 2] = 200, c.data()[u * 3] = 180;  // blue scene, red camera
+  m.data()[1] = 255;                                                               // the hand is pixel 1
+  scene.write(s), camera.write(c), mask.write(m);
+  h.tick(Time{0});
+  msg::Image r;
+  ASSERT_TRUE(out.take_latest(r));
+  const std::uint8_t* p = r.data().data();
+  EXPECT_EQ((std::vector<int>{p[0], p[1], p[2]}), (std::vector<int>{0, 0, 200}));
+  EXPECT_EQ((std::vector<int>{p[3], p[4], p[5]}), (std::vector<int>{180, 0, 0}));
+}
+
+}  // namespace wysiwyf::render

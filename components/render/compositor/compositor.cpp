@@ -32,12 +32,16 @@ class Compositor final : public Component {
     scene_depth_in_ = ctx.input<msg::Image>("scene_depth", "its metric depth, 32FC1 (0: nothing)", Qos::sensor(2));
     hand_in_ = ctx.input<msg::Image>("hand", "the keyed hand, rgba8 premultiplied", Qos::sensor(2));
     real_depth_in_ = ctx.input<msg::Image>("real_depth", "metric depth of the real scene, 32FC1 (0: unknown)", Qos::sensor(2));
+    camera_in_ = ctx.input<msg::Image>("camera", "instead of hand: the camera image, rgb8 ...", Qos::sensor(2));
+    mask_in_ = ctx.input<msg::Image>("hand_mask", "... and a hand mask, mono8 (a hardware keyer, or ground truth)",
+                                     Qos::sensor(2));
     out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
   }
 
   void tick(Time now) override {
     bool fresh = scene_in_.take_latest(scene_);
     fresh |= hand_in_.take_latest(hand_);
+    if (camera_in_.take_latest(camera_) | mask_in_.take_latest(mask_)) fresh |= hand_from_mask();
     scene_depth_in_.take_latest(scene_depth_);
     real_depth_in_.take_latest(real_depth_);
     if (!fresh || !valid(scene_, "rgb8", 3)) return;
@@ -75,11 +79,29 @@ class Compositor final : public Component {
   }
 
  private:
+  // A premultiplied RGBA hand layer from a camera image and a 0/255 mask of the same size.
+  bool hand_from_mask() {
+    if (!valid(camera_, "rgb8", 3) || !valid(mask_, "mono8", 1) || camera_.width() != mask_.width() ||
+        camera_.height() != mask_.height())
+      return false;
+    hand_.width(camera_.width()), hand_.height(camera_.height()), hand_.encoding("rgba8"), hand_.step(camera_.width() * 4);
+    hand_.data().resize(static_cast<std::size_t>(hand_.step()) * hand_.height());
+    const cv::Mat cam = view(camera_, CV_8UC3), mask = view(mask_, CV_8UC1);
+    cv::Mat rgba = view(hand_, CV_8UC4);
+    cv::Mat premultiplied;
+    cam.copyTo(premultiplied);
+    premultiplied.setTo(0, ~mask);
+    const cv::Mat channels[] = {premultiplied, mask};
+    int from_to[] = {0, 0, 1, 1, 2, 2, 3, 3};
+    cv::mixChannels(channels, 2, &rgba, 1, from_to, 4);
+    return true;
+  }
+
   bool use_depth_ = true;
   std::uint64_t seq_ = 0;
-  msg::Image scene_, scene_depth_, hand_, real_depth_, out_msg_;
+  msg::Image scene_, scene_depth_, hand_, real_depth_, camera_, mask_, out_msg_;
   cv::Mat hand_premultiplied_;
-  Input<msg::Image> scene_in_, scene_depth_in_, hand_in_, real_depth_in_;
+  Input<msg::Image> scene_in_, scene_depth_in_, hand_in_, real_depth_in_, camera_in_, mask_in_;
   Output<msg::Image> out_;
 };
 
