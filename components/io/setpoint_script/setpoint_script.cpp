@@ -21,6 +21,7 @@ class SetpointScript final : public Component {
     child_frame_id_ = ctx.param<std::string>("child_frame_id", "dev", "the frame being placed");
     source_ = ctx.param<std::string>("source", "script", "CartesianSetpoint.source");
     setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist at each tick");
+    pose_ = ctx.output<msg::PoseStamped>("pose", "the same pose as a PoseStamped (e.g. a scripted hand target)");
     table_ = std::make_unique<Keyframes>(waypoints, 6, "waypoints");
     for (int i = 0; i < table_->rows(); ++i) {
       const double* v = table_->values(i);
@@ -62,6 +63,10 @@ class SetpointScript final : public Component {
     msg_.twist().angular().z(w.z());
     msg_.source(source_);
     setpoint_.write(msg_);
+    pose_msg_.header() = msg_.header();
+    pose_msg_.child_frame_id(child_frame_id_);
+    pose_msg_.pose() = msg_.pose();
+    pose_.write(pose_msg_);
   }
 
  private:
@@ -73,7 +78,9 @@ class SetpointScript final : public Component {
   ScriptTime time_;
   std::uint64_t seq_ = 0;
   msg::CartesianSetpoint msg_;
+  msg::PoseStamped pose_msg_;
   Output<msg::CartesianSetpoint> setpoint_;
+  Output<msg::PoseStamped> pose_;
 };
 
 }  // namespace wysiwyf::io
