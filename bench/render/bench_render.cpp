@@ -56,6 +56,36 @@ void BM_CameraSim_640x480(benchmark::State& state) {
 }
 BENCHMARK(BM_CameraSim_640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
+// compositor: the keyed hand (premultiplied RGBA) over a 640x480 scene, alpha only and z-keyed.
+void BM_Compositor_640x480(benchmark::State& state) {
+  const bool zkey = state.range(0) != 0;
+  Harness h("compositor", "{}", 60);
+  auto scene = h.feed<msg::Image>("scene");
+  auto scene_depth = h.feed<msg::Image>("scene_depth");
+  auto hand = h.feed<msg::Image>("hand");
+  auto real_depth = h.feed<msg::Image>("real_depth");
+  auto out = h.watch<msg::Image>("composite", 2);
+  h.activate();
+  auto make = [](const char* enc, int bytes, std::uint8_t fill) {
+    msg::Image m;
+    m.width(640), m.height(480), m.encoding(enc), m.step(640 * bytes);
+    m.data().assign(640 * 480 * bytes, fill);
+    return m;
+  };
+  msg::Image s = make("rgb8", 3, 90), k = make("rgba8", 4, 0), sd = make("32FC1", 4, 0), rd = make("32FC1", 4, 0);
+  for (std::size_t i = 0; i < k.data().size(); i += 4)  // a hand over a third of the frame, soft edges
+    if ((i / 4) % 640 < 213) k.data()[i] = 150, k.data()[i + 3] = static_cast<std::uint8_t>(128 + (i / 4) % 127);
+  std::int64_t t = 0;
+  msg::Image img;
+  for (auto _ : state) {
+    scene.write(s), hand.write(k);
+    if (zkey) scene_depth.write(sd), real_depth.write(rd);
+    h.tick(Time{t += 16'666'667});
+    out.take_latest(img);
+  }
+}
+BENCHMARK(BM_Compositor_640x480)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
 }  // namespace wysiwyf::render
 
 BENCHMARK_MAIN();
