@@ -1,0 +1,615 @@
+// puma_sim: the PUMA 560 of the display, simulated, behind the same safety gate as the real arm.
+//
+// Every tick (1 kHz, the Unimation servo rate):
+//   1. sample: encoder-quantised joint angles, joint velocities, the F/T sensor (hand contact +
+//      tool weight + Gaussian noise + bias), FK of the measured joints; publish them;
+//   2. the safety gate checks the measurements (limits, overspeed, following error, force);
+//   3. trajectory generator (RCCL style): each Cartesian setpoint (base_T_dev + twist, at any
+//      period from 1 to 20 ms) passes the gate's screening, is extrapolated by its twist and
+//      followed by a critically damped second-order tracker (continuous velocity whatever the
+//      setpoint period), whose pose goes through ik_nearest to a joint target;
+//   4. the gate turns the joint target into a bounded reference (limits, watchdog, faults);
+//   5. joint servo: PD + gravity compensation on the reference (the Unimation servo) plus, by
+//      default, inverse-dynamics and friction feedforward; torques saturated at the effort limits;
+//   6. the arm (forward dynamics with reflected rotor inertia, viscous + smoothed Coulomb
+//      friction) and the user's fingertip (a sphere on an impedance towards `hand_target`, in
+//      penalty contact with the plate, the knob and the sensor housing, the reaction applied to
+//      link 6 through the Jacobian transpose) advance by semi-implicit Euler substeps.
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <stdexcept>
+
+#include "puma_model/drive_params.hpp"
+#include "puma_model/puma_model.hpp"
+#include "safety/safety_gate.hpp"
+#include "tool_geometry.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::robot::sim {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+// The ready pose: the plate's centre 0.7 m in front of the base, 0.2 m above the mounting plane
+// (the table top of config/scenes), facing +x (away from the robot, towards the user), dev x
+// pointing down: base_T_dev = (0.7, 0, 0.2), Ry(pi/2). The one IK solution within limits.
+const std::vector<double> kReadyPose = {0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403};
+
+Vector6d to_vector6(const std::vector<double>& v) {
+  Vector6d out;
+  for (int j = 0; j < kDof; ++j) out[j] = v[static_cast<std::size_t>(j)];
+  return out;
+}
+
+void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
+  const Eigen::Quaterniond q(T.linear());
+  p.position().x(T.translation().x());
+  p.position().y(T.translation().y());
+  p.position().z(T.translation().z());
+  p.orientation().x(q.x());
+  p.orientation().y(q.y());
+  p.orientation().z(q.z());
+  p.orientation().w(q.w());
+}
+
+// Rotation vector of a unit quaternion (shortest way).
+Eigen::Vector3d log_rotation(Eigen::Quaterniond q) {
+  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+  const double s = q.vec().norm();
+  if (s < 1e-12) return 2.0 * q.vec();
+  return 2.0 * std::atan2(s, q.w()) / s * q.vec();
+}
+
+Eigen::Quaterniond exp_rotation(const Eigen::Vector3d& v) {
+  const double angle = v.norm();
+  if (angle < 1e-12) return Eigen::Quaterniond(1.0, 0.5 * v.x(), 0.5 * v.y(), 0.5 * v.z()).normalized();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle));
+}
+
+// The RCCL-style Cartesian trajectory generator: a critically damped second-order tracker
+// (natural frequency omega) on the latest setpoint, extrapolated by its twist and by the
+// acceleration that the last two twists imply (a second-order hold: a smooth path streamed at
+// 20 ms then gives the tracker almost nothing to correct at each new setpoint).
+struct CartesianTracker {
+  static constexpr double kMaxLinearAccel = 20.0;   // m/s^2, cap on the estimated acceleration
+  static constexpr double kMaxAngularAccel = 60.0;  // rad/s^2
+  Eigen::Vector3d p = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond r = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d sp_p = Eigen::Vector3d::Zero(), sp_v = Eigen::Vector3d::Zero(), sp_w = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sp_a = Eigen::Vector3d::Zero(), sp_alpha = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond sp_r = Eigen::Quaterniond::Identity();
+  std::int64_t sp_ns = 0;
+  bool have_setpoint = false;
+
+  void reset(const Eigen::Isometry3d& pose, std::int64_t now_ns) {
+    p = sp_p = pose.translation();
+    r = sp_r = Eigen::Quaterniond(pose.linear());
+    v = w = sp_v = sp_w = sp_a = sp_alpha = Eigen::Vector3d::Zero();
+    sp_ns = now_ns;
+    have_setpoint = false;
+  }
+  void set_setpoint(const Eigen::Isometry3d& pose, const Eigen::Vector3d& lin, const Eigen::Vector3d& ang,
+                    std::int64_t now_ns, double horizon) {
+    const double since = static_cast<double>(now_ns - sp_ns) * 1e-9;
+    if (have_setpoint && since > 0.0 && since <= horizon) {
+      sp_a = (lin - sp_v) / since;
+      sp_alpha = (ang - sp_w) / since;
+      if (sp_a.norm() > kMaxLinearAccel) sp_a *= kMaxLinearAccel / sp_a.norm();
+      if (sp_alpha.norm() > kMaxAngularAccel) sp_alpha *= kMaxAngularAccel / sp_alpha.norm();
+    } else if (!have_setpoint || since > horizon) {
+      sp_a = sp_alpha = Eigen::Vector3d::Zero();
+    }  // (several setpoints in one tick: keep the estimate)
+    sp_p = pose.translation();
+    sp_r = Eigen::Quaterniond(pose.linear());
+    sp_v = lin;
+    sp_w = ang;
+    sp_ns = now_ns;
+    have_setpoint = true;
+  }
+  // One step of dt to now_ns; extrapolation stops after `horizon` seconds.
+  Eigen::Isometry3d advance(std::int64_t now_ns, double dt, double omega, double horizon) {
+    const double since = static_cast<double>(now_ns - sp_ns) * 1e-9;
+    const bool extrapolate = since <= horizon;
+    const double tau = std::min(since, horizon);
+    const Eigen::Vector3d a_target = extrapolate ? sp_a : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d alpha_target = extrapolate ? sp_alpha : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d p_target = sp_p + sp_v * tau + 0.5 * tau * tau * sp_a;
+    const Eigen::Vector3d v_target = extrapolate ? Eigen::Vector3d(sp_v + sp_a * tau) : Eigen::Vector3d::Zero();
+    const Eigen::Quaterniond r_target = exp_rotation(sp_w * tau + 0.5 * tau * tau * sp_alpha) * sp_r;
+    const Eigen::Vector3d w_target = extrapolate ? Eigen::Vector3d(sp_w + sp_alpha * tau) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d a = a_target + omega * omega * (p_target - p) + 2.0 * omega * (v_target - v);
+    v += a * dt;
+    p += v * dt;
+    const Eigen::Vector3d alpha =
+        alpha_target + omega * omega * log_rotation(r_target * r.conjugate()) + 2.0 * omega * (w_target - w);
+    w += alpha * dt;
+    r = (exp_rotation(w * dt) * r).normalized();
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = r.toRotationMatrix();
+    T.translation() = p;
+    return T;
+  }
+};
+
+}  // namespace
+
+class PumaSim final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("simulated PUMA 560: arm dynamics, 1 kHz joint servo behind the safety gate, Cartesian setpoint "
+                "tracking, wrist F/T sensor and the user's fingertip in contact with the plate");
+    // ---- the robot
+    urdf_path_ = ctx.param<std::string>("urdf", "robots/puma560.urdf",
+                                        "robot URDF; relative paths are tried from the working directory, then config/");
+    drive_path_ = ctx.param<std::string>("drive", "robots/puma560_drive.yaml",
+                                         "drive-train file (gears, rotor inertia, friction); same search as urdf");
+    tip_frame_ = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
+    sensor_frame_ = ctx.param<std::string>("sensor_frame", "ft_sensor", "the F/T sensor's measurement frame");
+    const auto q0 = ctx.param<std::vector<double>>(
+        "initial_q", kReadyPose,
+        "joint angles at activation, rad (default: the ready pose, plate centre at (0.7, 0, 0.2) m facing +x)",
+        Range{-10, 10});
+    // ---- safety gate
+    const auto accel = ctx.param<std::vector<double>>(
+        "acceleration_limits", {8, 8, 10, 30, 30, 30},
+        "hard joint acceleration limits, rad/s^2 (the URDF has none); the reference uses acceleration_fraction of them",
+        Range{0.01, 1000});
+    gate_config_.velocity_fraction = ctx.param<double>(
+        "velocity_fraction", 0.9, "share of the URDF velocity limits the reference may use (the rest is servo margin)",
+        Range{0.05, 1});
+    gate_config_.acceleration_fraction = ctx.param<double>(
+        "acceleration_fraction", 0.8, "share of acceleration_limits the reference may use", Range{0.05, 1});
+    gate_config_.position_margin = ctx.param<double>(
+        "position_margin", 0.02, "rad kept between the reference and every joint position limit", Range{0, 0.5});
+    gate_config_.approach_rate = ctx.param<double>(
+        "approach_rate", 50.0, "1/s, first-order rate at which the reference closes the last bit of a move",
+        Range{1, 2000});
+    gate_config_.setpoint_timeout = ctx.param<double>(
+        "setpoint_timeout", 0.06, "s without a setpoint before braking to a hold (3 periods of a 20 ms stream)",
+        Range{0.002, 10});
+    gate_config_.max_setpoint_step = ctx.param<double>(
+        "max_setpoint_step", 0.1, "m a setpoint may lie from the previous one (or from the arm when starting)",
+        Range{1e-4, 10});
+    gate_config_.max_setpoint_rotation = ctx.param<double>(
+        "max_setpoint_rotation", 0.5, "rad a setpoint may turn from the previous one (or from the arm)", Range{1e-4, 3.15});
+    gate_config_.max_setpoint_speed = ctx.param<double>(
+        "max_setpoint_speed", 2.0, "m/s, largest linear speed in a setpoint's twist", Range{1e-3, 100});
+    gate_config_.max_setpoint_angular_speed = ctx.param<double>(
+        "max_setpoint_angular_speed", 6.0, "rad/s, largest angular speed in a setpoint's twist", Range{1e-3, 100});
+    gate_config_.max_joint_target_step = ctx.param<double>(
+        "max_joint_target_step", 0.2, "rad the IK target may move in one servo period (more: an IK branch change, fault)",
+        Range{1e-4, 10});
+    gate_config_.max_following_error = ctx.param<double>(
+        "max_following_error", 0.1, "rad between reference and measured joint before a fault", Range{1e-4, 10});
+    gate_config_.max_force = ctx.param<double>("force_limit", 100.0, "N, measured force norm that faults the arm",
+                                               Range{0.1, 10000});
+    gate_config_.max_torque = ctx.param<double>("torque_limit", 10.0, "N m, measured torque norm that faults the arm",
+                                                Range{0.01, 1000});
+    // ---- trajectory generator and servo
+    tracker_hz_ = ctx.param<double>("tracker_bandwidth_hz", 10.0,
+                                    "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
+                                    Range{0.1, 200});
+    servo_hz_ = ctx.param<double>("servo_bandwidth_hz", 10.0,
+                                  "PD gains from M(q0): kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this, Hz",
+                                  Range{0.1, 100});
+    servo_zeta_ = ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
+    kp_given_ = ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
+                                               Range{0, 1e7});
+    kd_given_ = ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
+                                               Range{0, 1e6});
+    accel_ff_ = ctx.param<double>("accel_feedforward", 1.0,
+                                  "share of the inverse-dynamics feedforward M(q) qdd_ref + C(q, qd) qd added to the "
+                                  "torque (0 with friction_feedforward 0: PD + gravity only, the Unimation servo)",
+                                  Range{0, 1});
+    friction_ff_ = ctx.param<double>("friction_feedforward", 1.0,
+                                     "share of the drive friction model at the measured velocity added to the torque while the "
+                                     "reference moves",
+                                     Range{0, 1});
+    substeps_ = ctx.param<int>("substeps", 4, "semi-implicit Euler steps of the arm and hand per tick", Range{1, 100});
+    encoder_counts_ = ctx.param<int>("encoder_counts", 1000,
+                                     "encoder counts per motor revolution after quadrature (0: no quantisation); joint "
+                                     "quantum 2 pi / (counts |gear|)",
+                                     Range{0, 10000000});
+    coulomb_smoothing_ = ctx.param<double>("coulomb_smoothing", 0.01,
+                                           "rad/s joint velocity over which Coulomb friction turns (tanh)", Range{1e-6, 1});
+    // ---- F/T sensor
+    noise_force_ = ctx.param<double>("ft_noise_force", 0.05, "N, sigma of the Gaussian noise per force axis", Range{0, 100});
+    noise_torque_ = ctx.param<double>("ft_noise_torque", 0.002, "N m, sigma of the Gaussian noise per torque axis",
+                                      Range{0, 10});
+    const auto bias = ctx.param<std::vector<double>>("ft_bias", {0, 0, 0, 0, 0, 0},
+                                                     "constant offset of the F/T reading: fx fy fz (N) tx ty tz (N m)",
+                                                     Range{-1000, 1000});
+    seed_ = ctx.param<std::int64_t>("seed", 1, "seed of the sensor noise (runs are repeatable)");
+    // ---- the user's fingertip
+    hand_mass_ = ctx.param<double>("hand_mass", 0.5, "kg, the fingertip's moving mass", Range{0.01, 20});
+    hand_radius_ = ctx.param<double>("hand_radius", 0.01, "m, the fingertip sphere's radius", Range{0.001, 0.1});
+    hand_k_ = ctx.param<double>("hand_stiffness", 500.0, "N/m, impedance pulling the fingertip to hand_target",
+                                Range{0, 1e5});
+    hand_d_ = ctx.param<double>("hand_damping", 30.0, "N s/m, damping of the fingertip's impedance", Range{0, 1e4});
+    const auto park = ctx.param<std::vector<double>>(
+        "hand_park", {1.1, 0.0, 0.2}, "where the fingertip waits until a hand_target arrives, base frame, m",
+        Range{-10, 10});
+    contact_k_ = ctx.param<double>("contact_stiffness", 20000.0, "N/m, penalty stiffness of fingertip contact",
+                                   Range{1, 1e7});
+    contact_d_ = ctx.param<double>("contact_damping", 100.0, "N s/m, penalty damping of fingertip contact (pushes only)",
+                                   Range{0, 1e5});
+
+    setpoint_in_ = ctx.input<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist, at any period of 1-20 ms",
+                                                     Qos::reliable(32));
+    hand_in_ = ctx.input<msg::PoseStamped>("hand_target", "where the user's fingertip is driven (base frame)",
+                                           Qos::reliable(4));
+    joint_out_ = ctx.output<msg::JointState>("joint_state", "encoder-quantised angles, velocities, motor torques");
+    pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
+    wrench_out_ = ctx.output<msg::WrenchStamped>("wrench", "wrist F/T sensor, frame ft_sensor, about its origin",
+                                                 Qos::sensor(8));
+    hand_out_ = ctx.output<msg::PoseStamped>("hand_pose", "the fingertip's true position (base frame)");
+    status_out_ = ctx.output<msg::DisplayMode>(
+        "status", "safety state: MODE_FAULT + reason, MODE_IDLE holding, else following (reason says which)",
+        Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
+
+    auto six = [](const std::vector<double>& v, const char* name) {
+      if (v.size() != static_cast<std::size_t>(kDof))
+        throw std::invalid_argument(std::string(name) + " needs 6 values, one per joint (got " +
+                                    std::to_string(v.size()) + ")");
+    };
+    six(q0, "initial_q");
+    six(accel, "acceleration_limits");
+    six(bias, "ft_bias");
+    if (!kp_given_.empty()) six(kp_given_, "servo_kp");
+    if (!kd_given_.empty()) six(kd_given_, "servo_kd");
+    if (park.size() != 3) throw std::invalid_argument("hand_park needs 3 values (x y z, m)");
+    q0_ = to_vector6(q0);
+    gate_config_.max_acceleration = to_vector6(accel);
+    bias_ = to_vector6(bias);
+    park_ = Eigen::Vector3d(park[0], park[1], park[2]);
+    dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
+    gate_config_.dt = dt_;
+
+    // Load now so that a wrong file or frame is reported before anything starts.
+    model_ = std::make_unique<PumaModel>(resolve(urdf_path_), tip_frame_);
+    drive_ = load_drive_params(resolve(drive_path_), *model_);
+    model_->set_rotor_inertia(drive_.reflected_inertia());
+    tip_ = model_->tip();
+    if (model_->frame_body(tip_) != kDof) throw std::invalid_argument("tip_frame '" + tip_frame_ + "' is not on link 6");
+    sensor_ = model_->frame(sensor_frame_);
+    tool_ = load_tool_geometry(resolve(urdf_path_), *model_, sensor_frame_);
+    gate_config_.limits = model_->limits();
+    gate_config_.validate();
+    if (!model_->limits().within(q0_))
+      throw std::invalid_argument("initial_q is outside the joint limits of " + urdf_path_);
+    for (int j = 0; j < kDof; ++j)
+      quantum_[j] = encoder_counts_ > 0 ? kTwoPi / (encoder_counts_ * std::abs(drive_.gear_ratio[j])) : 0.0;
+    const Vector6d m_diag = model_->mass_matrix(q0_).diagonal();
+    const double w = kTwoPi * servo_hz_;
+    for (int j = 0; j < kDof; ++j) {
+      kp_[j] = kp_given_.empty() ? m_diag[j] * w * w : kp_given_[static_cast<std::size_t>(j)];
+      kd_[j] = kd_given_.empty() ? 2.0 * servo_zeta_ * m_diag[j] * w : kd_given_[static_cast<std::size_t>(j)];
+    }
+  }
+
+  void activate() override {
+    q_ = q0_;
+    qd_ = Vector6d::Zero();
+    tau_ = model_->gravity_torques(q_);
+    hand_x_ = hand_target_ = park_;
+    hand_v_ = Eigen::Vector3d::Zero();
+    rng_.seed(static_cast<std::uint64_t>(seed_));
+    gate_ = std::make_unique<SafetyGate>(gate_config_);
+    started_ = false;
+    have_target_ = false;
+    last_status_ns_ = -1;
+    last_state_ = SafetyState::kFault;
+    last_reason_.clear();
+    seq_ = 0;
+    rejected_hand_ = 0;
+  }
+
+  void tick(Time now) override {
+    // ---- 1. sample and publish
+    Vector6d q_meas;
+    for (int j = 0; j < kDof; ++j) q_meas[j] = quantum_[j] > 0.0 ? std::round(q_[j] / quantum_[j]) * quantum_[j] : q_[j];
+    const Vector6d qd_meas = qd_;
+    const Contacts contacts = contact_forces(q_, qd_);
+    Eigen::Vector3d f_sensor, t_sensor;
+    sensor_reading(contacts, f_sensor, t_sensor);
+    publish(now, q_meas, qd_meas, f_sensor, t_sensor);
+
+    if (!started_) {  // the gate starts from the first measurement
+      gate_->reset(q_meas, now.ns);
+      started_ = true;
+    }
+    // ---- 2. the gate checks the measurements
+    gate_->check_measured(q_meas, qd_meas);
+    gate_->check_wrench(f_sensor, t_sensor);
+
+    // ---- 3. setpoints, hand target, trajectory generator
+    while (setpoint_in_.take(setpoint_msg_)) take_setpoint(now);
+    while (hand_in_.take(hand_msg_)) {
+      const auto& p = hand_msg_.pose().position();
+      const Eigen::Vector3d x(p.x(), p.y(), p.z());
+      if (x.allFinite()) {
+        hand_target_ = x;
+      } else if (++rejected_hand_ == 1) {
+        log("ignored a non-finite hand_target (further ones are counted silently)");
+      }
+    }
+    if (gate_->following()) {
+      const Eigen::Isometry3d pose = tracker_.advance(now.ns, dt_, kTwoPi * tracker_hz_, gate_config_.setpoint_timeout);
+      const Vector6d& seed = have_target_ ? q_target_ : gate_->reference().q;
+      const IkResult ik = model_->ik_nearest(pose, seed, tip_);
+      const Vector6d qd_target = have_target_ && ik.ok() ? Vector6d((ik.q - q_target_) / dt_) : Vector6d::Zero();
+      gate_->set_joint_target(ik, qd_target);
+      if (gate_->following()) {
+        q_target_ = ik.q;
+        have_target_ = true;
+      }
+    }
+    if (!gate_->following()) have_target_ = false;
+
+    // ---- 4. the reference, 5. the servo
+    // PD on the reference for now (the last step's result), feedforward of the acceleration that
+    // takes the reference to now + dt.
+    const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
+    const JointReference& ref = gate_->step(now.ns);
+    const Vector6d gravity = model_->gravity_torques(q_meas);
+    Vector6d tau = kp_.cwiseProduct(ref_q - q_meas) + kd_.cwiseProduct(ref_qd - qd_meas) + gravity;
+    // Feedforward (not in the Unimation servo): M(q) qdd_ref + C(q, qd) qd, and the drive friction.
+    if (accel_ff_ > 0.0) tau += accel_ff_ * (model_->rnea(q_meas, qd_meas, ref.qdd) - gravity);
+    // Friction is compensated while the reference moves; at a standstill it holds the arm (and
+    // damps the hunting that encoder quantisation would give a frictionless joint).
+    if (friction_ff_ > 0.0) {
+      const Vector6d f = friction(qd_meas);
+      for (int j = 0; j < kDof; ++j)
+        if (ref.qd[j] != 0.0) tau[j] += friction_ff_ * f[j];
+    }
+    const Vector6d& effort = model_->limits().effort;
+    tau_ = tau.cwiseMax(-effort).cwiseMin(effort);
+
+    // ---- 6. the arm and the hand over one period
+    const double h = dt_ / substeps_;
+    for (int s = 0; s < substeps_; ++s) {
+      const Contacts c = s == 0 ? contacts : contact_forces(q_, qd_);
+      const Eigen::Vector3d f_hand =
+          hand_k_ * (hand_target_ - hand_x_) - hand_d_ * hand_v_ + c.on_hand;  // no gravity: the user carries it
+      const Vector6d qdd = model_->forward_dynamics(q_, qd_, tau_ + c.joint_torque - friction(qd_));
+      qd_ += qdd * h;
+      q_ += qd_ * h;
+      hand_v_ += f_hand / hand_mass_ * h;
+      hand_x_ += hand_v_ * h;
+    }
+    publish_status(now);
+  }
+
+  void hold() noexcept override {
+    try {
+      if (gate_) gate_->fault("hold: the pipeline stopped on a fault");
+    } catch (...) {
+    }
+  }
+
+ private:
+  struct Contacts {
+    Eigen::Vector3d on_hand = Eigen::Vector3d::Zero();        // force on the fingertip, base frame
+    Vector6d joint_torque = Vector6d::Zero();                  // the reaction on the arm, at the joints
+    Eigen::Vector3d measured_force = Eigen::Vector3d::Zero();  // on the parts beyond the sensor, base frame
+    Eigen::Vector3d measured_torque = Eigen::Vector3d::Zero(); // about the sensor origin, base frame
+    Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
+  };
+
+  std::string resolve(const std::string& path) const {
+    namespace fs = std::filesystem;
+    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
+    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
+    if (fs::exists(in_config)) return in_config.string();
+    throw std::invalid_argument("file '" + path + "' not found (looked in the working directory and " +
+                                std::string(WYSIWYF_CONFIG_DIR) + ")");
+  }
+
+  // Viscous + Coulomb (per direction, tanh-smoothed through zero) at the joints.
+  Vector6d friction(const Vector6d& qd) const {
+    Vector6d tau;
+    for (int j = 0; j < kDof; ++j) {
+      const double g = drive_.gear_ratio[j];
+      const double motor_velocity = g * qd[j];
+      const double coulomb = (motor_velocity >= 0.0 ? drive_.coulomb_positive[j] : -drive_.coulomb_negative[j]) *
+                             std::tanh(qd[j] / coulomb_smoothing_) * (g >= 0.0 ? 1.0 : -1.0);
+      tau[j] = g * (drive_.viscous_friction[j] * motor_velocity + coulomb);
+    }
+    return tau;
+  }
+
+  Contacts contact_forces(const Vector6d& q, const Vector6d& qd) const {
+    Contacts out;
+    out.base_T_sensor = model_->fk(q, sensor_);
+    const Eigen::Vector3d o = out.base_T_sensor.translation();
+    if ((hand_x_ - o).norm() > tool_.bounding_radius + hand_radius_) return out;
+    Matrix6d J;
+    bool have_jacobian = false;
+    for (const ContactShape& shape : tool_.shapes) {
+      double depth;
+      Eigen::Vector3d n, point;
+      if (!sphere_contact(shape, out.base_T_sensor * shape.sensor_T_shape, hand_x_, hand_radius_, depth, n, point))
+        continue;
+      if (!have_jacobian) {
+        J = model_->jacobian(q, sensor_);
+        have_jacobian = true;
+      }
+      const Vector6d twist = J * qd;  // of the sensor origin
+      const Eigen::Vector3d r = point - o;
+      const Eigen::Vector3d v_point = twist.head<3>() + twist.tail<3>().cross(r);
+      const double depth_rate = -(hand_v_ - v_point).dot(n);
+      const double f = std::max(0.0, contact_k_ * depth + contact_d_ * depth_rate);
+      if (f == 0.0) continue;
+      const Eigen::Vector3d on_device = -f * n;
+      out.on_hand += f * n;
+      Vector6d wrench;
+      wrench.head<3>() = on_device;
+      wrench.tail<3>() = r.cross(on_device);
+      out.joint_torque += J.transpose() * wrench;
+      if (shape.measured) {
+        out.measured_force += on_device;
+        out.measured_torque += r.cross(on_device);
+      }
+    }
+    return out;
+  }
+
+  // What the sensor reports in its own frame about its origin: the load on its tool side (contact
+  // + the weight of what it carries), plus bias and noise.
+  void sensor_reading(const Contacts& c, Eigen::Vector3d& force, Eigen::Vector3d& torque) {
+    const Eigen::Matrix3d R = c.base_T_sensor.linear();
+    const Eigen::Vector3d weight = tool_.sensor_mass * standard_gravity();
+    const Eigen::Vector3d com = R * tool_.sensor_com;  // from the sensor origin, base axes
+    force = R.transpose() * (c.measured_force + weight);
+    torque = R.transpose() * (c.measured_torque + com.cross(weight));
+    for (int i = 0; i < 3; ++i) {
+      force[i] += bias_[i] + (noise_force_ > 0.0 ? noise_force_ * normal_(rng_) : 0.0);
+      torque[i] += bias_[3 + i] + (noise_torque_ > 0.0 ? noise_torque_ * normal_(rng_) : 0.0);
+    }
+  }
+
+  void take_setpoint(Time now) {
+    const auto& m = setpoint_msg_;
+    const std::string frame = m.header().frame_id().c_str(), child = m.child_frame_id().c_str();
+    if ((!frame.empty() && frame != "base" && frame != "base_link") || (!child.empty() && child != tip_frame_)) {
+      gate_->fault("setpoint rejected: it places '" + child + "' in '" + frame + "'; this arm follows base_T_" +
+                   tip_frame_);
+      return;
+    }
+    SetpointInput in;
+    in.position = Eigen::Vector3d(m.pose().position().x(), m.pose().position().y(), m.pose().position().z());
+    in.quaternion_xyzw = Eigen::Vector4d(m.pose().orientation().x(), m.pose().orientation().y(),
+                                         m.pose().orientation().z(), m.pose().orientation().w());
+    in.linear_velocity = Eigen::Vector3d(m.twist().linear().x(), m.twist().linear().y(), m.twist().linear().z());
+    in.angular_velocity = Eigen::Vector3d(m.twist().angular().x(), m.twist().angular().y(), m.twist().angular().z());
+    const bool was_following = gate_->following();
+    const Eigen::Isometry3d reference_pose = model_->fk(gate_->reference().q, tip_);
+    Eigen::Isometry3d pose;
+    if (!gate_->accept_setpoint(now.ns, in, reference_pose, pose)) return;
+    source_ = m.source().c_str();
+    if (!was_following) tracker_.reset(reference_pose, now.ns);  // start (again) from where the arm is
+    tracker_.set_setpoint(pose, in.linear_velocity, in.angular_velocity, now.ns, gate_config_.setpoint_timeout);
+  }
+
+  void publish(Time now, const Vector6d& q, const Vector6d& qd, const Eigen::Vector3d& f, const Eigen::Vector3d& t) {
+    joint_msg_.header().stamp_ns(now.ns);
+    joint_msg_.header().seq(seq_);
+    joint_msg_.header().frame_id("base");
+    for (int j = 0; j < kDof; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      joint_msg_.position()[k] = q[j];
+      joint_msg_.velocity()[k] = qd[j];
+      joint_msg_.effort()[k] = tau_[j];
+    }
+    joint_out_.write(joint_msg_);
+
+    pose_msg_.header().stamp_ns(now.ns);
+    pose_msg_.header().seq(seq_);
+    pose_msg_.header().frame_id("base");
+    pose_msg_.child_frame_id(tip_frame_);
+    to_msg(model_->fk(q, tip_), pose_msg_.pose());
+    pose_out_.write(pose_msg_);
+
+    wrench_msg_.header().stamp_ns(now.ns);
+    wrench_msg_.header().seq(seq_);
+    wrench_msg_.header().frame_id(sensor_frame_);
+    auto& w = wrench_msg_.wrench();
+    w.force().x(f.x()), w.force().y(f.y()), w.force().z(f.z());
+    w.torque().x(t.x()), w.torque().y(t.y()), w.torque().z(t.z());
+    wrench_out_.write(wrench_msg_);
+
+    hand_msg_out_.header().stamp_ns(now.ns);
+    hand_msg_out_.header().seq(seq_);
+    hand_msg_out_.header().frame_id("base");
+    hand_msg_out_.child_frame_id("hand");
+    Eigen::Isometry3d hand = Eigen::Isometry3d::Identity();
+    hand.translation() = hand_x_;
+    to_msg(hand, hand_msg_out_.pose());
+    hand_out_.write(hand_msg_out_);
+    ++seq_;
+  }
+
+  void publish_status(Time now) {
+    const SafetyState state = gate_->state();
+    const bool changed = state != last_state_ || gate_->reason() != last_reason_;
+    if (!changed && last_status_ns_ >= 0 && now.ns - last_status_ns_ < 100'000'000) return;
+    last_status_ns_ = now.ns;
+    if (changed) {  // (the message keeps its mode and reason: no allocation on the periodic repeats)
+      if (state == SafetyState::kFault) log("fault: " + gate_->reason());
+      last_state_ = state;
+      last_reason_ = gate_->reason();
+      switch (state) {
+        case SafetyState::kFault: status_msg_.mode(msg::MODE_FAULT); break;
+        case SafetyState::kHolding: status_msg_.mode(msg::MODE_IDLE); break;
+        case SafetyState::kOk:
+          status_msg_.mode(source_ == "admittance" ? msg::MODE_ADMITTANCE : msg::MODE_SURFACE);
+          break;
+      }
+      std::string reason = std::string(to_string(state)) + ": " + gate_->reason();
+      if (state == SafetyState::kOk) reason += " (source '" + source_ + "')";
+      if (reason.size() > 127) reason.resize(127);
+      status_msg_.reason(reason);
+    }
+    status_msg_.header().stamp_ns(now.ns);
+    status_msg_.header().seq(status_seq_++);
+    status_msg_.header().frame_id("base");
+    status_out_.write(status_msg_);
+  }
+
+  // parameters
+  std::string urdf_path_, drive_path_, tip_frame_, sensor_frame_;
+  Vector6d q0_ = Vector6d::Zero(), bias_ = Vector6d::Zero();
+  SafetyConfig gate_config_;
+  double tracker_hz_ = 10, servo_hz_ = 10, servo_zeta_ = 1, accel_ff_ = 1, friction_ff_ = 1;
+  std::vector<double> kp_given_, kd_given_;
+  int substeps_ = 4, encoder_counts_ = 1000;
+  double coulomb_smoothing_ = 0.01, noise_force_ = 0.05, noise_torque_ = 0.002;
+  std::int64_t seed_ = 1;
+  double hand_mass_ = 0.5, hand_radius_ = 0.01, hand_k_ = 500, hand_d_ = 30, contact_k_ = 2e4, contact_d_ = 100;
+  Eigen::Vector3d park_ = Eigen::Vector3d::Zero();
+  double dt_ = 1e-3;
+
+  // model
+  std::unique_ptr<PumaModel> model_;
+  DriveParams drive_;
+  ToolGeometry tool_;
+  FrameId tip_, sensor_;
+  Vector6d quantum_ = Vector6d::Zero(), kp_ = Vector6d::Zero(), kd_ = Vector6d::Zero();
+
+  // state
+  Vector6d q_ = Vector6d::Zero(), qd_ = Vector6d::Zero(), tau_ = Vector6d::Zero();
+  Eigen::Vector3d hand_x_ = Eigen::Vector3d::Zero(), hand_v_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hand_target_ = Eigen::Vector3d::Zero();
+  std::unique_ptr<SafetyGate> gate_;
+  CartesianTracker tracker_;
+  bool started_ = false, have_target_ = false;
+  Vector6d q_target_ = Vector6d::Zero();
+  std::string source_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  SafetyState last_state_ = SafetyState::kFault;
+  std::string last_reason_;
+  std::int64_t last_status_ns_ = -1;
+  std::uint64_t seq_ = 0, status_seq_ = 0, rejected_hand_ = 0;
+
+  // messages and ports (reused: no allocation per tick)
+  msg::CartesianSetpoint setpoint_msg_;
+  msg::PoseStamped hand_msg_, pose_msg_, hand_msg_out_;
+  msg::JointState joint_msg_;
+  msg::WrenchStamped wrench_msg_;
+  msg::DisplayMode status_msg_;
+  Input<msg::CartesianSetpoint> setpoint_in_;
+  Input<msg::PoseStamped> hand_in_;
+  Output<msg::JointState> joint_out_;
+  Output<msg::PoseStamped> pose_out_;
+  Output<msg::WrenchStamped> wrench_out_;
+  Output<msg::PoseStamped> hand_out_;
+  Output<msg::DisplayMode> status_out_;
+};
+
+}  // namespace wysiwyf::robot::sim
+
+WYSIWYF_COMPONENT(wysiwyf::robot::sim::PumaSim, "puma_sim")

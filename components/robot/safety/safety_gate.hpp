@@ -1,0 +1,143 @@
+#pragma once
+// The driver-level safety layer of the PUMA: everything that may command the arm (the admittance
+// loop, a script, the user's hand through the display) passes through it on the way to the joint
+// servo. One piece of code for the simulated arm (puma_sim) and the real driver.
+//
+// Every servo period it turns the latest joint target (the inverse kinematics of the interpolated
+// Cartesian setpoint) into the joint reference the servo may follow. Whatever the input, that
+// reference
+//  - stays inside [lower + position_margin, upper - position_margin] (the margin is left for the
+//    servo's following error, so the arm itself stays inside its limits);
+//  - moves with |velocity| <= velocity_fraction * the velocity limit and |acceleration| <=
+//    acceleration_fraction * the acceleration limit: it is a double integrator driven by a bounded
+//    acceleration, and its speed towards each position limit never exceeds the braking speed
+//    v(d) = sqrt(c^2 + 2 a d) - c (d: distance left, c = a / approach_rate >= a dt / 2), a set
+//    that one period of full braking always keeps it in, so it brakes in time for every limit;
+//  - approaches a target on that same curve (time-optimal far away, first order with rate
+//    approach_rate near it): no overshoot on a still target, no chatter on a moving one;
+//  - is never moved by bad input: a non-finite or malformed setpoint, a setpoint jump or speed
+//    beyond the limits, an IK failure or branch change, a measured force or torque above its
+//    limit, a following error or an overspeed latch a fault with a reason, and the reference
+//    brakes to a standstill within the limits and holds there. Faults stay until reset().
+//  - When setpoints stop coming (none for setpoint_timeout, e.g. three periods of a 20 ms
+//    stream) it brakes and holds too, but that is not latched: a fresh setpoint within
+//    max_setpoint_step of where the arm stopped resumes the motion.
+#include <cstdint>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "puma_model/ik_result.hpp"
+#include "puma_model/types.hpp"
+
+namespace wysiwyf::robot {
+
+struct SafetyConfig {
+  JointLimits limits;                         // hard position and velocity limits (effort unused)
+  Vector6d max_acceleration = Vector6d::Constant(10.0);  // hard acceleration limits [rad/s^2]
+  double position_margin = 0.02;              // rad kept between the reference and each limit
+  double velocity_fraction = 0.9;             // of the velocity limits, for the reference
+  double acceleration_fraction = 0.8;         // of the acceleration limits, for the reference
+  double approach_rate = 50.0;                // 1/s: first-order rate of the final approach
+  double dt = 1e-3;                           // servo period [s]
+  double setpoint_timeout = 0.06;             // s without a setpoint before braking to a hold
+  double max_setpoint_step = 0.1;             // m between consecutive setpoints
+  double max_setpoint_rotation = 0.5;         // rad between consecutive setpoints
+  double max_setpoint_speed = 2.0;            // m/s in a setpoint's twist
+  double max_setpoint_angular_speed = 6.0;    // rad/s in a setpoint's twist
+  double max_joint_target_step = 0.2;         // rad per servo period (an IK branch change)
+  double max_following_error = 0.1;           // rad between the reference and the measurement
+  double max_force = 100.0;                   // N, norm of the measured force
+  double max_torque = 10.0;                   // N m, norm of the measured torque
+
+  // Throws std::invalid_argument naming the first value that does not fit.
+  void validate() const;
+};
+
+enum class SafetyState {
+  kOk,       // following setpoints
+  kHolding,  // braking to, or holding, a standstill: no setpoint yet, or the stream stopped
+  kFault,    // latched: braking to, or holding, a standstill until reset()
+};
+const char* to_string(SafetyState state);
+
+// A Cartesian setpoint as it arrived (base_T_dev and its twist in base coordinates), unchecked.
+struct SetpointInput {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector4d quaternion_xyzw = Eigen::Vector4d(0, 0, 0, 1);
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+};
+
+struct JointReference {
+  Vector6d q = Vector6d::Zero();
+  Vector6d qd = Vector6d::Zero();
+  Vector6d qdd = Vector6d::Zero();  // the acceleration of the last step
+};
+
+class SafetyGate {
+ public:
+  explicit SafetyGate(const SafetyConfig& config);  // validates it
+
+  // Starts (again) from the measured joints, taken to be at rest: clears any fault, the reference
+  // is q_measured with zero velocity, the state is kHolding until the first setpoint. A
+  // non-finite q_measured or one beyond the hard limits is a fault at once.
+  void reset(const Vector6d& q_measured, std::int64_t now_ns);
+
+  // A setpoint as it arrives. Returns true and sets `pose` (quaternion normalised) when it may be
+  // followed; false when the gate is faulted, or when the setpoint is bad (then it faults):
+  // non-finite numbers, a quaternion whose norm is not 1 (+-1e-3), a twist above the speed limits,
+  // or a jump from the previous setpoint (from `reference_pose`, the pose of the reference, when
+  // not following yet) above max_setpoint_step / max_setpoint_rotation. Feeds the watchdog.
+  bool accept_setpoint(std::int64_t now_ns, const SetpointInput& setpoint, const Eigen::Isometry3d& reference_pose,
+                       Eigen::Isometry3d& pose);
+
+  // While following, every servo period: the IK of the interpolated setpoint and the target's
+  // joint velocity. An IK failure, a non-finite target or a jump of more than
+  // max_joint_target_step from the previous target (from the reference, for the first one) is a
+  // fault. Ignored unless following.
+  void set_joint_target(const IkResult& ik, const Vector6d& qd_target);
+
+  // The measured joints (checked against the hard limits, the velocity limits and the following
+  // error to the last reference) and the measured force/torque. Out of bounds or non-finite: fault.
+  void check_measured(const Vector6d& q, const Vector6d& qd);
+  void check_wrench(const Eigen::Vector3d& force, const Eigen::Vector3d& torque);
+
+  // Latches a fault (the first reason is kept until reset()).
+  void fault(const std::string& reason);
+
+  // Advances the reference by one servo period (also runs the watchdog).
+  const JointReference& step(std::int64_t now_ns);
+
+  SafetyState state() const { return state_; }
+  bool following() const { return state_ == SafetyState::kOk; }
+  // "following setpoints", "waiting for the first setpoint", "no setpoint for 61 ms ...", or the
+  // fault's reason.
+  const std::string& reason() const { return reason_; }
+  const JointReference& reference() const { return ref_; }
+  const SafetyConfig& config() const { return config_; }
+  // The bounds the reference keeps (hard limits scaled by the fractions, margin applied).
+  const Vector6d& reference_velocity_limit() const { return v_max_; }
+  const Vector6d& reference_acceleration_limit() const { return a_max_; }
+  Vector6d reference_lower() const;
+  Vector6d reference_upper() const;
+  // Largest speed at which the reference may approach a point `distance` away on joint j.
+  double braking_speed(int j, double distance) const;
+
+ private:
+  void set_state(SafetyState state, std::string reason);
+
+  SafetyConfig config_;
+  Vector6d v_max_, a_max_, c_;
+  SafetyState state_ = SafetyState::kHolding;
+  std::string reason_ = "not started (reset() not called)";
+  JointReference ref_;
+  bool started_ = false;
+  std::int64_t last_setpoint_ns_ = 0;
+  Eigen::Isometry3d last_setpoint_ = Eigen::Isometry3d::Identity();
+  bool have_target_ = false;
+  Vector6d target_q_ = Vector6d::Zero();
+  Vector6d target_qd_ = Vector6d::Zero();
+};
+
+}  // namespace wysiwyf::robot
