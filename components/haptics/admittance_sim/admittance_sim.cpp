@@ -75,6 +75,7 @@ class AdmittanceSim final : public Component {
       }
       const auto& f = sample_.wrench().force();
       const auto& t = sample_.wrench().torque();
+      have_reading_ = true;
       reading_.force = Vec3(f.x(), f.y(), f.z());
       reading_.torque = Vec3(t.x(), t.y(), t.z());
       if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
@@ -82,8 +83,10 @@ class AdmittanceSim final : public Component {
     const int body = scene_.device.body;
     const Eigen::Isometry3d base_T_obj = pose_of(body);
     const Eigen::Isometry3d base_T_sensor = base_T_obj * scene_.device.obj_T_dev * scene_.device.dev_T_sensor;
-    const BodyWrench user = user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
-                                                scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity);
+    // Until the sensor has said anything, nobody pushes (a zero reading would be minus the tool's weight).
+    const BodyWrench user = have_reading_ ? user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
+                                                                scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
+                                          : BodyWrench{};
     world_->set_external_wrench(body, user.force, user.torque);
     // STEP 2-6.
     const StepReport report = world_->step(dt_);
@@ -153,6 +156,7 @@ class AdmittanceSim final : public Component {
   Scene scene_;
   std::unique_ptr<World> world_;
   SensorReading reading_;
+  bool have_reading_ = false;
   std::uint64_t rejected_ = 0, seq_ = 0;
   msg::WrenchStamped sample_;
   msg::CartesianSetpoint setpoint_msg_;
