@@ -152,8 +152,9 @@ TEST(World, ACubePushedIntoAWallStopsWithoutPenetrating) {
   wall.dynamic = false;
   wall.half_extents = Vec3(0.05, 1.0, 0.5);
   wall.restitution = 0.0;
-  // Wall face at x = 0.5; the cube's face starts at x = 0.1.
-  World w({cube(1.0, 0.0), table(), wall}, {at(Vec3(0, 0, 0.1)), at(Vec3(0, 0, -0.05)), at(Vec3(0.55, 0, 0.5))});
+  // Wall face at x = 0.5; the cube's face starts at x = 0.1. The wall stands 1 cm into the table
+  // (a face exactly on the table's top would be a second floor for the cube's corners).
+  World w({cube(1.0, 0.0), table(), wall}, {at(Vec3(0, 0, 0.1)), at(Vec3(0, 0, -0.05)), at(Vec3(0.55, 0, 0.49))});
   w.set_external_wrench(0, Vec3(5.0, 0, 0), Vec3::Zero());
   double max_face = -1;
   for (int i = 0; i < 2000; ++i) {

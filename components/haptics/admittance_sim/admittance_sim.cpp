@@ -49,6 +49,10 @@ class AdmittanceSim final : public Component {
     rtol_ = ctx.param<double>("rtol", 1e-8, "CVODE relative tolerance", Range{1e-14, 1e-3});
     wrench_ = ctx.input<msg::WrenchStamped>("wrench", "the wrist F/T sensor: user push plus tool weight, sensor frame",
                                             Qos::sensor(8));
+    device_pose_ = ctx.input<msg::PoseStamped>("device_pose",
+                                               "measured base_T_dev (optional): where the sensor really is, for removing the "
+                                               "tool's weight; without it, where the object says the device should be",
+                                               Qos::sensor(4));
     setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist for the robot (source admittance)");
     objects_ = ctx.output<msg::ObjectState>("objects", "pose, twist and contacts of every dynamic body",
                                             Qos::reliable(16));
@@ -80,9 +84,19 @@ class AdmittanceSim final : public Component {
       reading_.torque = Vec3(t.x(), t.y(), t.z());
       if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
     }
+    while (device_pose_.take(device_msg_)) {
+      const auto& p = device_msg_.pose();
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.linear() = Quat(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z()).normalized().toRotationMatrix();
+      T.translation() = Vec3(p.position().x(), p.position().y(), p.position().z());
+      if (T.matrix().allFinite()) measured_base_T_dev_ = T, have_device_pose_ = true;
+    }
     const int body = scene_.device.body;
     const Eigen::Isometry3d base_T_obj = pose_of(body);
-    const Eigen::Isometry3d base_T_sensor = base_T_obj * scene_.device.obj_T_dev * scene_.device.dev_T_sensor;
+    // The sensor is where the robot holds it; if the robot lags or holds, that is not where the
+    // object says, and the tool's weight must be removed in the sensor's true orientation.
+    const Eigen::Isometry3d base_T_dev = have_device_pose_ ? measured_base_T_dev_ : base_T_obj * scene_.device.obj_T_dev;
+    const Eigen::Isometry3d base_T_sensor = base_T_dev * scene_.device.dev_T_sensor;
     // Until the sensor has said anything, nobody pushes (a zero reading would be minus the tool's weight).
     const BodyWrench user = have_reading_ ? user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
                                                                 scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
@@ -156,6 +170,10 @@ class AdmittanceSim final : public Component {
   Scene scene_;
   std::unique_ptr<World> world_;
   SensorReading reading_;
+  bool have_device_pose_ = false;
+  Eigen::Isometry3d measured_base_T_dev_ = Eigen::Isometry3d::Identity();
+  msg::PoseStamped device_msg_;
+  Input<msg::PoseStamped> device_pose_;
   bool have_reading_ = false;
   std::uint64_t rejected_ = 0, seq_ = 0;
   msg::WrenchStamped sample_;

@@ -81,6 +81,19 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
     const Pose& pose = poses[vb];
     for (int v = 0; v < 8; ++v) {
       const Vec3 local = pose.R.transpose() * (corners[v] - pose.x);
+      if ((local.cwiseAbs().array() <= other.half_extents.array()).all()) {
+        // Inside the other box: only its nearest face is a contact (the others would push the
+        // corner out through the far side, against the true one).
+        int best = 0;
+        double best_gap = -1e300;
+        for (int face = 0; face < 6; ++face) {
+          const int axis = face / 2;
+          const double gap = ((face % 2) ? local[axis] : -local[axis]) - other.half_extents[axis];
+          if (gap > best_gap) best_gap = gap, best = face;
+        }
+        if (best_gap > -depth) out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, best, 1});
+        continue;
+      }
       for (int axis = 0; axis < 3; ++axis) {
         const int j = (axis + 1) % 3, k = (axis + 2) % 3;
         if (std::abs(local[j]) > other.half_extents[j] || std::abs(local[k]) > other.half_extents[k]) continue;

@@ -174,6 +174,7 @@ void World::rhs(const double* y, double* ydot) {
     const ActiveContact* active = resting_.data();
     contact_matrix(active, live, scratch_poses_);
     b_.resize(static_cast<Eigen::Index>(live));
+    b_free_.resize(static_cast<Eigen::Index>(live));
     const double ws = 2 * M_PI * params_.stabilisation_hz;
     for (std::size_t i = 0; i < live; ++i) {
       const auto& c = active[i].point;
@@ -192,9 +193,14 @@ void World::rhs(const double* y, double* ydot) {
         acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
         gap_rate += sgn * c.n.dot(vp);
       }
+      b_free_[static_cast<Eigen::Index>(i)] = acc;
       b_[static_cast<Eigen::Index>(i)] = acc + 2 * ws * gap_rate + ws * ws * c.gap;
     }
-    const LcpResult r = lcp_.solve(A_, b_);
+    LcpResult r = lcp_.solve(A_, b_);
+    // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
+    // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
+    // problem is always solvable (frictionless, b in the range of J): fall back to it.
+    if (!r.ok) r = lcp_.solve(A_, b_free_);
     if (!r.ok) ++report_.lcp_failures;
     for (std::size_t i = 0; i < live; ++i) {
       const double f = r.f[static_cast<Eigen::Index>(i)];

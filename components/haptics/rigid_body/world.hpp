@@ -94,7 +94,7 @@ class World {
   std::vector<Pose> scratch_poses_;
   std::vector<Vec3> force_, torque_;
   Eigen::MatrixXd J_, MinvJt_, A_;
-  Eigen::VectorXd b_;
+  Eigen::VectorXd b_, b_free_;  // with and without the gap feedback
   StepReport report_;
 };
 
