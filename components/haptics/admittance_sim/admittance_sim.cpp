@@ -4,32 +4,19 @@
 // the object's motion to the robot as the device setpoint: base_T_dev = base_T_obj * obj_T_dev
 // (the virtual environment frame is the robot base, eq. 6).
 #include <cmath>
-#include <filesystem>
 
 #include "rigid_body/scene.hpp"
 #include "rigid_body/world.hpp"
 #include "rigid_body/wrench_path.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::haptics {
 
 namespace {
 
-void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
-  const Quat q(T.linear());
-  p.position().x(T.translation().x());
-  p.position().y(T.translation().y());
-  p.position().z(T.translation().z());
-  p.orientation().x(q.x());
-  p.orientation().y(q.y());
-  p.orientation().z(q.z());
-  p.orientation().w(q.w());
-}
-void to_msg(const Vec3& v, const Vec3& w, geometry_msgs::Twist& t) {
-  t.linear().x(v.x()), t.linear().y(v.y()), t.linear().z(v.z());
-  t.angular().x(w.x()), t.angular().y(w.y()), t.angular().z(w.z());
-}
 bool finite(const msg::WrenchStamped& m) {
   const auto& f = m.wrench().force();
   const auto& t = m.wrench().torque();
@@ -57,7 +44,7 @@ class AdmittanceSim final : public Component {
     objects_ = ctx.output<msg::ObjectState>("objects", "pose, twist and contacts of every dynamic body",
                                             Qos::reliable(16));
     dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
-    scene_ = load_scene(resolve(scene_path_));  // throws with file:line: reported before anything starts
+    scene_ = load_scene(find_config_file(scene_path_));  // throws with file:line: reported before anything starts
     if (scene_.device.body < 0) throw std::invalid_argument("scene '" + scene_path_ + "' has no device: attachment");
   }
 
@@ -85,10 +72,7 @@ class AdmittanceSim final : public Component {
       if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
     }
     while (device_pose_.take(device_msg_)) {
-      const auto& p = device_msg_.pose();
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.linear() = Quat(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z()).normalized().toRotationMatrix();
-      T.translation() = Vec3(p.position().x(), p.position().y(), p.position().z());
+      const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
       if (T.matrix().allFinite()) measured_base_T_dev_ = T, have_device_pose_ = true;
     }
     const int body = scene_.device.body;
@@ -110,15 +94,6 @@ class AdmittanceSim final : public Component {
   }
 
  private:
-  std::string resolve(const std::string& path) const {
-    namespace fs = std::filesystem;
-    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
-    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
-    if (fs::exists(in_config)) return in_config.string();
-    throw std::invalid_argument("scene file '" + path + "' not found (looked in the working directory and " +
-                                std::string(WYSIWYF_CONFIG_DIR) + ")");
-  }
-
   Eigen::Isometry3d pose_of(int body) const {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = world_->state(body).q.normalized().toRotationMatrix();
@@ -134,8 +109,8 @@ class AdmittanceSim final : public Component {
     setpoint_msg_.header().seq(seq_);
     setpoint_msg_.header().frame_id("base");
     setpoint_msg_.child_frame_id("dev");
-    to_msg(base_T_dev, setpoint_msg_.pose());
-    to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body).x), k.omega, setpoint_msg_.twist());
+    msgs::to_msg(base_T_dev, setpoint_msg_.pose());
+    msgs::to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body).x), k.omega, setpoint_msg_.twist());
     setpoint_msg_.source("admittance");
     setpoint_.write(setpoint_msg_);
 
@@ -146,8 +121,8 @@ class AdmittanceSim final : public Component {
       object_msg_.header().seq(seq_);
       object_msg_.header().frame_id("v_env");
       object_msg_.child_frame_id(world_->model(i).name);
-      to_msg(pose_of(i), object_msg_.pose());
-      to_msg(ki.v, ki.omega, object_msg_.twist());
+      msgs::to_msg(pose_of(i), object_msg_.pose());
+      msgs::to_msg(ki.v, ki.omega, object_msg_.twist());
       object_msg_.contacts().clear();
       for (const auto& c : world_->resting_contacts()) {
         if ((c.feature.a != i && c.feature.b != i) || object_msg_.contacts().size() >= 32) continue;

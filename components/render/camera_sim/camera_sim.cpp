@@ -7,31 +7,18 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
-#include <filesystem>
 
 #include "gl/gl_context.hpp"
 #include "gl/offscreen_renderer.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::render {
 
 namespace {
-
-Eigen::Isometry3d from_msg(const geometry_msgs::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z())
-                   .normalized()
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
-  return T;
-}
-void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
-  const Eigen::Quaterniond q(T.linear());
-  p.position().x(T.translation().x()), p.position().y(T.translation().y()), p.position().z(T.translation().z());
-  p.orientation().x(q.x()), p.orientation().y(q.y()), p.orientation().z(q.z()), p.orientation().w(q.w());
-}
 
 // A camera at `eye` looking at `target`, base z up: base_T_eye in OpenCV axes (x right, y down).
 Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
@@ -94,7 +81,7 @@ class CameraSim final : public Component {
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
     base_T_eye_ = look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
-    model_ = std::make_unique<robot::PumaModel>(resolve(urdf_), "flange");
+    model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "flange");
   }
 
   void activate() override {
@@ -126,7 +113,7 @@ class CameraSim final : public Component {
       if (q.allFinite()) q_ = q, have_joints_ = true;
     }
     while (hand_in_.take(hand_msg_)) {
-      const Eigen::Isometry3d T = from_msg(hand_msg_.pose());
+      const Eigen::Isometry3d T = msgs::to_isometry(hand_msg_.pose());
       if (T.matrix().allFinite()) base_T_hand_ = T, have_hand_ = true;
     }
     if (start_ns_ < 0) start_ns_ = now.ns;
@@ -162,11 +149,11 @@ class CameraSim final : public Component {
     pose_msg_.header().seq(seq_);
     pose_msg_.header().frame_id("eye");
     pose_msg_.child_frame_id("base");
-    to_msg(eye_T_base, pose_msg_.pose());
+    msgs::to_msg(eye_T_base, pose_msg_.pose());
     true_eye_T_base_.write(pose_msg_);
     if (have_joints_) {
       pose_msg_.child_frame_id("dev");
-      to_msg(eye_T_base * model_->fk(q_, model_->frame("dev")), pose_msg_.pose());
+      msgs::to_msg(eye_T_base * model_->fk(q_, model_->frame("dev")), pose_msg_.pose());
       true_eye_T_dev_.write(pose_msg_);
     }
     info_msg_.header() = pose_msg_.header();
@@ -185,14 +172,6 @@ class CameraSim final : public Component {
   }
 
  private:
-  std::string resolve(const std::string& path) const {
-    namespace fs = std::filesystem;
-    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
-    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
-    if (fs::exists(in_config)) return in_config.string();
-    throw std::invalid_argument("robot file '" + path + "' not found (looked in the working directory and config/)");
-  }
-
   std::vector<Eigen::Vector3d> arm_points(const robot::Vector6d& q) const {
     std::vector<Eigen::Vector3d> p{Eigen::Vector3d(0, 0, -0.6)};  // the pedestal's foot
     for (const char* f : {"link1", "link3", "link4", "flange"}) p.push_back(model_->fk(q, model_->frame(f)).translation());

@@ -2,27 +2,19 @@
 // scene's static bodies and the dynamic bodies at the poses the simulation publishes, drawn from
 // the tracked camera pose eye_T_base with the calibrated intrinsics, so that eye_T_v_obj =
 // eye_T_dev (eq. 4) and eye_T_v_env = eye_T_base (eq. 6). Publishes colour and metric depth.
-#include <filesystem>
 #include <map>
 
 #include "gl/gl_context.hpp"
 #include "gl/offscreen_renderer.hpp"
 #include "rigid_body/scene.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::render {
 
 namespace {
-
-Eigen::Isometry3d from_msg(const geometry_msgs::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z())
-                   .normalized()
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
-  return T;
-}
 
 bool finite(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
 
@@ -48,7 +40,7 @@ class Renderer final : public Component {
     if (background_.size() != 3) throw std::invalid_argument("background: expected three numbers r g b");
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     if (camera_.near_m >= camera_.far_m) throw std::invalid_argument("near must be less than far");
-    scene_ = haptics::load_scene(resolve(scene_path_));
+    scene_ = haptics::load_scene(find_config_file(scene_path_));
   }
 
   void activate() override {
@@ -67,11 +59,11 @@ class Renderer final : public Component {
 
   void tick(Time now) override {
     while (eye_T_base_in_.take(pose_msg_)) {
-      const Eigen::Isometry3d T = from_msg(pose_msg_.pose());
+      const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
       if (finite(T)) eye_T_base_ = T, have_pose_ = true;  // a corrupt pose is ignored
     }
     while (objects_in_.take(object_msg_)) {
-      const Eigen::Isometry3d T = from_msg(object_msg_.pose());
+      const Eigen::Isometry3d T = msgs::to_isometry(object_msg_.pose());
       if (finite(T)) base_T_body_[object_msg_.child_frame_id().c_str()] = T;
     }
     if (!have_pose_) return;  // nothing to draw from yet
@@ -96,15 +88,6 @@ class Renderer final : public Component {
   }
 
  private:
-  std::string resolve(const std::string& path) const {
-    namespace fs = std::filesystem;
-    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
-    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
-    if (fs::exists(in_config)) return in_config.string();
-    throw std::invalid_argument("scene file '" + path + "' not found (looked in the working directory and " +
-                                std::string(WYSIWYF_CONFIG_DIR) + ")");
-  }
-
   void fill(msg::Image& m, const char* encoding, int bytes_per_pixel, Time now, const std::uint8_t* data, std::size_t size) {
     m.header().stamp_ns(now.ns);
     m.header().seq(seq_);

@@ -16,7 +16,6 @@
 //      penalty contact with the plate, the knob and the sensor housing, the reaction applied to
 //      link 6 through the Jacobian transpose) advance by semi-implicit Euler substeps.
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -26,6 +25,8 @@
 #include "safety/safety_gate.hpp"
 #include "tool_geometry.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::robot::sim {
@@ -42,17 +43,6 @@ Vector6d to_vector6(const std::vector<double>& v) {
   Vector6d out;
   for (int j = 0; j < kDof; ++j) out[j] = v[static_cast<std::size_t>(j)];
   return out;
-}
-
-void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
-  const Eigen::Quaterniond q(T.linear());
-  p.position().x(T.translation().x());
-  p.position().y(T.translation().y());
-  p.position().z(T.translation().z());
-  p.orientation().x(q.x());
-  p.orientation().y(q.y());
-  p.orientation().z(q.z());
-  p.orientation().w(q.w());
 }
 
 // Rotation vector of a unit quaternion (shortest way).
@@ -269,13 +259,13 @@ class PumaSim final : public Component {
     gate_config_.dt = dt_;
 
     // Load now so that a wrong file or frame is reported before anything starts.
-    model_ = std::make_unique<PumaModel>(resolve(urdf_path_), tip_frame_);
-    drive_ = load_drive_params(resolve(drive_path_), *model_);
+    model_ = std::make_unique<PumaModel>(find_config_file(urdf_path_), tip_frame_);
+    drive_ = load_drive_params(find_config_file(drive_path_), *model_);
     model_->set_rotor_inertia(drive_.reflected_inertia());
     tip_ = model_->tip();
     if (model_->frame_body(tip_) != kDof) throw std::invalid_argument("tip_frame '" + tip_frame_ + "' is not on link 6");
     sensor_ = model_->frame(sensor_frame_);
-    tool_ = load_tool_geometry(resolve(urdf_path_), *model_, sensor_frame_);
+    tool_ = load_tool_geometry(find_config_file(urdf_path_), *model_, sensor_frame_);
     gate_config_.limits = model_->limits();
     gate_config_.validate();
     if (!model_->limits().within(q0_))
@@ -399,15 +389,6 @@ class PumaSim final : public Component {
     Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
   };
 
-  std::string resolve(const std::string& path) const {
-    namespace fs = std::filesystem;
-    if (fs::path(path).is_absolute() || fs::exists(path)) return path;
-    const fs::path in_config = fs::path(WYSIWYF_CONFIG_DIR) / path;
-    if (fs::exists(in_config)) return in_config.string();
-    throw std::invalid_argument("file '" + path + "' not found (looked in the working directory and " +
-                                std::string(WYSIWYF_CONFIG_DIR) + ")");
-  }
-
   // Viscous + Coulomb (per direction, tanh-smoothed through zero) at the joints.
   Vector6d friction(const Vector6d& qd) const {
     Vector6d tau;
@@ -510,7 +491,7 @@ class PumaSim final : public Component {
     pose_msg_.header().seq(seq_);
     pose_msg_.header().frame_id("base");
     pose_msg_.child_frame_id(tip_frame_);
-    to_msg(model_->fk(q, tip_), pose_msg_.pose());
+    msgs::to_msg(model_->fk(q, tip_), pose_msg_.pose());
     pose_out_.write(pose_msg_);
 
     wrench_msg_.header().stamp_ns(now.ns);
@@ -527,7 +508,7 @@ class PumaSim final : public Component {
     hand_msg_out_.child_frame_id("hand");
     Eigen::Isometry3d hand = Eigen::Isometry3d::Identity();
     hand.translation() = hand_x_;
-    to_msg(hand, hand_msg_out_.pose());
+    msgs::to_msg(hand, hand_msg_out_.pose());
     hand_out_.write(hand_msg_out_);
     ++seq_;
   }

@@ -1,0 +1,35 @@
+#include "wysiwyf/config_files.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace wysiwyf {
+
+std::string find_config_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::path(path).is_absolute() || fs::exists(path, ec)) {
+    if (fs::exists(path, ec)) return path;
+    throw std::invalid_argument("configuration file '" + path + "' does not exist");
+  }
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("WYSIWYF_CONFIG_PATH")) {
+    std::stringstream s(env);
+    for (std::string d; std::getline(s, d, ':');)
+      if (!d.empty()) dirs.push_back(d);
+  }
+  dirs.push_back(WYSIWYF_SOURCE_CONFIG_DIR);
+  dirs.push_back(WYSIWYF_INSTALL_CONFIG_DIR);
+  std::string looked = "the working directory";
+  for (const auto& d : dirs) {
+    const fs::path candidate = fs::path(d) / path;
+    if (fs::exists(candidate, ec)) return candidate.string();
+    looked += ", " + d;
+  }
+  throw std::invalid_argument("configuration file '" + path + "' not found (looked in " + looked + ")");
+}
+
+}  // namespace wysiwyf
