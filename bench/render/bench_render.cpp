@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "wysiwyf/harness.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::render {
 
@@ -18,13 +18,8 @@ void BM_Renderer_640x480(benchmark::State& state) {
   Eigen::Isometry3d base_T_eye = Eigen::Isometry3d::Identity();
   base_T_eye.linear() << 1, 0, 0, 0, 0.6, 0.8, 0, -0.8, 0.6;  // looking down at the table
   base_T_eye.translation() = Eigen::Vector3d(0.6, -0.7, 0.6);
-  const Eigen::Isometry3d eye_T_base = base_T_eye.inverse();
-  const Eigen::Quaterniond q(eye_T_base.linear());
   msg::PoseStamped p;
-  p.pose().position().x(eye_T_base.translation().x()), p.pose().position().y(eye_T_base.translation().y()),
-      p.pose().position().z(eye_T_base.translation().z());
-  p.pose().orientation().x(q.x()), p.pose().orientation().y(q.y()), p.pose().orientation().z(q.z()),
-      p.pose().orientation().w(q.w());
+  msgs::to_msg(base_T_eye.inverse(), p.pose());
   pose_in.write(p);
   std::int64_t t = 0;
   msg::Image img;

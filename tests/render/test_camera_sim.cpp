@@ -6,21 +6,9 @@
 
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/harness.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::render {
-
-void set_pose(geometry_msgs::Pose& p, const Eigen::Isometry3d& T) {
-  const Eigen::Quaterniond q(T.linear());
-  p.position().x(T.translation().x()), p.position().y(T.translation().y()), p.position().z(T.translation().z());
-  p.orientation().x(q.x()), p.orientation().y(q.y()), p.orientation().z(q.z()), p.orientation().w(q.w());
-}
-Eigen::Isometry3d from_pose(const geometry_msgs::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
-  return T;
-}
 
 // The arm with the plate at (0.6, 0, 0.5), facing the camera at (1.3, -0.5, 0.75).
 robot::Vector6d ready_pose(const robot::PumaModel& model) {
@@ -56,7 +44,7 @@ TEST(CameraSim, ItsHandMaskAgreesWithItsImageAndItsPosesWithTheModel) {
   base_T_hand.translate(Eigen::Vector3d(0.02, 0.0, 0.12));
   base_T_hand.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
   msg::PoseStamped hp;
-  set_pose(hp.pose(), base_T_hand);
+  msgs::to_msg(base_T_hand, hp.pose());
   hand.write(hp);
   h.tick(Time{0});
   msg::Image img, m;
@@ -88,8 +76,8 @@ TEST(CameraSim, ItsHandMaskAgreesWithItsImageAndItsPosesWithTheModel) {
   msg::PoseStamped a, b;
   ASSERT_TRUE(eye_T_dev.take_latest(a));
   ASSERT_TRUE(eye_T_base.take_latest(b));
-  const Eigen::Isometry3d expected = from_pose(b.pose()) * model.fk(q, model.frame("dev"));
-  EXPECT_LE((from_pose(a.pose()).matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-9);
+  const Eigen::Isometry3d expected = msgs::to_isometry(b.pose()) * model.fk(q, model.frame("dev"));
+  EXPECT_LE((msgs::to_isometry(a.pose()).matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 }  // namespace wysiwyf::render

@@ -6,17 +6,9 @@
 #include <cstring>
 
 #include "wysiwyf/harness.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::render {
-
-void set_pose(msg::PoseStamped& m, const Eigen::Isometry3d& T) {
-  const Eigen::Quaterniond q(T.linear());
-  m.pose().position().x(T.translation().x()), m.pose().position().y(T.translation().y()),
-      m.pose().position().z(T.translation().z());
-  m.pose().orientation().x(q.x()), m.pose().orientation().y(q.y()), m.pose().orientation().z(q.z()),
-      m.pose().orientation().w(q.w());
-}
 
 float depth_at(const msg::Image& d, int u, int v) {
   float z;
@@ -38,7 +30,7 @@ TEST(Renderer, DrawsTheCubeFromTheTrackedPoseAndFollowsIt) {
   base_T_eye.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
   base_T_eye.translation() = Eigen::Vector3d(0.6, -0.8, 0.1);
   msg::PoseStamped p;
-  set_pose(p, base_T_eye.inverse());
+  msgs::to_msg(base_T_eye.inverse(), p.pose());
   pose_in.write(p);
   h.tick(Time{0});
   msg::Image c, d;
@@ -59,9 +51,7 @@ TEST(Renderer, DrawsTheCubeFromTheTrackedPoseAndFollowsIt) {
   o.child_frame_id("cube");
   Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
   moved.translation() = Eigen::Vector3d(0.7, 0.0, 0.1);
-  msg::PoseStamped tmp;
-  set_pose(tmp, moved);
-  o.pose() = tmp.pose();
+  msgs::to_msg(moved, o.pose());
   objects_in.write(o);
   h.tick(Time{16'666'667});
   ASSERT_TRUE(depth.take_latest(d));
