@@ -12,22 +12,13 @@
 
 #include "../common/allocation_counter.hpp"
 #include "wysiwyf/harness.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace {
 
 using namespace wysiwyf;
 constexpr std::int64_t kMs = 1'000'000;
 constexpr double kPi = 3.14159265358979323846;
-
-Eigen::Isometry3d pose_of(const msg::PoseStamped& m) {
-  const auto& p = m.pose().position();
-  const auto& q = m.pose().orientation();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.x(), p.y(), p.z());
-  return T;
-}
 
 void run(benchmark::State& state, bool touch) {
   Harness h("puma_sim", "{}", 1000);
@@ -43,7 +34,7 @@ void run(benchmark::State& state, bool touch) {
     state.SkipWithError("no device_pose");
     return;
   }
-  const Eigen::Isometry3d ready = pose_of(first);
+  const Eigen::Isometry3d ready = msgs::to_isometry(first.pose());
   // The fingertip, if it touches: from its park (default (1.1, 0, 0.2) m) in 1 s to 2 cm in front
   // of the plate, then in 0.5 s to 3 cm behind its face (a firm push of about 19 N).
   msg::PoseStamped target;

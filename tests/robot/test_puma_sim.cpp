@@ -12,7 +12,7 @@
 
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/harness.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::test {
 namespace {
@@ -36,34 +36,13 @@ const PumaModel& model() {
   return m;
 }
 
-Eigen::Isometry3d pose_of(const msg::PoseStamped& m) {
-  const auto& p = m.pose().position();
-  const auto& q = m.pose().orientation();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.x(), p.y(), p.z());
-  return T;
-}
-
 msg::CartesianSetpoint setpoint(const Eigen::Isometry3d& T, const Eigen::Vector3d& v = Eigen::Vector3d::Zero(),
                                 const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
   msg::CartesianSetpoint s;
   s.header().frame_id("base");
   s.child_frame_id("dev");
-  const Eigen::Quaterniond q(T.linear());
-  s.pose().position().x(T.translation().x());
-  s.pose().position().y(T.translation().y());
-  s.pose().position().z(T.translation().z());
-  s.pose().orientation().x(q.x());
-  s.pose().orientation().y(q.y());
-  s.pose().orientation().z(q.z());
-  s.pose().orientation().w(q.w());
-  s.twist().linear().x(v.x());
-  s.twist().linear().y(v.y());
-  s.twist().linear().z(v.z());
-  s.twist().angular().x(w.x());
-  s.twist().angular().y(w.y());
-  s.twist().angular().z(w.z());
+  msgs::to_msg(T, s.pose());
+  msgs::to_msg(v, w, s.twist());
   s.source("test");
   return s;
 }
@@ -117,8 +96,8 @@ struct Sim {
       s.qd[k] = j.velocity()[static_cast<std::size_t>(k)];
       s.effort[k] = j.effort()[static_cast<std::size_t>(k)];
     }
-    s.dev = pose_of(d);
-    s.hand = pose_of(hp);
+    s.dev = msgs::to_isometry(d.pose());
+    s.hand = msgs::to_isometry(hp.pose());
     s.force = Eigen::Vector3d(w.wrench().force().x(), w.wrench().force().y(), w.wrench().force().z());
     s.torque = Eigen::Vector3d(w.wrench().torque().x(), w.wrench().torque().y(), w.wrench().torque().z());
     samples.push_back(s);

@@ -5,7 +5,7 @@
 
 #include "../keyframes/keyframes.hpp"
 #include "wysiwyf/component.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::io {
 
@@ -48,19 +48,8 @@ class SetpointScript final : public Component {
     msg_.header().seq(seq_++);
     msg_.header().frame_id(frame_id_);
     msg_.child_frame_id(child_frame_id_);
-    msg_.pose().position().x(p.x());
-    msg_.pose().position().y(p.y());
-    msg_.pose().position().z(p.z());
-    msg_.pose().orientation().x(q.x());
-    msg_.pose().orientation().y(q.y());
-    msg_.pose().orientation().z(q.z());
-    msg_.pose().orientation().w(q.w());
-    msg_.twist().linear().x(v.x());
-    msg_.twist().linear().y(v.y());
-    msg_.twist().linear().z(v.z());
-    msg_.twist().angular().x(w.x());
-    msg_.twist().angular().y(w.y());
-    msg_.twist().angular().z(w.z());
+    msgs::to_msg(p, q, msg_.pose());
+    msgs::to_msg(v, w, msg_.twist());
     msg_.source(source_);
     setpoint_.write(msg_);
     pose_msg_.header() = msg_.header();

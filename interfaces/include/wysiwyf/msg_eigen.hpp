@@ -15,15 +15,18 @@ inline Eigen::Isometry3d to_isometry(const geometry_msgs::Pose& p) {
   return T;
 }
 
-inline void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
-  const Eigen::Quaterniond q(T.linear());
-  p.position().x(T.translation().x());
-  p.position().y(T.translation().y());
-  p.position().z(T.translation().z());
+inline void to_msg(const Eigen::Vector3d& position, const Eigen::Quaterniond& q, geometry_msgs::Pose& p) {
+  p.position().x(position.x());
+  p.position().y(position.y());
+  p.position().z(position.z());
   p.orientation().x(q.x());
   p.orientation().y(q.y());
   p.orientation().z(q.z());
   p.orientation().w(q.w());
+}
+
+inline void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
+  to_msg(T.translation(), Eigen::Quaterniond(T.linear()), p);
 }
 
 inline void to_msg(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular, geometry_msgs::Twist& t) {
