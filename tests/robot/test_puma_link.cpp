@@ -1,6 +1,8 @@
 // The puma-link codec: round trips, and every kind of damaged datagram refused.
 #include <gtest/gtest.h>
 
+#include <zlib.h>
+
 #include <cmath>
 
 #include "puma_link.hpp"
@@ -12,13 +14,19 @@ TEST(PumaLink, CommandsAndStatesRoundTrip) {
   c.sequence = 0xfffffffeu;
   c.hold = true;
   c.q = {0.1, -0.2, 0.3, -1e-12, 2.5, -3.14159};
+  c.qd = {1, 2, 3, 4, 5, -6};
+  c.qdd = {-0.5, 0, 0, 0, 0, 7.25};
   const auto bytes = encode(c);
+  ASSERT_EQ(bytes.size(), 168u);
   Command back;
   ASSERT_EQ(decode(bytes.data(), bytes.size(), back), DecodeError::kNone);
   EXPECT_EQ(back.sequence, c.sequence);
   EXPECT_TRUE(back.hold);
   EXPECT_FALSE(back.reset_fault);
+  EXPECT_FALSE(back.query);
   EXPECT_EQ(back.q, c.q);
+  EXPECT_EQ(back.qd, c.qd);
+  EXPECT_EQ(back.qdd, c.qdd);
   State s;
   s.sequence = 7;
   s.ack = 6;
@@ -54,7 +62,12 @@ TEST(PumaLink, DamagedDatagramsAreRefused) {
   EXPECT_EQ(decode(bad.data(), bad.size(), out), DecodeError::kChecksum);
   State s;
   EXPECT_EQ(decode(good.data(), good.size(), s), DecodeError::kSize);  // a command is not a state
-  c.q[3] = std::nan("");
+  bad = good;
+  bad[12] = 0x08;  // a flag this version does not know, with a valid CRC: refused, not ignored
+  const auto crc = static_cast<std::uint32_t>(crc32(crc32(0L, Z_NULL, 0), bad.data(), 164));
+  for (int i = 0; i < 4; ++i) bad[164 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+  EXPECT_EQ(decode(bad.data(), bad.size(), out), DecodeError::kFlags);
+  c.qdd[3] = std::nan("");
   const auto nan = encode(c);
   EXPECT_EQ(decode(nan.data(), nan.size(), out), DecodeError::kNotFinite);
 }

@@ -56,6 +56,7 @@ std::string to_string(DecodeError e) {
     case DecodeError::kKind: return "wrong datagram kind";
     case DecodeError::kChecksum: return "checksum mismatch";
     case DecodeError::kNotFinite: return "a joint value is not finite";
+    case DecodeError::kFlags: return "unknown flag bits set";
   }
   return "?";
 }
@@ -63,9 +64,13 @@ std::string to_string(DecodeError e) {
 std::array<std::uint8_t, kCommandSize> encode(const Command& c) {
   std::array<std::uint8_t, kCommandSize> out{};
   put_header(out.data(), 1, c.sequence);
-  put<std::uint32_t>(&out[12], (c.hold ? 1u : 0u) | (c.reset_fault ? 2u : 0u));
-  for (int i = 0; i < 6; ++i) put<double>(&out[16 + 8 * i], c.q[i]);
-  put<std::uint32_t>(&out[68], crc(out.data(), 68));
+  put<std::uint32_t>(&out[12], (c.hold ? 1u : 0u) | (c.reset_fault ? 2u : 0u) | (c.query ? 4u : 0u));
+  for (int i = 0; i < 6; ++i) {
+    put<double>(&out[16 + 8 * i], c.q[i]);
+    put<double>(&out[64 + 8 * i], c.qd[i]);
+    put<double>(&out[112 + 8 * i], c.qdd[i]);
+  }
+  put<std::uint32_t>(&out[164], crc(out.data(), 164));
   return out;
 }
 
@@ -91,9 +96,13 @@ DecodeError decode(const std::uint8_t* data, std::size_t size, Command& out) {
   const std::uint32_t flags = get<std::uint32_t>(data + 12);
   c.hold = flags & 1u;
   c.reset_fault = flags & 2u;
+  c.query = flags & 4u;
+  if (flags & ~7u) return DecodeError::kFlags;
   for (int i = 0; i < 6; ++i) {
     c.q[i] = get<double>(data + 16 + 8 * i);
-    if (!std::isfinite(c.q[i])) return DecodeError::kNotFinite;
+    c.qd[i] = get<double>(data + 64 + 8 * i);
+    c.qdd[i] = get<double>(data + 112 + 8 * i);
+    if (!std::isfinite(c.q[i]) || !std::isfinite(c.qd[i]) || !std::isfinite(c.qdd[i])) return DecodeError::kNotFinite;
   }
   out = c;
   return DecodeError::kNone;

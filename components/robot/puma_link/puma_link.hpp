@@ -10,17 +10,20 @@ namespace wysiwyf::robot::link {
 
 constexpr std::uint32_t kMagic = 0x4B4C5550;  // "PULK"
 constexpr std::uint16_t kVersion = 1;
-constexpr std::size_t kCommandSize = 72;
+constexpr std::size_t kCommandSize = 168;
 constexpr std::size_t kStateSize = 176;
 constexpr std::uint16_t kDefaultPort = 47000;
 
 using Joints = std::array<double, 6>;
 
+// The joint reference for the next servo period: position and velocity now, and the acceleration
+// that takes it to the next period (the servo's feedforward).
 struct Command {
   std::uint32_t sequence = 0;
-  bool hold = false;
-  bool reset_fault = false;
-  Joints q{};
+  bool hold = false;         // keep the current position; q, qd, qdd are ignored
+  bool reset_fault = false;  // clear a latched controller fault
+  bool query = false;        // only ask for the state: the reference stays; a lockstep controller does not advance
+  Joints q{}, qd{}, qdd{};
 };
 
 enum class Status : std::uint32_t { kOk = 0, kHolding = 1, kFault = 2 };
@@ -34,7 +37,7 @@ struct State {
   Joints q{}, qd{}, tau{};
 };
 
-enum class DecodeError { kNone, kSize, kMagic, kVersion, kKind, kChecksum, kNotFinite };
+enum class DecodeError { kNone, kSize, kMagic, kVersion, kKind, kChecksum, kNotFinite, kFlags };
 std::string to_string(DecodeError e);
 
 std::array<std::uint8_t, kCommandSize> encode(const Command& c);

@@ -1,4 +1,5 @@
 // Reads config/robots/puma560_drive.yaml and converts motor-side values to the joint side.
+#include <cmath>
 #include <stdexcept>
 
 #include <yaml-cpp/yaml.h>
@@ -42,6 +43,18 @@ Vector6d DriveParams::friction_torque(const Vector6d& qd) const {
                                                   : 0.0;
     // Power balance: tau_joint qd = tau_motor (G qd), so tau_joint = G tau_motor.
     tau[j] = gear_ratio[j] * (viscous_friction[j] * motor_velocity + coulomb);
+  }
+  return tau;
+}
+
+Vector6d DriveParams::friction_torque(const Vector6d& qd, double smoothing) const {
+  Vector6d tau;
+  for (int j = 0; j < kDof; ++j) {
+    const double g = gear_ratio[j];
+    const double motor_velocity = g * qd[j];
+    const double coulomb = (motor_velocity >= 0.0 ? coulomb_positive[j] : -coulomb_negative[j]) *
+                           std::tanh(qd[j] / smoothing) * (g >= 0.0 ? 1.0 : -1.0);
+    tau[j] = g * (viscous_friction[j] * motor_velocity + coulomb);
   }
   return tau;
 }

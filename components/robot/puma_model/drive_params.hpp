@@ -24,6 +24,9 @@ struct DriveParams {
   Vector6d joint_viscous() const;
   // Joint torque spent on friction at joint velocity qd (viscous + Coulomb, no stiction).
   Vector6d friction_torque(const Vector6d& qd) const;
+  // The same with the Coulomb part turned through zero by tanh(qd / smoothing) [rad/s]: the form
+  // a simulation integrates (the discontinuous one chatters at a standstill).
+  Vector6d friction_torque(const Vector6d& qd, double smoothing) const;
 };
 
 // Throws std::runtime_error naming the file and the missing or wrong entry.

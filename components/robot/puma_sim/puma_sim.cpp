@@ -20,9 +20,14 @@
 #include <random>
 #include <stdexcept>
 
+#include "arm_sim/arm_dynamics.hpp"
+#include "arm_sim/joint_servo.hpp"
 #include "puma_model/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
 #include "safety/safety_gate.hpp"
+#include "trajectory/gate_params.hpp"
+#include "trajectory/gate_status.hpp"
+#include "trajectory/setpoint_follower.hpp"
 #include "tool_geometry.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -31,8 +36,6 @@
 
 namespace wysiwyf::robot::sim {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // The ready pose: the plate's centre 0.7 m in front of the base, 0.2 m above the mounting plane
 // (the table top of config/scenes), facing +x (away from the robot, towards the user), dev x
@@ -44,85 +47,6 @@ Vector6d to_vector6(const std::vector<double>& v) {
   for (int j = 0; j < kDof; ++j) out[j] = v[static_cast<std::size_t>(j)];
   return out;
 }
-
-// Rotation vector of a unit quaternion (shortest way).
-Eigen::Vector3d log_rotation(Eigen::Quaterniond q) {
-  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  const double s = q.vec().norm();
-  if (s < 1e-12) return 2.0 * q.vec();
-  return 2.0 * std::atan2(s, q.w()) / s * q.vec();
-}
-
-Eigen::Quaterniond exp_rotation(const Eigen::Vector3d& v) {
-  const double angle = v.norm();
-  if (angle < 1e-12) return Eigen::Quaterniond(1.0, 0.5 * v.x(), 0.5 * v.y(), 0.5 * v.z()).normalized();
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle));
-}
-
-// The RCCL-style Cartesian trajectory generator: a critically damped second-order tracker
-// (natural frequency omega) on the latest setpoint, extrapolated by its twist and by the
-// acceleration that the last two twists imply (a second-order hold: a smooth path streamed at
-// 20 ms then gives the tracker almost nothing to correct at each new setpoint).
-struct CartesianTracker {
-  static constexpr double kMaxLinearAccel = 20.0;   // m/s^2, cap on the estimated acceleration
-  static constexpr double kMaxAngularAccel = 60.0;  // rad/s^2
-  Eigen::Vector3d p = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond r = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d sp_p = Eigen::Vector3d::Zero(), sp_v = Eigen::Vector3d::Zero(), sp_w = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sp_a = Eigen::Vector3d::Zero(), sp_alpha = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond sp_r = Eigen::Quaterniond::Identity();
-  std::int64_t sp_ns = 0;
-  bool have_setpoint = false;
-
-  void reset(const Eigen::Isometry3d& pose, std::int64_t now_ns) {
-    p = sp_p = pose.translation();
-    r = sp_r = Eigen::Quaterniond(pose.linear());
-    v = w = sp_v = sp_w = sp_a = sp_alpha = Eigen::Vector3d::Zero();
-    sp_ns = now_ns;
-    have_setpoint = false;
-  }
-  void set_setpoint(const Eigen::Isometry3d& pose, const Eigen::Vector3d& lin, const Eigen::Vector3d& ang,
-                    std::int64_t now_ns, double horizon) {
-    const double since = static_cast<double>(now_ns - sp_ns) * 1e-9;
-    if (have_setpoint && since > 0.0 && since <= horizon) {
-      sp_a = (lin - sp_v) / since;
-      sp_alpha = (ang - sp_w) / since;
-      if (sp_a.norm() > kMaxLinearAccel) sp_a *= kMaxLinearAccel / sp_a.norm();
-      if (sp_alpha.norm() > kMaxAngularAccel) sp_alpha *= kMaxAngularAccel / sp_alpha.norm();
-    } else if (!have_setpoint || since > horizon) {
-      sp_a = sp_alpha = Eigen::Vector3d::Zero();
-    }  // (several setpoints in one tick: keep the estimate)
-    sp_p = pose.translation();
-    sp_r = Eigen::Quaterniond(pose.linear());
-    sp_v = lin;
-    sp_w = ang;
-    sp_ns = now_ns;
-    have_setpoint = true;
-  }
-  // One step of dt to now_ns; extrapolation stops after `horizon` seconds.
-  Eigen::Isometry3d advance(std::int64_t now_ns, double dt, double omega, double horizon) {
-    const double since = static_cast<double>(now_ns - sp_ns) * 1e-9;
-    const bool extrapolate = since <= horizon;
-    const double tau = std::min(since, horizon);
-    const Eigen::Vector3d a_target = extrapolate ? sp_a : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d alpha_target = extrapolate ? sp_alpha : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d p_target = sp_p + sp_v * tau + 0.5 * tau * tau * sp_a;
-    const Eigen::Vector3d v_target = extrapolate ? Eigen::Vector3d(sp_v + sp_a * tau) : Eigen::Vector3d::Zero();
-    const Eigen::Quaterniond r_target = exp_rotation(sp_w * tau + 0.5 * tau * tau * sp_alpha) * sp_r;
-    const Eigen::Vector3d w_target = extrapolate ? Eigen::Vector3d(sp_w + sp_alpha * tau) : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d a = a_target + omega * omega * (p_target - p) + 2.0 * omega * (v_target - v);
-    v += a * dt;
-    p += v * dt;
-    const Eigen::Vector3d alpha =
-        alpha_target + omega * omega * log_rotation(r_target * r.conjugate()) + 2.0 * omega * (w_target - w);
-    w += alpha * dt;
-    r = (exp_rotation(w * dt) * r).normalized();
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = r.toRotationMatrix();
-    T.translation() = p;
-    return T;
-  }
-};
 
 }  // namespace
 
@@ -143,58 +67,24 @@ class PumaSim final : public Component {
         "joint angles at activation, rad (default: the ready pose, plate centre at (0.7, 0, 0.2) m facing +x)",
         Range{-10, 10});
     // ---- safety gate
-    const auto accel = ctx.param<std::vector<double>>(
-        "acceleration_limits", {8, 8, 10, 30, 30, 30},
-        "hard joint acceleration limits, rad/s^2 (the URDF has none); the reference uses acceleration_fraction of them",
-        Range{0.01, 1000});
-    gate_config_.velocity_fraction = ctx.param<double>(
-        "velocity_fraction", 0.9, "share of the URDF velocity limits the reference may use (the rest is servo margin)",
-        Range{0.05, 1});
-    gate_config_.acceleration_fraction = ctx.param<double>(
-        "acceleration_fraction", 0.8, "share of acceleration_limits the reference may use", Range{0.05, 1});
-    gate_config_.position_margin = ctx.param<double>(
-        "position_margin", 0.02, "rad kept between the reference and every joint position limit", Range{0, 0.5});
-    gate_config_.approach_rate = ctx.param<double>(
-        "approach_rate", 50.0, "1/s, first-order rate at which the reference closes the last bit of a move",
-        Range{1, 2000});
-    gate_config_.setpoint_timeout = ctx.param<double>(
-        "setpoint_timeout", 0.06, "s without a setpoint before braking to a hold (3 periods of a 20 ms stream)",
-        Range{0.002, 10});
-    gate_config_.max_setpoint_step = ctx.param<double>(
-        "max_setpoint_step", 0.1, "m a setpoint may lie from the previous one (or from the arm when starting)",
-        Range{1e-4, 10});
-    gate_config_.max_setpoint_rotation = ctx.param<double>(
-        "max_setpoint_rotation", 0.5, "rad a setpoint may turn from the previous one (or from the arm)", Range{1e-4, 3.15});
-    gate_config_.max_setpoint_speed = ctx.param<double>(
-        "max_setpoint_speed", 2.0, "m/s, largest linear speed in a setpoint's twist", Range{1e-3, 100});
-    gate_config_.max_setpoint_angular_speed = ctx.param<double>(
-        "max_setpoint_angular_speed", 6.0, "rad/s, largest angular speed in a setpoint's twist", Range{1e-3, 100});
-    gate_config_.max_joint_target_step = ctx.param<double>(
-        "max_joint_target_step", 0.2, "rad the IK target may move in one servo period (more: an IK branch change, fault)",
-        Range{1e-4, 10});
-    gate_config_.max_following_error = ctx.param<double>(
-        "max_following_error", 0.1, "rad between reference and measured joint before a fault", Range{1e-4, 10});
-    gate_config_.max_force = ctx.param<double>("force_limit", 100.0, "N, measured force norm that faults the arm",
-                                               Range{0.1, 10000});
-    gate_config_.max_torque = ctx.param<double>("torque_limit", 10.0, "N m, measured torque norm that faults the arm",
-                                                Range{0.01, 1000});
+    gate_config_ = declare_gate_params(ctx);
     // ---- trajectory generator and servo
     tracker_hz_ = ctx.param<double>("tracker_bandwidth_hz", 10.0,
                                     "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
                                     Range{0.1, 200});
-    servo_hz_ = ctx.param<double>("servo_bandwidth_hz", 10.0,
+    servo_config_.bandwidth_hz = ctx.param<double>("servo_bandwidth_hz", 10.0,
                                   "PD gains from M(q0): kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this, Hz",
                                   Range{0.1, 100});
-    servo_zeta_ = ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
-    kp_given_ = ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
+    servo_config_.damping = ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
+    servo_config_.kp = ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
                                                Range{0, 1e7});
-    kd_given_ = ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
+    servo_config_.kd = ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
                                                Range{0, 1e6});
-    accel_ff_ = ctx.param<double>("accel_feedforward", 1.0,
+    servo_config_.accel_feedforward = ctx.param<double>("accel_feedforward", 1.0,
                                   "share of the inverse-dynamics feedforward M(q) qdd_ref + C(q, qd) qd added to the "
                                   "torque (0 with friction_feedforward 0: PD + gravity only, the Unimation servo)",
                                   Range{0, 1});
-    friction_ff_ = ctx.param<double>("friction_feedforward", 1.0,
+    servo_config_.friction_feedforward = ctx.param<double>("friction_feedforward", 1.0,
                                      "share of the drive friction model at the measured velocity added to the torque while the "
                                      "reference moves",
                                      Range{0, 1});
@@ -203,7 +93,7 @@ class PumaSim final : public Component {
                                      "encoder counts per motor revolution after quadrature (0: no quantisation); joint "
                                      "quantum 2 pi / (counts |gear|)",
                                      Range{0, 10000000});
-    coulomb_smoothing_ = ctx.param<double>("coulomb_smoothing", 0.01,
+    servo_config_.coulomb_smoothing = ctx.param<double>("coulomb_smoothing", 0.01,
                                            "rad/s joint velocity over which Coulomb friction turns (tanh)", Range{1e-6, 1});
     // ---- F/T sensor
     noise_force_ = ctx.param<double>("ft_noise_force", 0.05, "N, sigma of the Gaussian noise per force axis", Range{0, 100});
@@ -246,13 +136,10 @@ class PumaSim final : public Component {
                                     std::to_string(v.size()) + ")");
     };
     six(q0, "initial_q");
-    six(accel, "acceleration_limits");
     six(bias, "ft_bias");
-    if (!kp_given_.empty()) six(kp_given_, "servo_kp");
-    if (!kd_given_.empty()) six(kd_given_, "servo_kd");
+    servo_config_.validate();
     if (park.size() != 3) throw std::invalid_argument("hand_park needs 3 values (x y z, m)");
     q0_ = to_vector6(q0);
-    gate_config_.max_acceleration = to_vector6(accel);
     bias_ = to_vector6(bias);
     park_ = Eigen::Vector3d(park[0], park[1], park[2]);
     dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
@@ -270,39 +157,29 @@ class PumaSim final : public Component {
     gate_config_.validate();
     if (!model_->limits().within(q0_))
       throw std::invalid_argument("initial_q is outside the joint limits of " + urdf_path_);
-    for (int j = 0; j < kDof; ++j)
-      quantum_[j] = encoder_counts_ > 0 ? kTwoPi / (encoder_counts_ * std::abs(drive_.gear_ratio[j])) : 0.0;
-    const Vector6d m_diag = model_->mass_matrix(q0_).diagonal();
-    const double w = kTwoPi * servo_hz_;
-    for (int j = 0; j < kDof; ++j) {
-      kp_[j] = kp_given_.empty() ? m_diag[j] * w * w : kp_given_[static_cast<std::size_t>(j)];
-      kd_[j] = kd_given_.empty() ? 2.0 * servo_zeta_ * m_diag[j] * w : kd_given_[static_cast<std::size_t>(j)];
-    }
+    servo_ = std::make_unique<JointServo>(*model_, drive_, servo_config_, q0_);
+    arm_ = std::make_unique<ArmDynamics>(*model_, drive_, encoder_counts_, servo_config_.coulomb_smoothing);
   }
 
   void activate() override {
-    q_ = q0_;
-    qd_ = Vector6d::Zero();
-    tau_ = model_->gravity_torques(q_);
+    arm_->reset(q0_);
+    tau_ = model_->gravity_torques(q0_);
     hand_x_ = hand_target_ = park_;
     hand_v_ = Eigen::Vector3d::Zero();
     rng_.seed(static_cast<std::uint64_t>(seed_));
     gate_ = std::make_unique<SafetyGate>(gate_config_);
+    follower_ = std::make_unique<SetpointFollower>(*model_, tip_frame_, *gate_, tracker_hz_, dt_);
+    status_ = GateStatus();
     started_ = false;
-    have_target_ = false;
-    last_status_ns_ = -1;
-    last_state_ = SafetyState::kFault;
-    last_reason_.clear();
     seq_ = 0;
     rejected_hand_ = 0;
   }
 
   void tick(Time now) override {
     // ---- 1. sample and publish
-    Vector6d q_meas;
-    for (int j = 0; j < kDof; ++j) q_meas[j] = quantum_[j] > 0.0 ? std::round(q_[j] / quantum_[j]) * quantum_[j] : q_[j];
-    const Vector6d qd_meas = qd_;
-    const Contacts contacts = contact_forces(q_, qd_);
+    const Vector6d q_meas = arm_->measured_q();
+    const Vector6d qd_meas = arm_->qd();
+    const Contacts contacts = contact_forces(arm_->q(), arm_->qd());
     Eigen::Vector3d f_sensor, t_sensor;
     sensor_reading(contacts, f_sensor, t_sensor);
     publish(now, q_meas, qd_meas, f_sensor, t_sensor);
@@ -316,7 +193,7 @@ class PumaSim final : public Component {
     gate_->check_wrench(f_sensor, t_sensor);
 
     // ---- 3. setpoints, hand target, trajectory generator
-    while (setpoint_in_.take(setpoint_msg_)) take_setpoint(now);
+    while (setpoint_in_.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
     while (hand_in_.take(hand_msg_)) {
       const auto& p = hand_msg_.pose().position();
       const Eigen::Vector3d x(p.x(), p.y(), p.z());
@@ -326,47 +203,22 @@ class PumaSim final : public Component {
         log("ignored a non-finite hand_target (further ones are counted silently)");
       }
     }
-    if (gate_->following()) {
-      const Eigen::Isometry3d pose = tracker_.advance(now.ns, dt_, kTwoPi * tracker_hz_, gate_config_.setpoint_timeout);
-      const Vector6d& seed = have_target_ ? q_target_ : gate_->reference().q;
-      const IkResult ik = model_->ik_nearest(pose, seed, tip_);
-      const Vector6d qd_target = have_target_ && ik.ok() ? Vector6d((ik.q - q_target_) / dt_) : Vector6d::Zero();
-      gate_->set_joint_target(ik, qd_target);
-      if (gate_->following()) {
-        q_target_ = ik.q;
-        have_target_ = true;
-      }
-    }
-    if (!gate_->following()) have_target_ = false;
+    follower_->update(now.ns);
 
     // ---- 4. the reference, 5. the servo
     // PD on the reference for now (the last step's result), feedforward of the acceleration that
     // takes the reference to now + dt.
     const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
     const JointReference& ref = gate_->step(now.ns);
-    const Vector6d gravity = model_->gravity_torques(q_meas);
-    Vector6d tau = kp_.cwiseProduct(ref_q - q_meas) + kd_.cwiseProduct(ref_qd - qd_meas) + gravity;
-    // Feedforward (not in the Unimation servo): M(q) qdd_ref + C(q, qd) qd, and the drive friction.
-    if (accel_ff_ > 0.0) tau += accel_ff_ * (model_->rnea(q_meas, qd_meas, ref.qdd) - gravity);
-    // Friction is compensated while the reference moves; at a standstill it holds the arm (and
-    // damps the hunting that encoder quantisation would give a frictionless joint).
-    if (friction_ff_ > 0.0) {
-      const Vector6d f = friction(qd_meas);
-      for (int j = 0; j < kDof; ++j)
-        if (ref.qd[j] != 0.0) tau[j] += friction_ff_ * f[j];
-    }
-    const Vector6d& effort = model_->limits().effort;
-    tau_ = tau.cwiseMax(-effort).cwiseMin(effort);
+    tau_ = servo_->torque(q_meas, qd_meas, ref_q, ref_qd, ref.qdd);
 
     // ---- 6. the arm and the hand over one period
     const double h = dt_ / substeps_;
     for (int s = 0; s < substeps_; ++s) {
-      const Contacts c = s == 0 ? contacts : contact_forces(q_, qd_);
+      const Contacts c = s == 0 ? contacts : contact_forces(arm_->q(), arm_->qd());
       const Eigen::Vector3d f_hand =
           hand_k_ * (hand_target_ - hand_x_) - hand_d_ * hand_v_ + c.on_hand;  // no gravity: the user carries it
-      const Vector6d qdd = model_->forward_dynamics(q_, qd_, tau_ + c.joint_torque - friction(qd_));
-      qd_ += qdd * h;
-      q_ += qd_ * h;
+      arm_->step(h, tau_, c.joint_torque);
       hand_v_ += f_hand / hand_mass_ * h;
       hand_x_ += hand_v_ * h;
     }
@@ -388,19 +240,6 @@ class PumaSim final : public Component {
     Eigen::Vector3d measured_torque = Eigen::Vector3d::Zero(); // about the sensor origin, base frame
     Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
   };
-
-  // Viscous + Coulomb (per direction, tanh-smoothed through zero) at the joints.
-  Vector6d friction(const Vector6d& qd) const {
-    Vector6d tau;
-    for (int j = 0; j < kDof; ++j) {
-      const double g = drive_.gear_ratio[j];
-      const double motor_velocity = g * qd[j];
-      const double coulomb = (motor_velocity >= 0.0 ? drive_.coulomb_positive[j] : -drive_.coulomb_negative[j]) *
-                             std::tanh(qd[j] / coulomb_smoothing_) * (g >= 0.0 ? 1.0 : -1.0);
-      tau[j] = g * (drive_.viscous_friction[j] * motor_velocity + coulomb);
-    }
-    return tau;
-  }
 
   Contacts contact_forces(const Vector6d& q, const Vector6d& qd) const {
     Contacts out;
@@ -452,29 +291,6 @@ class PumaSim final : public Component {
     }
   }
 
-  void take_setpoint(Time now) {
-    const auto& m = setpoint_msg_;
-    const std::string frame = m.header().frame_id().c_str(), child = m.child_frame_id().c_str();
-    if ((!frame.empty() && frame != "base" && frame != "base_link") || (!child.empty() && child != tip_frame_)) {
-      gate_->fault("setpoint rejected: it places '" + child + "' in '" + frame + "'; this arm follows base_T_" +
-                   tip_frame_);
-      return;
-    }
-    SetpointInput in;
-    in.position = Eigen::Vector3d(m.pose().position().x(), m.pose().position().y(), m.pose().position().z());
-    in.quaternion_xyzw = Eigen::Vector4d(m.pose().orientation().x(), m.pose().orientation().y(),
-                                         m.pose().orientation().z(), m.pose().orientation().w());
-    in.linear_velocity = Eigen::Vector3d(m.twist().linear().x(), m.twist().linear().y(), m.twist().linear().z());
-    in.angular_velocity = Eigen::Vector3d(m.twist().angular().x(), m.twist().angular().y(), m.twist().angular().z());
-    const bool was_following = gate_->following();
-    const Eigen::Isometry3d reference_pose = model_->fk(gate_->reference().q, tip_);
-    Eigen::Isometry3d pose;
-    if (!gate_->accept_setpoint(now.ns, in, reference_pose, pose)) return;
-    source_ = m.source().c_str();
-    if (!was_following) tracker_.reset(reference_pose, now.ns);  // start (again) from where the arm is
-    tracker_.set_setpoint(pose, in.linear_velocity, in.angular_velocity, now.ns, gate_config_.setpoint_timeout);
-  }
-
   void publish(Time now, const Vector6d& q, const Vector6d& qd, const Eigen::Vector3d& f, const Eigen::Vector3d& t) {
     joint_msg_.header().stamp_ns(now.ns);
     joint_msg_.header().seq(seq_);
@@ -514,29 +330,8 @@ class PumaSim final : public Component {
   }
 
   void publish_status(Time now) {
-    const SafetyState state = gate_->state();
-    const bool changed = state != last_state_ || gate_->reason() != last_reason_;
-    if (!changed && last_status_ns_ >= 0 && now.ns - last_status_ns_ < 100'000'000) return;
-    last_status_ns_ = now.ns;
-    if (changed) {  // (the message keeps its mode and reason: no allocation on the periodic repeats)
-      if (state == SafetyState::kFault) log("fault: " + gate_->reason());
-      last_state_ = state;
-      last_reason_ = gate_->reason();
-      switch (state) {
-        case SafetyState::kFault: status_msg_.mode(msg::MODE_FAULT); break;
-        case SafetyState::kHolding: status_msg_.mode(msg::MODE_IDLE); break;
-        case SafetyState::kOk:
-          status_msg_.mode(source_ == "admittance" ? msg::MODE_ADMITTANCE : msg::MODE_SURFACE);
-          break;
-      }
-      std::string reason = std::string(to_string(state)) + ": " + gate_->reason();
-      if (state == SafetyState::kOk) reason += " (source '" + source_ + "')";
-      if (reason.size() > 127) reason.resize(127);
-      status_msg_.reason(reason);
-    }
-    status_msg_.header().stamp_ns(now.ns);
-    status_msg_.header().seq(status_seq_++);
-    status_msg_.header().frame_id("base");
+    if (!status_.update(now.ns, *gate_, follower_->source(), status_msg_)) return;
+    if (status_.new_fault()) log("fault: " + gate_->reason());
     status_out_.write(status_msg_);
   }
 
@@ -544,10 +339,10 @@ class PumaSim final : public Component {
   std::string urdf_path_, drive_path_, tip_frame_, sensor_frame_;
   Vector6d q0_ = Vector6d::Zero(), bias_ = Vector6d::Zero();
   SafetyConfig gate_config_;
-  double tracker_hz_ = 10, servo_hz_ = 10, servo_zeta_ = 1, accel_ff_ = 1, friction_ff_ = 1;
-  std::vector<double> kp_given_, kd_given_;
+  JointServoConfig servo_config_;
+  double tracker_hz_ = 10;
   int substeps_ = 4, encoder_counts_ = 1000;
-  double coulomb_smoothing_ = 0.01, noise_force_ = 0.05, noise_torque_ = 0.002;
+  double noise_force_ = 0.05, noise_torque_ = 0.002;
   std::int64_t seed_ = 1;
   double hand_mass_ = 0.5, hand_radius_ = 0.01, hand_k_ = 500, hand_d_ = 30, contact_k_ = 2e4, contact_d_ = 100;
   Eigen::Vector3d park_ = Eigen::Vector3d::Zero();
@@ -558,23 +353,20 @@ class PumaSim final : public Component {
   DriveParams drive_;
   ToolGeometry tool_;
   FrameId tip_, sensor_;
-  Vector6d quantum_ = Vector6d::Zero(), kp_ = Vector6d::Zero(), kd_ = Vector6d::Zero();
+  std::unique_ptr<JointServo> servo_;
 
   // state
-  Vector6d q_ = Vector6d::Zero(), qd_ = Vector6d::Zero(), tau_ = Vector6d::Zero();
+  std::unique_ptr<ArmDynamics> arm_;
+  Vector6d tau_ = Vector6d::Zero();
   Eigen::Vector3d hand_x_ = Eigen::Vector3d::Zero(), hand_v_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hand_target_ = Eigen::Vector3d::Zero();
   std::unique_ptr<SafetyGate> gate_;
-  CartesianTracker tracker_;
-  bool started_ = false, have_target_ = false;
-  Vector6d q_target_ = Vector6d::Zero();
-  std::string source_;
+  std::unique_ptr<SetpointFollower> follower_;
+  GateStatus status_;
+  bool started_ = false;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
-  SafetyState last_state_ = SafetyState::kFault;
-  std::string last_reason_;
-  std::int64_t last_status_ns_ = -1;
-  std::uint64_t seq_ = 0, status_seq_ = 0, rejected_hand_ = 0;
+  std::uint64_t seq_ = 0, rejected_hand_ = 0;
 
   // messages and ports (reused: no allocation per tick)
   msg::CartesianSetpoint setpoint_msg_;

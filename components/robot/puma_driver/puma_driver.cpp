@@ -1,0 +1,275 @@
+// puma_driver: the real PUMA 560 through its joint controller over puma-link (docs/puma-link.md).
+//
+// The host half of what puma_sim does, with the same code: every tick (1 kHz) the controller's
+// latest state (encoder angles, velocities, torques) is published and checked by the safety gate
+// (limits, overspeed, following error, and the wrist force when a `wrench` is connected);
+// Cartesian setpoints go through the SetpointFollower (gate screening, RCCL-style tracking, IK)
+// and the gate's bounded joint reference goes to the controller, which runs the servo.
+//
+// The link: no valid state for link_timeout -> the gate faults ("link lost"), commands carry the
+// hold flag; when states come back the gate restarts from the measured joints (holding until a
+// setpoint near the arm arrives). A fault the controller reports faults the gate too. With
+// `lockstep` (for the simulated clock, against apps/puma-link-emulator --lockstep) each tick
+// waits for the controller's answer, so the pipeline sees exactly what puma_sim would show.
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include "link_client.hpp"
+#include "puma_model/puma_model.hpp"
+#include "safety/safety_gate.hpp"
+#include "trajectory/gate_params.hpp"
+#include "trajectory/gate_status.hpp"
+#include "trajectory/setpoint_follower.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::robot {
+namespace {
+
+const char* to_string(link::Fault f) {
+  switch (f) {
+    case link::Fault::kNone: return "none";
+    case link::Fault::kCommandTimeout: return "command timeout";
+    case link::Fault::kJointLimit: return "joint limit in a command";
+    case link::Fault::kBadCommand: return "bad command (step or speed beyond the limits)";
+  }
+  return "unknown fault code";
+}
+
+}  // namespace
+
+class PumaDriver final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("the real PUMA 560 over puma-link (UDP to its joint controller), behind the same safety gate and "
+                "setpoint following as puma_sim");
+    host_ = ctx.param<std::string>("host", "127.0.0.1", "the joint controller's IPv4 address");
+    port_ = ctx.param<int>("port", link::kDefaultPort, "the controller's puma-link UDP port", Range{1, 65535});
+    lockstep_ = ctx.param<bool>("lockstep", false,
+                                "wait each tick for the controller's answer (simulated clock, with puma-link-emulator "
+                                "--lockstep); off for a real controller on the real clock");
+    connect_timeout_ = ctx.param<double>("connect_timeout", 2.0, "s to wait for the controller's first state at activation",
+                                         Range{0.01, 60});
+    reply_timeout_ = ctx.param<double>("reply_timeout", 0.5,
+                                       "lockstep: s of wall time to wait for each answer before counting it missing",
+                                       Range{0.001, 60});
+    link_timeout_ = ctx.param<int>("link_timeout_periods", 3,
+                                   "ticks without a valid state before the link counts as lost (the arm holds)",
+                                   Range{1, 1000});
+    urdf_path_ = ctx.param<std::string>("urdf", "robots/puma560.urdf",
+                                        "robot URDF; relative paths are tried from the working directory, then config/");
+    tip_frame_ = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
+    gate_config_ = declare_gate_params(ctx);
+    tracker_hz_ = ctx.param<double>("tracker_bandwidth_hz", 10.0,
+                                    "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
+                                    Range{0.1, 200});
+
+    setpoint_in_ = ctx.input<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist, at any period of 1-20 ms",
+                                                     Qos::reliable(32));
+    wrench_in_ = ctx.input<msg::WrenchStamped>(
+        "wrench", "the wrist F/T sensor (ft_netft), for the force limit; leave unconnected to go without",
+        Qos::sensor(16));
+    joint_out_ = ctx.output<msg::JointState>("joint_state", "encoder angles, velocities, motor torques from the controller");
+    pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
+    status_out_ = ctx.output<msg::DisplayMode>(
+        "status", "safety state: MODE_FAULT + reason, MODE_IDLE holding, else following (reason says which)",
+        Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
+
+    dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
+    gate_config_.dt = dt_;
+    model_ = std::make_unique<PumaModel>(find_config_file(urdf_path_), tip_frame_);
+    if (model_->frame_body(model_->tip()) != kDof)
+      throw std::invalid_argument("tip_frame '" + tip_frame_ + "' is not on link 6");
+    gate_config_.limits = model_->limits();
+    gate_config_.validate();
+  }
+
+  void activate() override {
+    link_ = std::make_unique<link::LinkClient>(host_, static_cast<std::uint16_t>(port_));
+    // Where is the arm? Ask (clearing a fault latched in an earlier session) until it answers.
+    link::Command query;
+    query.query = true;
+    query.reset_fault = true;
+    const auto deadline = std::chrono::steady_clock::now() + seconds(connect_timeout_);
+    bool answered = false;
+    while (!answered && std::chrono::steady_clock::now() < deadline) {
+      const std::uint32_t seq = link_->send(query);
+      answered = link_->wait_for_ack(seq, std::min(seconds(0.05), seconds(connect_timeout_)), state_);
+    }
+    if (!answered)
+      throw std::runtime_error("puma-link: no answer from the controller at " + link_->address() + " within " +
+                               std::to_string(connect_timeout_) + " s (is it on, or apps/puma-link-emulator running?)");
+    gate_ = std::make_unique<SafetyGate>(gate_config_);
+    follower_ = std::make_unique<SetpointFollower>(*model_, tip_frame_, *gate_, tracker_hz_, dt_);
+    status_ = GateStatus();
+    started_ = false;
+    link_lost_ = link_faulted_ = false;
+    missed_ = 0;
+    seq_ = 0;
+  }
+
+  void tick(Time now) override {
+    // ---- 1. the controller's state (lockstep: the answer to the last command, already here)
+    if (!lockstep_) {
+      if (link_->poll_newest(state_)) {
+        missed_ = 0;
+      } else {
+        ++missed_;
+      }
+    }
+    const bool link_up = missed_ < link_timeout_;
+    Vector6d q, qd;
+    for (int j = 0; j < kDof; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      q[j] = state_.q[k], qd[j] = state_.qd[k];
+    }
+    if (link_up) publish(now, q, qd);
+
+    if (!started_) {  // the gate starts from the first measurement
+      gate_->reset(q, now.ns);
+      started_ = true;
+    }
+    // ---- 2. the link and the controller, then the measurements
+    if (!link_up && !link_lost_) {
+      link_lost_ = true;
+      link_faulted_ = gate_->state() != SafetyState::kFault;  // (another fault stays latched)
+      if (link_faulted_)
+        gate_->fault("puma-link: no state from " + link_->address() + " for " + std::to_string(missed_) + " periods");
+      log("link lost: " + gate_->reason());
+    } else if (link_up && link_lost_) {
+      link_lost_ = false;
+      if (link_faulted_) {
+        gate_->reset(q, now.ns);  // start again from where the arm is, holding until a setpoint
+        log("link restored: holding at the measured joints until a setpoint near them arrives");
+      } else {
+        log("link restored; the earlier fault stays latched: " + gate_->reason());
+      }
+    }
+    if (link_up) {
+      if (state_.status == link::Status::kFault)
+        gate_->fault(std::string("the controller reports a fault: ") + to_string(state_.fault));
+      gate_->check_measured(q, qd);
+    }
+    while (wrench_in_.take(wrench_msg_)) {
+      const auto& w = wrench_msg_.wrench();
+      gate_->check_wrench(Eigen::Vector3d(w.force().x(), w.force().y(), w.force().z()),
+                          Eigen::Vector3d(w.torque().x(), w.torque().y(), w.torque().z()));
+    }
+
+    // ---- 3. setpoints, trajectory generator, 4. the reference
+    while (setpoint_in_.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
+    follower_->update(now.ns);
+    const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
+    const JointReference& ref = gate_->step(now.ns);
+
+    // ---- 5. to the controller: the reference now and the acceleration to the next period
+    // (what puma_sim's servo gets); without a link, hold wherever the arm is.
+    link::Command c;
+    c.hold = link_lost_;
+    for (int j = 0; j < kDof; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      c.q[k] = ref_q[j], c.qd[k] = ref_qd[j], c.qdd[k] = ref.qdd[j];
+    }
+    const std::uint32_t sent = link_->send(c);
+    if (lockstep_) {
+      if (link_->wait_for_ack(sent, seconds(reply_timeout_), state_)) {
+        missed_ = 0;
+      } else {
+        ++missed_;
+      }
+    }
+    publish_status(now);
+  }
+
+  void deactivate() override {
+    if (!link_) return;
+    link::Command c;
+    c.hold = true;
+    link_->send(c);
+    log("stopped: sent " + std::to_string(link_->counters().sent) + " commands, received " +
+        std::to_string(link_->counters().received) + " states, dropped " +
+        std::to_string(link_->counters().dropped_damaged) + " damaged and " +
+        std::to_string(link_->counters().dropped_stale) + " out-of-order");
+    link_.reset();
+  }
+
+  void hold() noexcept override {
+    try {
+      if (gate_) gate_->fault("hold: the pipeline stopped on a fault");
+      if (link_) {
+        link::Command c;
+        c.hold = true;
+        link_->send(c);
+      }
+    } catch (...) {
+    }
+  }
+
+ private:
+  static std::chrono::nanoseconds seconds(double s) {
+    return std::chrono::nanoseconds(static_cast<std::int64_t>(s * 1e9));
+  }
+
+  void publish(Time now, const Vector6d& q, const Vector6d& qd) {
+    joint_msg_.header().stamp_ns(now.ns);
+    joint_msg_.header().seq(seq_);
+    joint_msg_.header().frame_id("base");
+    for (int j = 0; j < kDof; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      joint_msg_.position()[k] = q[j];
+      joint_msg_.velocity()[k] = qd[j];
+      joint_msg_.effort()[k] = state_.tau[k];
+    }
+    joint_out_.write(joint_msg_);
+    pose_msg_.header().stamp_ns(now.ns);
+    pose_msg_.header().seq(seq_);
+    pose_msg_.header().frame_id("base");
+    pose_msg_.child_frame_id(tip_frame_);
+    msgs::to_msg(model_->fk(q), pose_msg_.pose());
+    pose_out_.write(pose_msg_);
+    ++seq_;
+  }
+
+  void publish_status(Time now) {
+    if (!status_.update(now.ns, *gate_, follower_->source(), status_msg_)) return;
+    if (status_.new_fault()) log("fault: " + gate_->reason());
+    status_out_.write(status_msg_);
+  }
+
+  // parameters
+  std::string host_, urdf_path_, tip_frame_;
+  int port_ = link::kDefaultPort, link_timeout_ = 3;
+  bool lockstep_ = false;
+  double connect_timeout_ = 2, reply_timeout_ = 0.5, tracker_hz_ = 10, dt_ = 1e-3;
+  SafetyConfig gate_config_;
+
+  // state
+  std::unique_ptr<PumaModel> model_;
+  std::unique_ptr<link::LinkClient> link_;
+  std::unique_ptr<SafetyGate> gate_;
+  std::unique_ptr<SetpointFollower> follower_;
+  GateStatus status_;
+  link::State state_;
+  bool started_ = false, link_lost_ = false, link_faulted_ = false;
+  int missed_ = 0;
+  std::uint64_t seq_ = 0;
+
+  // messages and ports (reused: no allocation per tick)
+  msg::CartesianSetpoint setpoint_msg_;
+  msg::WrenchStamped wrench_msg_;
+  msg::JointState joint_msg_;
+  msg::PoseStamped pose_msg_;
+  msg::DisplayMode status_msg_;
+  Input<msg::CartesianSetpoint> setpoint_in_;
+  Input<msg::WrenchStamped> wrench_in_;
+  Output<msg::JointState> joint_out_;
+  Output<msg::PoseStamped> pose_out_;
+  Output<msg::DisplayMode> status_out_;
+};
+
+}  // namespace wysiwyf::robot
+
+WYSIWYF_COMPONENT(wysiwyf::robot::PumaDriver, "puma_driver")
