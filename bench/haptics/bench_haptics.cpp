@@ -23,7 +23,7 @@ namespace wysiwyf::haptics {
 
 using Clock = std::chrono::steady_clock;
 
-World cube_on_table(double rtol = 1e-8) {
+World cube_on_table(double rtol = 1e-8, double friction = 0.0) {
   BodyModel cube;
   cube.name = "cube";
   cube.half_extents = Vec3::Constant(0.1);
@@ -33,6 +33,7 @@ World cube_on_table(double rtol = 1e-8) {
   table.name = "table";
   table.dynamic = false;
   table.half_extents = Vec3(50, 50, 0.05);  // large: the push never reaches its edge
+  table.friction = friction;
   BodyState c, t;
   c.x = Vec3(0, 0, 0.1);
   t.x = Vec3(0, 0, -0.05);
@@ -68,6 +69,27 @@ void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
 }
 // Argument: -log10 of CVODE's relative tolerance.
 BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(8)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+
+// The noisy push on a table with Coulomb friction mu = 0.4 (the push stays below mu m g: the cube
+// sticks): the friction solve at each step's start comes on top.
+void BM_HapticStep_RestingCube_NoisyPush_Friction(benchmark::State& state) {
+  World w = cube_on_table(1e-8, 0.4);
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0, 0.05);
+  std::vector<double> us;
+  for (auto _ : state) {
+    w.set_external_wrench(0, Vec3(2 + noise(rng), noise(rng), noise(rng)), Vec3::Zero());
+    const auto t0 = Clock::now();
+    w.step(1e-3);
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    us.push_back(dt * 1e6);
+  }
+  state.counters["contacts"] = static_cast<double>(w.resting_contacts().size());
+  percentiles(state, us);
+}
+BENCHMARK(BM_HapticStep_RestingCube_NoisyPush_Friction)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
 // The same push held constant: CVODE keeps its history across steps.
 void BM_HapticStep_RestingCube_ConstantPush(benchmark::State& state) {

@@ -61,11 +61,15 @@ TEST(Scene, MistakesAreReportedWithTheirLine) {
     EXPECT_EQ(std::string(e.what()), "bad.yaml:4:11: body 'cube' size: expected a list of three numbers");
   }
   try {
-    load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: 0.4}\n", "f.yaml");
+    load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: -0.4}\n", "f.yaml");
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("frictionless: expected 0"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()), "f.yaml:3:52: body 'cube' friction: found -0.4; expected a Coulomb coefficient in [0, 2]");
   }
+  EXPECT_EQ(load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: 0.4}\n", "f.yaml")
+                .models.front()
+                .friction,
+            0.4);
 }
 
 constexpr std::int64_t kMs = 1'000'000;
@@ -104,6 +108,41 @@ TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
   double weight_carried = 0;
   for (const auto& c : o.contacts()) weight_carried += c.force();
   EXPECT_NEAR(weight_carried, 9.81, 1e-3);
+}
+
+// The user's push through the sensor path on a scene; returns the setpoint after 501 ms.
+msg::CartesianSetpoint push_for_501ms(const std::string& scene, double newtons) {
+  Harness h("admittance_sim", "{scene: " + scene + "}", 1000);
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
+  auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
+  h.activate();
+  const Scene s = load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/" + scene);
+  const Eigen::Matrix3d R = (s.device.obj_T_dev * s.device.dev_T_sensor).linear();
+  const Vec3 weight = R.transpose() * (s.device.tool_mass * s.gravity);
+  msg::WrenchStamped w;
+  const Vec3 f = Vec3(0, 0, -newtons) + weight;
+  const Vec3 t = s.device.tool_com.cross(weight);
+  w.wrench().force().x(f.x()), w.wrench().force().y(f.y()), w.wrench().force().z(f.z());
+  w.wrench().torque().x(t.x()), w.wrench().torque().y(t.y()), w.wrench().torque().z(t.z());
+  for (int i = 0; i <= 500; ++i) {
+    wrench.write(w);
+    h.tick(Time{i * kMs});
+  }
+  msg::CartesianSetpoint sp;
+  EXPECT_TRUE(setpoints.take_latest(sp));
+  return sp;
+}
+
+TEST(AdmittanceSim, OnTheRoughTableAPushBelowMuMgHoldsAndOneAboveSlidesByTheDifference) {
+  // mu = 0.4: 2 N does not move the 1 kg cube (0.4 m g = 3.924 N); 6 N accelerates it by
+  // (6 - 3.924) / 1 m/s^2 from the first step.
+  const msg::CartesianSetpoint held = push_for_501ms("scenes/cube_on_rough_table.yaml", 2.0);
+  EXPECT_NEAR(held.pose().position().x(), 0.7, 1e-6);
+  EXPECT_NEAR(held.twist().linear().x(), 0.0, 1e-6);
+  const msg::CartesianSetpoint slid = push_for_501ms("scenes/cube_on_rough_table.yaml", 6.0);
+  const double a = 6.0 - 0.4 * 9.81;
+  EXPECT_NEAR(slid.twist().linear().x(), -a * 0.501, 1e-4);
+  EXPECT_NEAR(slid.pose().position().x(), 0.7 - 0.5 * a * 0.501 * 0.501, 1e-4);
 }
 
 TEST(AdmittanceSim, ANonFiniteWrenchIsIgnored) {

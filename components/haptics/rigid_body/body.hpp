@@ -19,7 +19,7 @@ struct BodyModel {
   double mass = 1.0;           // kg
   Mat3 inertia_body = Mat3::Identity();  // about the centre of mass, body axes
   double restitution = 0.0;    // Newton's coefficient, eq. (12)
-  double friction = 0.0;       // Coulomb coefficient (not used by the frictionless solver)
+  double friction = 0.0;       // Coulomb coefficient; a contact uses the larger of its two bodies'
 
   // Solid box of uniform density.
   static Mat3 box_inertia(double mass, const Vec3& half_extents);

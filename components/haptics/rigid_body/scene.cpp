@@ -104,9 +104,9 @@ Scene parse(const YAML::Node& root, const Reader& r) {
     }
     if (b["friction"]) {
       m.friction = r.number(b["friction"], "body '" + name + "' friction");
-      if (m.friction != 0)
+      if (m.friction < 0 || m.friction > 2)
         r.fail(b["friction"], "body '" + name + "' friction: found " + b["friction"].Scalar() +
-                                  "; this build's contact solver is frictionless: expected 0");
+                                  "; expected a Coulomb coefficient in [0, 2]");
     }
     BodyState st;
     if (b["position"]) st.x = r.vec3(b["position"], "body '" + name + "' position");

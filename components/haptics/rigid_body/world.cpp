@@ -124,22 +124,38 @@ void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& po
   }
 }
 
-// J (contacts x 6 per dynamic body), then A = J M^-1 J^T.
-void World::contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses) {
+// J (rows x 6 per dynamic body), then A = J M^-1 J^T.
+void World::contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
+                           bool with_tangents) {
   const auto m = static_cast<Eigen::Index>(count);
+  const Eigen::Index rows = with_tangents ? 3 * m : m;
   const auto n = static_cast<Eigen::Index>(6 * dynamic_.size());
-  J_.setZero(m, n);
-  MinvJt_.resize(n, m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    const auto& c = contacts[i];
+  J_.setZero(rows, n);
+  MinvJt_.resize(n, rows);
+  if (with_tangents) tangents_.resize(count);
+  auto add_row = [&](Eigen::Index row, const ActiveContact& c, const Vec3& d) {
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? c.feature.a : c.feature.b;
       if (slot_[body] < 0) continue;
       const double sgn = side == 0 ? 1.0 : -1.0;
       const Vec3 r = c.point.p - poses[body].x;
-      J_.block<1, 3>(i, 6 * slot_[body]) += sgn * c.point.n.transpose();
-      J_.block<1, 3>(i, 6 * slot_[body] + 3) += sgn * r.cross(c.point.n).transpose();
+      J_.block<1, 3>(row, 6 * slot_[body]) += sgn * d.transpose();
+      J_.block<1, 3>(row, 6 * slot_[body] + 3) += sgn * r.cross(d).transpose();
     }
+  };
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto& c = contacts[i];
+    add_row(i, c, c.point.n);
+    if (!with_tangents) continue;
+    // Any orthonormal pair spanning the tangent plane (the friction disc is isotropic).
+    const Vec3& nn = c.point.n;
+    Eigen::Index least;
+    nn.cwiseAbs().minCoeff(&least);
+    const Vec3 t1 = nn.cross(Vec3::Unit(least)).normalized();
+    const Vec3 t2 = nn.cross(t1);
+    tangents_[static_cast<std::size_t>(i)] = {t1, t2};
+    add_row(m + 2 * i, c, t1);
+    add_row(m + 2 * i + 1, c, t2);
   }
   for (std::size_t k = 0; k < dynamic_.size(); ++k) {
     const Pose& p = poses[dynamic_[k]];
@@ -150,52 +166,121 @@ void World::contact_matrix(const ActiveContact* contacts, std::size_t count, con
   A_.noalias() = J_ * MinvJt_;
 }
 
+bool World::friction_coefficients(const ActiveContact* contacts, std::size_t count) {
+  mu_.resize(static_cast<Eigen::Index>(count));
+  bool any = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double mu = std::max(models_[contacts[i].feature.a].friction, models_[contacts[i].feature.b].friction);
+    mu_[static_cast<Eigen::Index>(i)] = mu;
+    any = any || mu > 0;
+  }
+  return any;
+}
+
+// gravity + the user's wrench (+ the friction held for this step) on every dynamic body.
+void World::applied_loads(const std::vector<Pose>& poses, bool with_friction) {
+  force_.resize(models_.size());
+  torque_.resize(models_.size());
+  for (int i : dynamic_) {
+    force_[i] = models_[i].mass * params_.gravity + ext_force_[i];
+    torque_[i] = ext_torque_[i];
+  }
+  if (!with_friction) return;
+  for (const auto& c : resting_) {
+    if (c.friction.isZero() || !c.point.valid) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? c.feature.a : c.feature.b;
+      if (slot_[body] < 0) continue;
+      const Vec3 f = side == 0 ? c.friction : Vec3(-c.friction);
+      force_[body] += f;
+      torque_[body] += (c.point.p - poses[body].x).cross(f);
+    }
+  }
+}
+
+void World::contact_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
+                          const std::vector<Pose>& poses, double tangent_horizon) {
+  const auto m = static_cast<Eigen::Index>(live);
+  b_.resize(m);
+  b_free_.resize(m);
+  if (tangent_horizon > 0) bt_.resize(2 * m), vt_.resize(2 * m);
+  const double ws = 2 * M_PI * params_.stabilisation_hz;
+  for (std::size_t i = 0; i < live; ++i) {
+    const auto& c = active[i].point;
+    double acc = 0, gap_rate = 0;
+    Vec3 a_rel = Vec3::Zero(), v_rel = Vec3::Zero();  // of a's point relative to b's
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
+      const double sgn = side == 0 ? 1.0 : -1.0;
+      const Pose& p = poses[body];
+      const Vec3 r = c.p - p.x;
+      Vec3 a = p.omega.cross(p.omega.cross(r));  // centripetal
+      if (slot_[body] >= 0) {
+        const Vec3 alpha = p.inv_inertia * (torque_[body] - p.omega.cross(states[body].L));
+        a += force_[body] * p.inv_mass + alpha.cross(r);
+      }
+      const Vec3 vp = p.v + p.omega.cross(r);
+      acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
+      gap_rate += sgn * c.n.dot(vp);
+      a_rel += sgn * a;
+      v_rel += sgn * vp;
+    }
+    const auto k = static_cast<Eigen::Index>(i);
+    b_free_[k] = acc;
+    b_[k] = acc + 2 * ws * gap_rate + ws * ws * c.gap;
+    if (tangent_horizon > 0)
+      for (int j = 0; j < 2; ++j) {
+        const Vec3& t = tangents_[i][static_cast<std::size_t>(j)];
+        vt_[2 * k + j] = t.dot(v_rel);
+        bt_[2 * k + j] = t.dot(a_rel) + vt_[2 * k + j] / tangent_horizon;  // target: no sliding at the horizon
+      }
+  }
+}
+
+void World::update_friction(double dt) {
+  std::vector<Pose> poses;
+  poses_of(states_, poses);
+  std::size_t live = 0;
+  for (auto& c : resting_) {
+    c.point = evaluate(c.feature, models_, poses);
+    c.friction = Vec3::Zero();
+    if (c.point.valid) std::swap(c, resting_[live++]);
+  }
+  if (live == 0 || !friction_coefficients(resting_.data(), live)) return;
+  applied_loads(poses, false);
+  contact_matrix(resting_.data(), live, poses, true);
+  contact_terms(resting_.data(), live, states_, poses, dt);
+  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_);
+  if (!r.ok) r = friction_.solve(lcp_, A_, b_free_, bt_, mu_, vt_);
+  if (!r.ok) return;  // frictionless this step; the normal LCP of the right-hand side reports it
+  if (!r.converged) ++report_.friction_unconverged;
+  for (std::size_t i = 0; i < live; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    resting_[i].friction = r.ft[2 * k] * tangents_[i][0] + r.ft[2 * k + 1] * tangents_[i][1];
+  }
+  restart_ = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
+}
+
 void World::rhs(const double* y, double* ydot) {
   ++report_.rhs_evaluations;
   unpack(y, scratch_states_);
   poses_of(scratch_states_, scratch_poses_);
-  // External forces and the free motion.
-  std::vector<Vec3>& force = force_;
-  std::vector<Vec3>& torque = torque_;
-  force.resize(models_.size());
-  torque.resize(models_.size());
-  for (int i : dynamic_) {
-    force[i] = models_[i].mass * params_.gravity + ext_force_[i];
-    torque[i] = ext_torque_[i];
-  }
-  // Resting contacts: the forces of eqs. (9)-(10) at this very state.
+  // Resting contacts at this very state.
   std::size_t live = 0;
   for (auto& c : resting_) {
     c.point = evaluate(c.feature, models_, scratch_poses_);
     c.force = 0;
     if (c.point.valid) std::swap(c, resting_[live++]);
   }
+  // Gravity, the user's wrench and the friction held for this step, then the normal forces of
+  // eqs. (9)-(10) that keep the contacts from closing under them.
+  applied_loads(scratch_poses_, true);
+  std::vector<Vec3>& force = force_;
+  std::vector<Vec3>& torque = torque_;
   if (live > 0) {
     const ActiveContact* active = resting_.data();
     contact_matrix(active, live, scratch_poses_);
-    b_.resize(static_cast<Eigen::Index>(live));
-    b_free_.resize(static_cast<Eigen::Index>(live));
-    const double ws = 2 * M_PI * params_.stabilisation_hz;
-    for (std::size_t i = 0; i < live; ++i) {
-      const auto& c = active[i].point;
-      double acc = 0, gap_rate = 0;
-      for (int side = 0; side < 2; ++side) {
-        const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-        const double sgn = side == 0 ? 1.0 : -1.0;
-        const Pose& p = scratch_poses_[body];
-        const Vec3 r = c.p - p.x;
-        Vec3 a = p.omega.cross(p.omega.cross(r));  // centripetal
-        if (slot_[body] >= 0) {
-          const Vec3 alpha = p.inv_inertia * (torque[body] - p.omega.cross(scratch_states_[body].L));
-          a += force[body] * p.inv_mass + alpha.cross(r);
-        }
-        const Vec3 vp = p.v + p.omega.cross(r);
-        acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
-        gap_rate += sgn * c.n.dot(vp);
-      }
-      b_free_[static_cast<Eigen::Index>(i)] = acc;
-      b_[static_cast<Eigen::Index>(i)] = acc + 2 * ws * gap_rate + ws * ws * c.gap;
-    }
+    contact_terms(active, live, scratch_states_, scratch_poses_, 0);
     LcpResult r = lcp_.solve(A_, b_);
     // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
     // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
@@ -244,28 +329,44 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
   std::vector<Pose> poses;
   poses_of(states_, poses);
   for (auto& c : contacts) c.point = evaluate(c.feature, models_, poses);
-  contact_matrix(contacts.data(), contacts.size(), poses);
+  const bool friction = friction_coefficients(contacts.data(), contacts.size());
+  contact_matrix(contacts.data(), contacts.size(), poses, friction);
   const auto m = static_cast<Eigen::Index>(contacts.size());
-  Eigen::VectorXd c(m);
+  Eigen::VectorXd c(m), ct(friction ? 2 * m : 0);
   for (Eigen::Index i = 0; i < m; ++i) {
-    const auto& ct = contacts[i];
-    const Vec3& pa = ct.point.p;
-    const double v_rel = ct.point.n.dot(poses[ct.feature.a].v + poses[ct.feature.a].omega.cross(pa - poses[ct.feature.a].x) -
-                                        poses[ct.feature.b].v - poses[ct.feature.b].omega.cross(pa - poses[ct.feature.b].x));
-    double e = std::min(models_[ct.feature.a].restitution, models_[ct.feature.b].restitution);
+    const auto& contact = contacts[static_cast<std::size_t>(i)];
+    const Vec3& p = contact.point.p;
+    const Pose &A = poses[contact.feature.a], &B = poses[contact.feature.b];
+    const Vec3 v = A.v + A.omega.cross(p - A.x) - B.v - B.omega.cross(p - B.x);
+    const double v_rel = contact.point.n.dot(v);
+    double e = std::min(models_[contact.feature.a].restitution, models_[contact.feature.b].restitution);
     if (v_rel > -params_.resting_speed) e = 0;  // a slow approach ends the bounce sequence
     c[i] = (1 + e) * v_rel;                     // eq. (14): v+ + e v- >= 0
+    if (friction)  // target: no tangential velocity after the impact (within mu times the normal impulse)
+      for (int k = 0; k < 2; ++k) ct[2 * i + k] = tangents_[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
   }
-  const LcpResult r = lcp_.solve(A_, c);
-  if (!r.ok) return false;
+  Eigen::VectorXd jn, jt;
+  if (friction) {
+    const FrictionResult r = friction_.solve(lcp_, A_, c, ct, mu_, ct);
+    if (!r.ok) return false;
+    if (!r.converged) ++report_.friction_unconverged;
+    jn = r.fn, jt = r.ft;
+  } else {
+    const LcpResult r = lcp_.solve(A_, c);
+    if (!r.ok) return false;
+    jn = r.f;
+  }
   for (Eigen::Index i = 0; i < m; ++i) {
-    const auto& ct = contacts[i];
+    const auto& contact = contacts[static_cast<std::size_t>(i)];
+    Vec3 j = jn[i] * contact.point.n;
+    if (friction)
+      j += jt[2 * i] * tangents_[static_cast<std::size_t>(i)][0] + jt[2 * i + 1] * tangents_[static_cast<std::size_t>(i)][1];
     for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? ct.feature.a : ct.feature.b;
+      const int body = side == 0 ? contact.feature.a : contact.feature.b;
       if (slot_[body] < 0) continue;
-      const Vec3 jn = (side == 0 ? r.f[i] : -r.f[i]) * ct.point.n;
-      states_[body].P += jn;
-      states_[body].L += (ct.point.p - poses[body].x).cross(jn);
+      const Vec3 on_body = side == 0 ? j : Vec3(-j);
+      states_[body].P += on_body;
+      states_[body].L += (contact.point.p - poses[body].x).cross(on_body);
     }
   }
   return true;
@@ -319,6 +420,7 @@ StepReport World::step(double dt) {
     return report_;
   }
   classify_contacts();
+  update_friction(dt);
   auto& cv = *cvode_;
   double* y = N_VGetArrayPointer(cv.y);
   auto reinit_roots = [&] {

@@ -9,11 +9,23 @@
 // approaching direction only: at a root the integration stops at the exact time of impact, the
 // impulses come from the LCP of eqs. (15)-(16) with the restitution of each contact, the momenta
 // are reset and CVODE is restarted (CVodeReInit) from there (STEP 4-6).
+//
+// Coulomb friction (a contact's coefficient is the larger of its two bodies', MuJoCo's rule)
+// comes from FrictionSolver (friction.hpp) together with the normal forces. For resting contacts
+// it is found at the start of each step, asking each contact to stop sliding by the step's end,
+// and held through the step like the user's wrench (an iterative solve inside the right-hand
+// side would put its round-off into CVODE's error test); a contact that needs more than mu f_n
+// slides with the full mu f_n against its motion. The normal forces stay exact at every
+// right-hand side with the held friction as a load. At impacts, the impulses make each contact's
+// tangential velocity zero within mu times its normal impulse. Without friction the frictionless
+// LCP runs alone, as before.
+#include <array>
 #include <memory>
 #include <vector>
 
 #include "body.hpp"
 #include "contact.hpp"
+#include "friction.hpp"
 #include "lcp.hpp"
 
 namespace wysiwyf::haptics {
@@ -32,13 +44,15 @@ struct WorldParams {
 struct ActiveContact {
   ContactFeature feature;
   ContactPoint point;
-  double force = 0;  // N, from the last LCP
+  double force = 0;                 // N, normal, from the last LCP
+  Vec3 friction = Vec3::Zero();     // N, tangential force on body a (world frame)
 };
 
 struct StepReport {
   int collisions = 0;       // impact events (roots) inside the step
   int rhs_evaluations = 0;
   int lcp_failures = 0;
+  int friction_unconverged = 0;  // friction rounds that did not settle (forces still bounded)
 };
 
 class World {
@@ -73,8 +87,20 @@ class World {
   void classify_contacts();
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to states_; returns false if it failed.
   bool collide(std::vector<ActiveContact>& contacts);
-  // A = J M^-1 J^T over the first `count` of `contacts`.
-  void contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses);
+  // A = J M^-1 J^T over the first `count` of `contacts`: their normal rows, then (with_tangents)
+  // two tangent rows per contact along tangents_.
+  void contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
+                      bool with_tangents = false);
+  // The contacts' friction coefficients into mu_; true if any is > 0.
+  bool friction_coefficients(const ActiveContact* contacts, std::size_t count);
+  // force_, torque_: gravity and the user's wrench, plus (with_friction) the held friction.
+  void applied_loads(const std::vector<Pose>& poses, bool with_friction);
+  // The contact rows' free terms under force_/torque_: b_ (with gap feedback), b_free_, and for
+  // tangent_horizon > 0 bt_ (tangential acceleration that stops sliding within the horizon).
+  void contact_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
+                     const std::vector<Pose>& poses, double tangent_horizon);
+  // The resting contacts' friction for the next step of dt (held through it).
+  void update_friction(double dt);
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> states_;
@@ -89,12 +115,15 @@ class World {
   bool roots_changed_ = true;                // CVodeRootInit must be called again
   std::unique_ptr<Cvode> cvode_;
   LcpSolver lcp_;
+  FrictionSolver friction_;
   // Scratch, reused across right-hand-side evaluations.
   std::vector<BodyState> scratch_states_;
   std::vector<Pose> scratch_poses_;
   std::vector<Vec3> force_, torque_;
   Eigen::MatrixXd J_, MinvJt_, A_;
   Eigen::VectorXd b_, b_free_;  // with and without the gap feedback
+  Eigen::VectorXd bt_, vt_, mu_;  // tangent rows' free terms and sliding velocities, friction coefficients
+  std::vector<std::array<Vec3, 2>> tangents_;
   StepReport report_;
 };
 

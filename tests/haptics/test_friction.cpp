@@ -1,0 +1,172 @@
+// Coulomb friction against physical truths: a push below mu m g does not move a cube, one above
+// it accelerates it by (F - mu m g) / m; a sliding cube stops after v0^2 / (2 mu g) and stays;
+// on a slope flatter than atan(mu) a cube stays, on a steeper one it slides down with
+// g (sin - mu cos); an oblique impact keeps no tangential velocity when friction suffices.
+// All on simulated time.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "rigid_body/friction.hpp"
+#include "rigid_body/world.hpp"
+
+namespace wysiwyf::haptics {
+namespace {
+
+constexpr double g = 9.81;
+
+BodyModel cube(double mass, double mu) {
+  BodyModel m;
+  m.name = "cube";
+  m.half_extents = Vec3::Constant(0.1);
+  m.mass = mass;
+  m.inertia_body = BodyModel::box_inertia(mass, m.half_extents);
+  m.friction = mu;
+  return m;
+}
+
+BodyModel floor_box(double mu = 0.0) {
+  BodyModel m;
+  m.name = "floor";
+  m.dynamic = false;
+  m.half_extents = Vec3(3.0, 3.0, 0.05);
+  m.friction = mu;
+  return m;
+}
+
+BodyState at(const Vec3& x, const Vec3& v = Vec3::Zero(), double mass = 1.0, const Quat& q = Quat::Identity()) {
+  BodyState s;
+  s.x = x;
+  s.q = q;
+  s.P = mass * v;
+  return s;
+}
+
+TEST(Friction, APushBelowMuMgDoesNotMoveTheCube) {
+  const double m = 1.0, mu = 0.5;
+  World w({cube(m, mu), floor_box()}, {at(Vec3(0, 0, 0.1)), at(Vec3(0, 0, -0.05))});
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  const Vec3 x0 = w.state(0).x;
+  w.set_external_wrench(0, Vec3(0.9 * mu * m * g, 0.0, 0.0), Vec3::Zero());  // 90 % of the breakaway force
+  for (int i = 0; i < 2000; ++i) w.step(1e-3);
+  const double moved = (w.state(0).x - x0).head<2>().norm();
+  double friction = 0;
+  for (const auto& c : w.resting_contacts()) friction += c.friction.x();
+  std::printf("[measured] 0.9 mu m g for 2 s: moved %.3g m, friction %.6f N (push %.6f N)\n", moved, friction,
+              0.9 * mu * m * g);
+  EXPECT_LT(moved, 1e-4);
+  EXPECT_NEAR(friction, -0.9 * mu * m * g, 1e-2) << "static friction holds the push";
+  EXPECT_NEAR(w.state(0).x.z(), 0.1, 1e-5) << "nor sinks";
+}
+
+TEST(Friction, APushAboveMuMgAcceleratesByTheDifference) {
+  const double m = 2.0, mu = 0.3;
+  const double F = 1.5 * mu * m * g;
+  World w({cube(m, mu), floor_box()}, {at(Vec3(0, 0, 0.1), Vec3::Zero(), m), at(Vec3(0, 0, -0.05))});
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  w.set_external_wrench(0, Vec3(F, 0, 0), Vec3::Zero());
+  for (int i = 0; i < 500; ++i) w.step(1e-3);  // past the start
+  const double x1 = w.state(0).x.x(), v1 = w.kinematics(0).v.x();
+  for (int i = 0; i < 1000; ++i) w.step(1e-3);
+  const double a = (w.kinematics(0).v.x() - v1) / 1.0;
+  const double expected = (F - mu * m * g) / m;
+  std::printf("[measured] push 1.5 mu m g: a = %.6f m/s^2, expected %.6f\n", a, expected);
+  EXPECT_NEAR(a, expected, 1e-3 * expected);
+  EXPECT_GT(w.state(0).x.x(), x1);
+  EXPECT_NEAR(w.state(0).x.z(), 0.1, 1e-5);
+  EXPECT_NEAR(w.kinematics(0).v.y(), 0.0, 1e-9) << "no sideways drift";
+}
+
+TEST(Friction, ASlidingCubeStopsAfterV0SquaredOver2MuGAndStays) {
+  const double mu = 0.4, v0 = 1.0;
+  World w({cube(1.0, 0.0), floor_box(mu)},  // the floor is the rough one this time
+          {at(Vec3(0, 0, 0.1), Vec3(v0 * 0.6, v0 * 0.8, 0)), at(Vec3(0, 0, -0.05))});
+  for (int i = 0; i < 1000; ++i) w.step(1e-3);  // stops after v0 / (mu g) = 0.255 s
+  const double travelled = w.state(0).x.head<2>().norm();
+  const double expected = v0 * v0 / (2 * mu * g);
+  const Vec3 x_stop = w.state(0).x;
+  for (int i = 0; i < 2000; ++i) w.step(1e-3);
+  std::printf("[measured] slid %.6f m from 1 m/s (expected %.6f), then moved %.3g m in 2 s\n", travelled, expected,
+              (w.state(0).x - x_stop).norm());
+  EXPECT_NEAR(travelled, expected, 0.01 * expected);
+  EXPECT_NEAR(w.state(0).x.y() / w.state(0).x.x(), 0.8 / 0.6, 1e-6) << "straight along its velocity";
+  EXPECT_LT((w.state(0).x - x_stop).norm(), 1e-5);
+  EXPECT_LT(w.kinematics(0).v.norm(), 1e-5);
+}
+
+// A static slab tilted by `slope` about y, its top face through the origin; the cube resting on it.
+struct Slope {
+  World w;
+  Vec3 down;  // down the slope
+  Slope(double slope, double mu)
+      : w({cube(1.0, mu), floor_box()},
+          {at(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(0, 0, 0.1 + 1e-7), Vec3::Zero(), 1.0,
+              Quat(Eigen::AngleAxisd(slope, Vec3::UnitY()))),
+           at(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(0, 0, -0.05), Vec3::Zero(), 1.0,
+              Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())))}),
+        down(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(1, 0, 0)) {}
+};
+
+TEST(Friction, OnASlopeFlatterThanAtanMuTheCubeStaysAndOnASteeperOneSlides) {
+  const double mu = 0.5;
+  {
+    Slope s(0.8 * std::atan(mu), mu);
+    const Vec3 x0 = s.w.state(0).x;
+    for (int i = 0; i < 2000; ++i) s.w.step(1e-3);
+    const double moved = (s.w.state(0).x - x0).norm();
+    std::printf("[measured] slope 0.8 atan(mu): moved %.3g m in 2 s\n", moved);
+    EXPECT_LT(moved, 1e-4);
+  }
+  {
+    const double slope = 1.3 * std::atan(mu);
+    Slope s(slope, mu);
+    for (int i = 0; i < 300; ++i) s.w.step(1e-3);
+    const double v1 = s.w.kinematics(0).v.dot(s.down);
+    for (int i = 0; i < 500; ++i) s.w.step(1e-3);
+    const double a = (s.w.kinematics(0).v.dot(s.down) - v1) / 0.5;
+    const double expected = g * (std::sin(slope) - mu * std::cos(slope));
+    std::printf("[measured] slope 1.3 atan(mu): a = %.6f m/s^2 down the slope, expected %.6f\n", a, expected);
+    EXPECT_NEAR(a, expected, 0.005 * expected);
+  }
+}
+
+TEST(Friction, AnObliqueLandingKeepsNoTangentialVelocityWhenFrictionSuffices) {
+  // A flat cube landing at 1 m/s down and 0.2 m/s sideways, mu = 1: the tangential impulse needed
+  // (0.2 m) is below mu times the normal impulse (1 m), so the impact stops it sliding.
+  World w({cube(1.0, 1.0), floor_box()}, {at(Vec3(0, 0, 0.15), Vec3(0.2, 0, -1.0)), at(Vec3(0, 0, -0.05))});
+  for (int i = 0; i < 200; ++i) w.step(1e-3);
+  EXPECT_LT(std::abs(w.kinematics(0).v.x()), 1e-4);
+  EXPECT_NEAR(w.state(0).x.z(), 0.1, 1e-4);
+}
+
+TEST(FrictionSolver, TheNormalForcesStayExactAndTheFrictionStaysOnItsDisc) {
+  // One contact of a unit point mass on a plane: normal row and two tangent rows decoupled.
+  Eigen::MatrixXd A = Eigen::MatrixXd::Identity(3, 3);
+  LcpSolver lcp;
+  FrictionSolver solver;
+  Eigen::VectorXd bn(1), bt(2), mu(1);
+  bn << -9.81;      // gravity pulls into the plane
+  bt << -3.0, 4.0;  // a tangential load of 5
+  mu << 0.4;        // can hold 3.924
+  const Eigen::VectorXd still = Eigen::VectorXd::Zero(2);
+  const FrictionResult r = solver.solve(lcp, A, bn, bt, mu, still);
+  ASSERT_TRUE(r.ok);
+  EXPECT_TRUE(r.converged);
+  EXPECT_NEAR(r.fn[0], 9.81, 1e-12);
+  EXPECT_NEAR(r.ft.norm(), 0.4 * 9.81, 1e-12) << "on the rim: sliding";
+  EXPECT_NEAR(r.ft[0] / r.ft[1], -3.0 / 4.0, 1e-12) << "against the load";
+  mu << 0.6;  // can hold 5.886: sticks, exactly cancelling the load
+  const FrictionResult s = solver.solve(lcp, A, bn, bt, mu, still);
+  EXPECT_NEAR(s.ft[0], 3.0, 1e-12);
+  EXPECT_NEAR(s.ft[1], -4.0, 1e-12);
+  Eigen::VectorXd sliding(2);
+  sliding << 0.0, -2.0;  // sliding along -t2: friction along +t2 with all it has, whatever the load
+  mu << 0.4;
+  const FrictionResult d = solver.solve(lcp, A, bn, bt, mu, sliding);
+  EXPECT_NEAR(d.ft[0], 0.0, 1e-12);
+  EXPECT_NEAR(d.ft[1], 0.4 * 9.81, 1e-12);
+}
+
+}  // namespace
+}  // namespace wysiwyf::haptics
