@@ -104,6 +104,15 @@ const char* mode_name(msg::DisplayModeKind k) {
   return "?";
 }
 
+const char* tracking_name(msg::TrackingStatus s) {
+  switch (s) {
+    case msg::TRACKING_LOST: return "lost";
+    case msg::TRACKING_OK: return "tracking";
+    case msg::TRACKING_COASTING: return "coasting";
+  }
+  return "?";
+}
+
 }  // namespace
 
 std::string to_yaml(const kernel_msgs::Diagnostics& m) {
@@ -208,6 +217,16 @@ std::string to_yaml(const msg::DisplayMode& m) {
   return y.text();
 }
 
+std::string to_yaml(const msg::MarkerObservation& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("status", tracking_name(m.status())).kv("acquired", m.acquired() ? "true" : "false");
+  y.kv("blobs", m.blobs()).kv("rejected", m.rejected());
+  y.list("ids", m.ids().begin(), m.ids().end()).list("u", m.u().begin(), m.u().end()).list("v", m.v().begin(), m.v().end());
+  y.kv("reprojection_rms", m.reprojection_rms()).kv("frames_without_fix", m.frames_without_fix());
+  return y.text();
+}
+
 const MessageRegistry& registry() {
   static const MessageRegistry r = [] {
     MessageRegistry reg;
@@ -221,6 +240,7 @@ const MessageRegistry& registry() {
     reg.add<msg::CartesianSetpoint>(&to_yaml);
     reg.add<msg::ObjectState>(&to_yaml);
     reg.add<msg::DisplayMode>(&to_yaml);
+    reg.add<msg::MarkerObservation>(&to_yaml);
     return reg;
   }();
   return r;

@@ -65,6 +65,8 @@ class CameraSim final : public Component {
     baseline_ = ctx.param<double>("stereo_baseline", 0.0, "0: mono; else also render a right camera this far along x, m",
                                   Range{0, 1});
     seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
+    hidden_ = ctx.param<std::vector<double>>("hidden_markers", {},
+                                             "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]");
     joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints", Qos::sensor(4));
     hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "base_T_hand: palm centre, z out of the palm, fingers along x",
                                            Qos::sensor(4));
@@ -78,6 +80,7 @@ class CameraSim final : public Component {
     if (K.size() != 4 || eye.size() != 3 || target.size() != 3)
       throw std::invalid_argument("intrinsics needs 4 numbers, eye and look_at 3 each");
     if (!path_.empty() && path_.size() % 7 != 0) throw std::invalid_argument("path: expected rows of 7 numbers");
+    if (hidden_.size() % 3 != 0) throw std::invalid_argument("hidden_markers: expected rows of 3 numbers [t_start, t_end, marker]");
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
     base_T_eye_ = look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
@@ -118,6 +121,7 @@ class CameraSim final : public Component {
     }
     if (start_ns_ < 0) start_ns_ = now.ns;
     const double t = static_cast<double>(now.ns - start_ns_) * 1e-9;
+    t_ = t;
     if (!path_.empty()) base_T_eye_ = path_pose(t);
     const Eigen::Isometry3d eye_T_base = base_T_eye_.inverse();
     const double gain = 1.0 + flicker_ * std::sin(2 * M_PI * t / 7.0);
@@ -138,10 +142,18 @@ class CameraSim final : public Component {
     if (baseline_ > 0) {
       Eigen::Isometry3d eye_T_right = Eigen::Isometry3d::Identity();
       eye_T_right.translation().x() = baseline_;
-      render((base_T_eye_ * eye_T_right).inverse(), false);
+      const Eigen::Isometry3d right_T_base = (base_T_eye_ * eye_T_right).inverse();
+      render(right_T_base, false);
       renderer_->read_rgb(right_rgb_);
+      cv::Mat right_mask;  // the right camera sees the spill on the hand's edges too, from its own view
+      if (spill_ > 0) {
+        render(right_T_base, true);
+        renderer_->read_rgb(mask_rgb_);
+        cv::extractChannel(cv::Mat(camera_.height, camera_.width, CV_8UC3, mask_rgb_.data()), right_mask, 0);
+        cv::threshold(right_mask, right_mask, 127, 255, cv::THRESH_BINARY);
+      }
       cv::Mat right(camera_.height, camera_.width, CV_8UC3, right_rgb_.data());
-      finish(right, cv::Mat(), gain);
+      finish(right, right_mask, gain);
       publish_image(right_, right, "rgb8", now);
     }
     // Ground truth and intrinsics.
@@ -178,6 +190,12 @@ class CameraSim final : public Component {
     return p;
   }
 
+  bool lamp_hidden(int marker) const {
+    for (std::size_t i = 0; i + 2 < hidden_.size(); i += 3)
+      if (t_ >= hidden_[i] && t_ < hidden_[i + 1] && static_cast<int>(hidden_[i + 2]) == marker) return true;
+    return false;
+  }
+
   Eigen::Isometry3d path_pose(double t) const {
     const std::size_t rows = path_.size() / 7;
     std::size_t i = 0;
@@ -211,8 +229,9 @@ class CameraSim final : public Component {
       Eigen::Isometry3d knob = base_T_dev;
       knob.translate(Eigen::Vector3d(0, 0, 0.02));
       renderer_->draw(knob_, eye_T_base * knob, color(kAluminium, false), !mask_pass);
-      for (const char* m : {"marker_0", "marker_1", "marker_2", "marker_3"})
-        renderer_->draw(lamp_, eye_T_base * model_->fk(q_, model_->frame(m)), color(kLamp, false), false);
+      for (int m = 0; m < 4; ++m)
+        if (!lamp_hidden(m))
+          renderer_->draw(lamp_, eye_T_base * model_->fk(q_, model_->frame("marker_" + std::to_string(m))), color(kLamp, false), false);
     }
     if (have_hand_) {
       const Eigen::Isometry3d eye_T_hand = eye_T_base * base_T_hand_;
@@ -266,7 +285,8 @@ class CameraSim final : public Component {
 
   std::string urdf_;
   Pinhole camera_;
-  std::vector<double> path_;
+  std::vector<double> path_, hidden_;
+  double t_ = 0;  // seconds since the first tick
   double noise_ = 2, blur_ = 0.7, flicker_ = 0.04, spill_ = 0.3, baseline_ = 0;
   int seed_ = 1;
   Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity(), base_T_hand_ = Eigen::Isometry3d::Identity();

@@ -1,0 +1,245 @@
+// marker_tracker: where the camera is (paper section 2.2 STEP 1 and section 5.1): the four lamps
+// on the device plate, found in search windows around where the filter predicts them, drive an
+// extended Kalman filter on eye_T_base in which the device's motion (joint state through the
+// robot model) is a known input. Publishes eye_T_base (eq. 6: where the virtual environment is
+// drawn), eye_T_dev (eq. 4: where the virtual object is drawn), their covariances, and what it
+// saw. `device_motion: state` is the paper's first prototype for comparison: the filter tracks
+// eye_T_dev and the robot's motion disturbs the background.
+#include <memory>
+#include <optional>
+
+#include "camera_model.hpp"
+#include "joint_history.hpp"
+#include "plate_tracker.hpp"
+#include "puma_model/puma_model.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::vision {
+
+namespace {
+
+// base_T_eye of a camera at `eye` looking at `target` (OpenCV axes: x right, y down), `up` up in
+// the image, as camera_sim places it.
+Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, const Eigen::Vector3d& up) {
+  const Eigen::Vector3d z = (target - eye).normalized();
+  Eigen::Vector3d x = z.cross(up.normalized());
+  if (x.norm() < 1e-9) x = z.unitOrthogonal();
+  x.normalize();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear().col(0) = x, T.linear().col(1) = z.cross(x), T.linear().col(2) = z;
+  T.translation() = eye;
+  return T;
+}
+
+}  // namespace
+
+class MarkerTracker final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("camera pose from the plate's four lamps: EKF on eye_T_base with the robot's motion as a known input");
+    const auto urdf = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description with frames dev and marker_0..3");
+    intrinsics_ = ctx.param<std::vector<double>>("intrinsics", {}, "fx fy cx cy, px (no distortion); empty: from camera_info");
+    const auto motion = ctx.param_choice("device_motion", "input",
+                                         "input: the filter's state is eye_T_base, the device's motion a known input; "
+                                         "state: the state is eye_T_dev (the paper's first prototype, for comparison)",
+                                         {"input", "state"});
+    TrackerSettings s;
+    s.device_motion = motion == "state" ? DeviceMotion::kState : DeviceMotion::kInput;
+    s.detector.threshold = ctx.param<int>("threshold", 215, "luma (0..255) above which a pixel is lamp", Range{1, 254});
+    s.detector.min_area = ctx.param<int>("min_area", 3, "smallest lamp blob, px", Range{1, 10000});
+    s.detector.max_area = ctx.param<int>("max_area", 4000, "largest lamp blob, px", Range{1, 100000});
+    const double lamp_radius = ctx.param<double>("lamp_radius", 0.006, "radius of the lamps' domes, m (0: points)", Range{0, 0.05});
+    s.noise.pixel = ctx.param<double>("pixel_sigma", 0.1, "a lamp centroid's noise, px", Range{0.01, 20});
+    // The camera's motion. The default suits a camera on a stand that is moved now and then (the
+    // paper's LCD/camera platform): the filter averages over seconds, which the plate's small
+    // size needs (a 1 mrad tilt of the plate moves its lamps by 0.04 px at 0.6 m). A moved camera
+    // outruns it, is lost and found again by PnP; a head-worn camera wants about 1 and 2.
+    s.noise.accel = ctx.param<double>("accel_noise", 3e-4, "the camera's acceleration, m/s^2 per sqrt(Hz)", Range{1e-7, 100});
+    s.noise.angular_accel =
+        ctx.param<double>("angular_accel_noise", 3e-4, "the camera's angular acceleration, rad/s^2 per sqrt(Hz)", Range{1e-7, 1000});
+    s.device_accel = ctx.param<double>("device_accel_noise", 1.0,
+                                       "device_motion: state only: the device's acceleration the filter must absorb, "
+                                       "m/s^2 per sqrt(Hz)", Range{0, 1000});
+    s.device_angular_accel = ctx.param<double>("device_angular_accel_noise", 2.0,
+                                               "device_motion: state only: the device's angular acceleration, rad/s^2 per sqrt(Hz)",
+                                               Range{0, 10000});
+    s.gate = ctx.param<double>("gate", 13.8, "Mahalanobis gate, chi-square with 2 dof (13.8: 99.9 %; a huge value: no gate)",
+                               Range{1, 1e12});
+    s.min_markers = ctx.param<int>("min_markers", 2, "lamps an image needs to update the filter", Range{1, 4});
+    s.lost_after = ctx.param<int>("lost_after", 5, "images with too few lamps before the plate is lost", Range{1, 10000});
+    s.min_window = ctx.param<int>("min_window", 10, "search window half size at least, px", Range{2, 1000});
+    s.max_window = ctx.param<int>("max_window", 80, "search window half size at most, px", Range{2, 1000});
+    const auto up = ctx.param<std::vector<double>>("up", {0, 0, 1}, "the base axis that points up in the image at the first fix");
+    const auto prior_eye = ctx.param<std::vector<double>>(
+        "prior_eye", {}, "where the camera roughly is (base frame, m), to start from fewer than four lamps; empty: none");
+    const auto prior_look_at = ctx.param<std::vector<double>>("prior_look_at", {}, "where it looks (base frame, m), with prior_eye");
+    const auto prior_sigma = ctx.param<std::vector<double>>("prior_sigma", {0.02, 0.02}, "how well: m, rad", Range{1e-6, 10});
+    s.acquisition.max_rms_px = ctx.param<double>("max_fix_rms", 2.0, "a PnP fix must reproject within this, px", Range{0.01, 100});
+    image_in_ = ctx.input<msg::Image>("image", "camera image: rgb8, bgr8 or mono8", Qos::sensor(2));
+    info_in_ = ctx.input<msg::CameraInfo>("camera_info", "intrinsics and distortion (unless `intrinsics` is set)", Qos::sensor(2));
+    joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints: the device's motion", Qos::sensor(64));
+    eye_T_base_out_ = ctx.output<msg::PoseStamped>("eye_T_base", "where the robot base is seen from the camera", Qos::sensor(4));
+    eye_T_dev_out_ = ctx.output<msg::PoseStamped>("eye_T_dev", "where the device plate is seen from the camera", Qos::sensor(4));
+    base_cov_out_ = ctx.output<msg::PoseWithCovariance>("eye_T_base_covariance", "eye_T_base with its covariance (eye axes)", Qos::sensor(4));
+    dev_cov_out_ = ctx.output<msg::PoseWithCovariance>("eye_T_dev_covariance", "eye_T_dev with its covariance (eye axes)", Qos::sensor(4));
+    markers_out_ = ctx.output<msg::MarkerObservation>("markers", "matched lamps and tracking status, every image", Qos::sensor(4));
+    if (!intrinsics_.empty() && intrinsics_.size() != 4)
+      throw std::invalid_argument("intrinsics: expected 4 numbers fx fy cx cy, or none to use camera_info; got " +
+                                  std::to_string(intrinsics_.size()));
+    if (up.size() != 3 || Eigen::Vector3d(up[0], up[1], up[2]).norm() < 1e-9)
+      throw std::invalid_argument("up: expected a non-zero vector of 3 numbers");
+    if (s.min_window > s.max_window) throw std::invalid_argument("min_window must not exceed max_window");
+    if (s.detector.min_area > s.detector.max_area) throw std::invalid_argument("min_area must not exceed max_area");
+    s.up_in_base = Eigen::Vector3d(up[0], up[1], up[2]);
+    if (!prior_eye.empty() || !prior_look_at.empty()) {
+      if (prior_eye.size() != 3 || prior_look_at.size() != 3 || prior_sigma.size() != 2)
+        throw std::invalid_argument("prior_eye and prior_look_at: expected 3 numbers each (and prior_sigma 2: m, rad)");
+      const Eigen::Vector3d eye(prior_eye[0], prior_eye[1], prior_eye[2]), at(prior_look_at[0], prior_look_at[1], prior_look_at[2]);
+      if ((at - eye).norm() < 1e-6) throw std::invalid_argument("prior_look_at must differ from prior_eye");
+      s.has_prior = true;
+      s.prior_eye_T_base = look_at(eye, at, s.up_in_base).inverse();
+      s.prior_sigma_m = prior_sigma[0], s.prior_sigma_rad = prior_sigma[1];
+    }
+    const std::string path = find_config_file(urdf);
+    model_ = std::make_unique<robot::PumaModel>(path, "flange");
+    dev_ = model_->frame("dev");
+    tracker_ = std::make_unique<PlateTracker>(PlateMarkers::from_robot(path, lamp_radius), s);
+    if (intrinsics_.size() == 4) camera_.emplace(intrinsics_[0], intrinsics_[1], intrinsics_[2], intrinsics_[3]);
+  }
+
+  void tick(Time now) override {
+    read_joints(now);
+    read_camera_info();
+    if (!image_in_.take_latest(frame_)) return;
+    PixelLayout layout;
+    cv::Mat image;
+    if (!view(frame_, layout, image)) return;
+    if (!camera_) return warn_once(kNoIntrinsics, "no intrinsics yet: set `intrinsics` or connect camera_info; image skipped");
+    const std::int64_t stamp = frame_.header().stamp_ns() ? frame_.header().stamp_ns() : now.ns;
+    robot::Vector6d q;
+    if (!joints_.at(stamp, q)) return warn_once(kNoJoints, "no joint state yet: the device's pose is unknown; image skipped");
+    const Eigen::Isometry3d base_T_dev = model_->fk(q, dev_);
+    const FrameResult& r = tracker_->process(image, layout, stamp, base_T_dev, *camera_);
+    publish(r, stamp);
+  }
+
+ private:
+  enum Warning { kNoIntrinsics, kNoJoints, kBadJoints, kBadInfo, kBadImage, kWarnings };
+
+  void warn_once(Warning w, const std::string& message) {
+    if (warned_[w]) return;
+    warned_[w] = true;
+    log(message);
+  }
+
+  void read_joints(Time now) {
+    while (joints_in_.take(joints_msg_)) {
+      robot::Vector6d q;
+      for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
+      if (!q.allFinite()) {
+        warn_once(kBadJoints, "joint state with a non-finite position: sample skipped (warned once)");
+        continue;
+      }
+      joints_.add(joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, q);
+    }
+  }
+
+  void read_camera_info() {
+    if (!intrinsics_.empty() || !info_in_.take_latest(info_msg_)) return;  // the param wins
+    const auto& k = info_msg_.k();
+    try {
+      camera_.emplace(k[0], k[4], k[2], k[5], std::vector<double>(info_msg_.d().begin(), info_msg_.d().end()));
+    } catch (const std::invalid_argument& e) {
+      warn_once(kBadInfo, std::string("camera_info refused, the previous intrinsics stay: ") + e.what());
+    }
+  }
+
+  // A cv::Mat over the message's pixels (no copy), or false for a frame the tracker cannot read.
+  bool view(msg::Image& m, PixelLayout& layout, cv::Mat& image) {
+    const std::string encoding = m.encoding().c_str();
+    int channels = 0;
+    if (encoding == "rgb8") layout = PixelLayout::kRgb8, channels = 3;
+    else if (encoding == "bgr8") layout = PixelLayout::kBgr8, channels = 3;
+    else if (encoding == "mono8") layout = PixelLayout::kMono8, channels = 1;
+    const std::size_t w = m.width(), h = m.height(), step = m.step();
+    if (!channels || w == 0 || h == 0 || step < w * channels || m.data().size() < step * h) {
+      warn_once(kBadImage, "image skipped: expected rgb8, bgr8 or mono8 with step >= width * channels and height * step "
+                           "bytes; got '" + encoding + "' " + std::to_string(w) + "x" + std::to_string(h) + ", step " +
+                               std::to_string(step) + ", " + std::to_string(m.data().size()) + " bytes (warned once)");
+      return false;
+    }
+    image = cv::Mat(static_cast<int>(h), static_cast<int>(w), channels == 3 ? CV_8UC3 : CV_8UC1, m.data().data(), step);
+    return true;
+  }
+
+  void publish(const FrameResult& r, std::int64_t stamp) {
+    auto& obs = markers_msg_;
+    obs.header().stamp_ns(stamp);
+    obs.header().seq(seq_);
+    obs.header().frame_id("eye");
+    obs.status(r.state == TrackState::kTracking ? msg::TRACKING_OK
+               : r.state == TrackState::kCoasting ? msg::TRACKING_COASTING
+                                                  : msg::TRACKING_LOST);
+    obs.acquired(r.acquired);
+    obs.blobs(static_cast<std::uint32_t>(r.blobs));
+    obs.rejected(static_cast<std::uint32_t>(r.rejected));
+    obs.ids().clear(), obs.u().clear(), obs.v().clear();
+    for (const auto& m : r.matched) {
+      obs.ids().push_back(static_cast<std::uint32_t>(m.id));
+      obs.u().push_back(m.u);
+      obs.v().push_back(m.v);
+    }
+    obs.reprojection_rms(r.rms_px);
+    obs.frames_without_fix(static_cast<std::uint32_t>(r.frames_without_fix));
+    markers_out_.write(obs);
+    if (tracker_->has_estimate()) {
+      write_pose(eye_T_base_out_, base_cov_out_, "base", tracker_->eye_T_base(), tracker_->eye_T_base_covariance(), stamp);
+      write_pose(eye_T_dev_out_, dev_cov_out_, "dev", tracker_->eye_T_dev(), tracker_->eye_T_dev_covariance(), stamp);
+    }
+    ++seq_;
+  }
+
+  void write_pose(Output<msg::PoseStamped>& pose_out, Output<msg::PoseWithCovariance>& cov_out, const char* child,
+                  const Eigen::Isometry3d& eye_T_x, const PoseEkf::Matrix6d& cov, std::int64_t stamp) {
+    pose_msg_.header().stamp_ns(stamp);
+    pose_msg_.header().seq(seq_);
+    pose_msg_.header().frame_id("eye");
+    pose_msg_.child_frame_id(child);
+    msgs::to_msg(eye_T_x, pose_msg_.pose());
+    pose_out.write(pose_msg_);
+    cov_msg_.header() = pose_msg_.header();
+    cov_msg_.child_frame_id(child);
+    cov_msg_.pose() = pose_msg_.pose();
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) cov_msg_.covariance()[static_cast<std::size_t>(6 * r + c)] = cov(r, c);
+    cov_out.write(cov_msg_);
+  }
+
+  std::vector<double> intrinsics_;
+  std::unique_ptr<robot::PumaModel> model_;
+  robot::FrameId dev_;
+  std::unique_ptr<PlateTracker> tracker_;
+  std::optional<CameraModel> camera_;
+  JointHistory joints_;
+  bool warned_[kWarnings] = {};
+  std::uint64_t seq_ = 0;
+  msg::Image frame_;
+  msg::CameraInfo info_msg_;
+  msg::JointState joints_msg_;
+  msg::PoseStamped pose_msg_;
+  msg::PoseWithCovariance cov_msg_;
+  msg::MarkerObservation markers_msg_;
+  Input<msg::Image> image_in_;
+  Input<msg::CameraInfo> info_in_;
+  Input<msg::JointState> joints_in_;
+  Output<msg::PoseStamped> eye_T_base_out_, eye_T_dev_out_;
+  Output<msg::PoseWithCovariance> base_cov_out_, dev_cov_out_;
+  Output<msg::MarkerObservation> markers_out_;
+};
+
+}  // namespace wysiwyf::vision
+
+WYSIWYF_COMPONENT(wysiwyf::vision::MarkerTracker, "marker_tracker")

@@ -1,0 +1,112 @@
+#include "pose_ekf.hpp"
+
+#include <cassert>
+
+namespace wysiwyf::vision {
+
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+Eigen::Matrix3d exp_so3(const Eigen::Vector3d& r) {
+  const double angle = r.norm();
+  if (angle < 1e-12) return Eigen::Matrix3d::Identity() + skew(r);
+  return Eigen::AngleAxisd(angle, r / angle).toRotationMatrix();
+}
+
+// Up to 8 markers per update without touching the heap.
+constexpr int kMaxRows = 16;
+using Rows = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
+using RowsByStates = Eigen::Matrix<double, Eigen::Dynamic, PoseEkf::kStates, 0, kMaxRows, PoseEkf::kStates>;
+using StatesByRows = Eigen::Matrix<double, PoseEkf::kStates, Eigen::Dynamic, 0, PoseEkf::kStates, kMaxRows>;
+using RowsByRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
+
+}  // namespace
+
+void PoseEkf::reset(const Eigen::Isometry3d& eye_T_x, const Matrix6d& pose_cov, double velocity_sigma,
+                    double angular_sigma) {
+  eye_T_x_ = eye_T_x;
+  v_.setZero(), w_.setZero();
+  P_.setZero();
+  P_.topLeftCorner<6, 6>() = pose_cov;
+  P_.block<3, 3>(6, 6).diagonal().setConstant(velocity_sigma * velocity_sigma);
+  P_.block<3, 3>(9, 9).diagonal().setConstant(angular_sigma * angular_sigma);
+}
+
+void PoseEkf::predict(double dt) {
+  if (!(dt > 0)) return;
+  const Eigen::Matrix3d dR = exp_so3(w_ * dt);
+  eye_T_x_.translation() += v_ * dt;
+  eye_T_x_.linear() = dR * eye_T_x_.linear();
+  StateMatrix F = StateMatrix::Identity();
+  F.block<3, 3>(0, 6).diagonal().setConstant(dt);
+  F.block<3, 3>(3, 3) = dR;
+  F.block<3, 3>(3, 9).diagonal().setConstant(dt);
+  // White acceleration over dt: per axis [dt^3/3 dt^2/2; dt^2/2 dt] times the spectral density.
+  StateMatrix Q = StateMatrix::Zero();
+  const double qa = noise_.accel * noise_.accel, qw = noise_.angular_accel * noise_.angular_accel;
+  const double d3 = dt * dt * dt / 3, d2 = dt * dt / 2;
+  for (int i = 0; i < 3; ++i) {
+    Q(i, i) = d3 * qa, Q(i, 6 + i) = Q(6 + i, i) = d2 * qa, Q(6 + i, 6 + i) = dt * qa;
+    Q(3 + i, 3 + i) = d3 * qw, Q(3 + i, 9 + i) = Q(9 + i, 3 + i) = d2 * qw, Q(9 + i, 9 + i) = dt * qw;
+  }
+  P_ = F * P_ * F.transpose() + Q;
+}
+
+bool PoseEkf::predict_pixel(const Eigen::Vector3d& x_p, const Eigen::Vector3d& eye_offset, const CameraModel& camera,
+                            Prediction& out) const {
+  const Eigen::Vector3d rotated = eye_T_x_.linear() * x_p;
+  const Eigen::Vector3d p = rotated + eye_T_x_.translation() + eye_offset;
+  if (p.z() < 1e-3) return false;
+  out.depth = p.z();
+  out.pixel = camera.project(p);
+  const double iz = 1.0 / p.z();
+  Eigen::Matrix<double, 2, 3> J;
+  J << camera.fx() * iz, 0, -camera.fx() * p.x() * iz * iz, 0, camera.fy() * iz, -camera.fy() * p.y() * iz * iz;
+  out.H.setZero();
+  out.H.leftCols<3>() = J;
+  out.H.block<2, 3>(0, 3) = -J * skew(rotated);
+  out.S = out.H * P_ * out.H.transpose();
+  out.S.diagonal().array() += noise_.pixel * noise_.pixel;
+  return true;
+}
+
+void PoseEkf::update(const std::vector<Prediction>& predictions, const std::vector<Eigen::Vector2d>& pixels) {
+  assert(predictions.size() == pixels.size());
+  const int m = static_cast<int>(std::min<std::size_t>(predictions.size(), kMaxRows / 2));
+  if (m == 0) return;
+  RowsByStates H(2 * m, kStates);
+  Rows y(2 * m);
+  for (int i = 0; i < m; ++i) {
+    H.middleRows<2>(2 * i) = predictions[static_cast<std::size_t>(i)].H;
+    y.segment<2>(2 * i) = pixels[static_cast<std::size_t>(i)] - predictions[static_cast<std::size_t>(i)].pixel;
+  }
+  const double r = noise_.pixel * noise_.pixel;
+  const StatesByRows PHt = P_ * H.transpose();
+  RowsByRows S = H * PHt;
+  S.diagonal().array() += r;
+  const StatesByRows K = S.ldlt().solve(PHt.transpose()).transpose();
+  const Eigen::Matrix<double, kStates, 1> dx = K * y;
+  // Joseph form: stays symmetric and positive.
+  const StateMatrix IKH = StateMatrix::Identity() - K * H;
+  P_ = IKH * P_ * IKH.transpose() + r * K * K.transpose();
+  eye_T_x_.translation() += dx.segment<3>(0);
+  eye_T_x_.linear() = exp_so3(dx.segment<3>(3)) * eye_T_x_.linear();
+  v_ += dx.segment<3>(6);
+  w_ += dx.segment<3>(9);
+}
+
+Eigen::Matrix<double, 6, 6> compose_covariance(const Eigen::Matrix<double, 6, 6>& eye_T_x_cov, const Eigen::Isometry3d& eye_T_x,
+                                               const Eigen::Isometry3d& x_T_y) {
+  // eye_t_y = exp(dtheta) R x_t_y + t + dt: its error is dt - [R x_t_y]x dtheta; the rotation error
+  // is the same.
+  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Identity();
+  J.block<3, 3>(0, 3) = -skew(eye_T_x.linear() * x_T_y.translation());
+  return J * eye_T_x_cov * J.transpose();
+}
+
+}  // namespace wysiwyf::vision
