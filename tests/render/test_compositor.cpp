@@ -100,6 +100,51 @@ TEST(Compositor, AZMarginKeepsRealThingsLyingOnTheVirtualSurfaceBehindIt) {
   }
 }
 
+TEST(Compositor, EveryPixelOfAWideImageIsTheRoundedBlend) {
+  // 37 x 5 random pixels (the vectorised body, 16 at a time, and the scalar tail), alpha only and
+  // z-keyed: each output channel is hand + round(scene (255 - alpha) / 255), with the hand and
+  // alpha zeroed where the virtual surface is nearer.
+  const int w = 37, h = 5;
+  std::uint32_t state = 12345;
+  auto next = [&] { return state = state * 1664525u + 1013904223u, static_cast<int>(state >> 24); };
+  msg::Image s = image(w, h, "rgb8", 3), k = image(w, h, "rgba8", 4), sd = image(w, h, "32FC1", 4),
+             rd = image(w, h, "32FC1", 4);
+  for (auto& b : s.data()) b = static_cast<std::uint8_t>(next());
+  for (int i = 0; i < w * h; ++i) {
+    const int a = next();
+    k.data()[4 * i + 3] = static_cast<std::uint8_t>(a);
+    for (int c = 0; c < 3; ++c) k.data()[4 * i + c] = static_cast<std::uint8_t>(next() * a / 255);  // premultiplied
+    set_depth(sd, i % w, i / w, (next() % 3) * 0.3f);  // 0 (none), 0.3 or 0.6 m
+    set_depth(rd, i % w, i / w, (next() % 3) * 0.3f);
+  }
+  for (bool z : {false, true}) {
+    Harness hs("compositor", "{}", 60);
+    auto scene = hs.feed<msg::Image>("scene");
+    auto scene_depth = hs.feed<msg::Image>("scene_depth");
+    auto hand = hs.feed<msg::Image>("hand");
+    auto real_depth = hs.feed<msg::Image>("real_depth");
+    auto out = hs.watch<msg::Image>("composite");
+    hs.activate();
+    scene.write(s), hand.write(k);
+    if (z) scene_depth.write(sd), real_depth.write(rd);
+    hs.tick(Time{0});
+    msg::Image c;
+    ASSERT_TRUE(out.take_latest(c));
+    for (int i = 0; i < w * h; ++i) {
+      float vz, rz;
+      std::memcpy(&vz, &sd.data()[4 * static_cast<std::size_t>(i)], 4);
+      std::memcpy(&rz, &rd.data()[4 * static_cast<std::size_t>(i)], 4);
+      const bool hidden = z && vz > 0 && rz > 0 && vz < rz;
+      const int a = hidden ? 0 : k.data()[4 * i + 3];
+      for (int ch = 0; ch < 3; ++ch) {
+        const int expected = (hidden ? 0 : k.data()[4 * i + ch]) +
+                             static_cast<int>(std::lround(s.data()[3 * i + ch] * (255 - a) / 255.0));
+        ASSERT_EQ(c.data()[3 * i + ch], std::min(expected, 255)) << "pixel " << i << " channel " << ch << " z " << z;
+      }
+    }
+  }
+}
+
 TEST(Compositor, AMalformedImageIsIgnored) {
   Harness h("compositor", "{}", 60);
   auto scene = h.feed<msg::Image>("scene");

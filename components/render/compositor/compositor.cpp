@@ -4,6 +4,7 @@
 // pixel instead: the hand shows only where it is nearer than the virtual surface (section 3.2's
 // answer to the hand always being drawn on top).
 #include <opencv2/core.hpp>
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "wysiwyf/component.hpp"
@@ -16,30 +17,60 @@ namespace {
 cv::Mat view(msg::Image& m, int type) {
   return cv::Mat(static_cast<int>(m.height()), static_cast<int>(m.width()), type, m.data().data(), m.step());
 }
-// out = hand + scene (255 - alpha) / 255 per channel, rounded, in one pass over the rows (the
-// compiler vectorises it; OpenCV's multiply/merge/add chain made five passes and a float
-// conversion). With both depths, the hand counts only where no virtual surface (depth > 0) is
-// nearer than the real one (depth > 0) plus `margin`.
+// out = hand + scene (255 - alpha) / 255 per channel, exactly rounded, in one pass over the
+// rows with OpenCV's universal intrinsics (16 pixels at a time; OpenCV's multiply/merge/add
+// chain made five passes and a float conversion). With both depths, the hand counts only where
+// no virtual surface (depth > 0) is nearer than the real one (depth > 0) plus `margin`.
 template <bool kZKey>
 void blend_rows(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
                 float margin) {
   for (int y = 0; y < scene.rows; ++y) {
-    std::uint8_t* __restrict out = scene.ptr<std::uint8_t>(y);
-    const std::uint8_t* __restrict h = hand.ptr<std::uint8_t>(y);
-    const float* __restrict real = kZKey ? real_depth.ptr<float>(y) : nullptr;
-    const float* __restrict virt = kZKey ? virtual_depth.ptr<float>(y) : nullptr;
-    for (int x = 0; x < scene.cols; ++x) {
+    std::uint8_t* out = scene.ptr<std::uint8_t>(y);
+    const std::uint8_t* h = hand.ptr<std::uint8_t>(y);
+    const float* real = kZKey ? real_depth.ptr<float>(y) : nullptr;
+    const float* virt = kZKey ? virtual_depth.ptr<float>(y) : nullptr;
+    int x = 0;
+#if CV_SIMD128
+    const cv::v_uint16x8 half = cv::v_setall_u16(128);
+    const cv::v_uint8x16 full = cv::v_setall_u8(255);
+    // round(s (255 - a) / 255) for 16 channel values, in 16 bits: (v + (v >> 8)) >> 8, v = s (255 - a) + 128
+    auto scale = [&](const cv::v_uint8x16& s, const cv::v_uint8x16& inverse) {
+      cv::v_uint16x8 s0, s1, i0, i1;
+      cv::v_expand(s, s0, s1);
+      cv::v_expand(inverse, i0, i1);
+      cv::v_uint16x8 v0 = s0 * i0 + half, v1 = s1 * i1 + half;
+      v0 = (v0 + (v0 >> 8)) >> 8;
+      v1 = (v1 + (v1 >> 8)) >> 8;
+      return cv::v_pack(v0, v1);
+    };
+    for (; x + 16 <= scene.cols; x += 16) {
+      cv::v_uint8x16 hr, hg, hb, ha, sr, sg, sb;
+      cv::v_load_deinterleave(h + 4 * x, hr, hg, hb, ha);
+      cv::v_load_deinterleave(out + 3 * x, sr, sg, sb);
+      if constexpr (kZKey) {
+        const cv::v_float32x4 zero = cv::v_setall_f32(0.0f), m = cv::v_setall_f32(margin);
+        cv::v_uint32x4 hidden[4];
+        for (int k = 0; k < 4; ++k) {
+          const cv::v_float32x4 vz = cv::v_load(virt + x + 4 * k), rz = cv::v_load(real + x + 4 * k);
+          hidden[k] = cv::v_reinterpret_as_u32((vz > zero) & (rz > zero) & (vz < rz + m));
+        }
+        const cv::v_uint8x16 keep = ~cv::v_pack(cv::v_pack(hidden[0], hidden[1]), cv::v_pack(hidden[2], hidden[3]));
+        hr = hr & keep, hg = hg & keep, hb = hb & keep, ha = ha & keep;
+      }
+      const cv::v_uint8x16 inverse = full - ha;
+      // (+ saturates on 8 bits; the sum cannot pass 255 anyway: the hand is premultiplied)
+      cv::v_store_interleave(out + 3 * x, hr + scale(sr, inverse), hg + scale(sg, inverse), hb + scale(sb, inverse));
+    }
+#endif
+    for (; x < scene.cols; ++x) {
       unsigned keep = 1;  // 0 where the virtual surface hides the hand
       if constexpr (kZKey) keep = !(virt[x] > 0.0f && real[x] > 0.0f && virt[x] < real[x] + margin);
       const unsigned a = h[4 * x + 3] * keep, inverse = 255u - a;
-      const unsigned v0 = out[3 * x] * inverse + 128u, v1 = out[3 * x + 1] * inverse + 128u,
-                     v2 = out[3 * x + 2] * inverse + 128u;
-      // exact round(v / 255); the sum cannot pass 255 (the hand is premultiplied: h <= a)
-      const unsigned b0 = h[4 * x] * keep + ((v0 + (v0 >> 8)) >> 8), b1 = h[4 * x + 1] * keep + ((v1 + (v1 >> 8)) >> 8),
-                     b2 = h[4 * x + 2] * keep + ((v2 + (v2 >> 8)) >> 8);
-      out[3 * x] = static_cast<std::uint8_t>(b0 > 255u ? 255u : b0);
-      out[3 * x + 1] = static_cast<std::uint8_t>(b1 > 255u ? 255u : b1);
-      out[3 * x + 2] = static_cast<std::uint8_t>(b2 > 255u ? 255u : b2);
+      for (int c = 0; c < 3; ++c) {
+        const unsigned v = out[3 * x + c] * inverse + 128u;
+        const unsigned blended = h[4 * x + c] * keep + ((v + (v >> 8)) >> 8);
+        out[3 * x + c] = static_cast<std::uint8_t>(blended > 255u ? 255u : blended);
+      }
     }
   }
 }
