@@ -38,7 +38,7 @@ void blend_rows(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, 
       cv::v_uint16x8 s0, s1, i0, i1;
       cv::v_expand(s, s0, s1);
       cv::v_expand(inverse, i0, i1);
-      cv::v_uint16x8 v0 = s0 * i0 + half, v1 = s1 * i1 + half;
+      cv::v_uint16x8 v0 = cv::v_mul_wrap(s0, i0) + half, v1 = cv::v_mul_wrap(s1, i1) + half;  // (no overflow: 255 * 255 + 128)
       v0 = (v0 + (v0 >> 8)) >> 8;
       v1 = (v1 + (v1 >> 8)) >> 8;
       return cv::v_pack(v0, v1);
