@@ -4,6 +4,9 @@
 // (skin, at the true hand pose); with lighting variation, sensor noise, optical blur and blue
 // spill on the hand's edges. Beside the image it publishes ground truth for tests and metrics:
 // eye_T_base, eye_T_dev, the hand mask and the metric depth; optionally a stereo right image.
+#include <deque>
+#include <utility>
+
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
@@ -67,9 +70,16 @@ class CameraSim final : public Component {
     seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
     hidden_ = ctx.param<std::vector<double>>("hidden_markers", {},
                                              "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]");
-    joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints", Qos::sensor(4));
+    exposure_ = ctx.param<double>("exposure", 0.0,
+                                  "s the shutter stays open (0: instantaneous); moving things smear over it: the image "
+                                  "is the mean of exposure_samples renders at the joint and hand states of their "
+                                  "times (ground truth stays at the frame's stamp, the end of the exposure)",
+                                  Range{0, 0.1});
+    exposure_samples_ = ctx.param<int>("exposure_samples", 8, "renders averaged over the exposure", Range{2, 64});
+    // Deep queues: the exposure looks back up to 100 ms into 1 kHz streams.
+    joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints", Qos::sensor(128));
     hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "base_T_hand: palm centre, z out of the palm, fingers along x",
-                                           Qos::sensor(4));
+                                           Qos::sensor(128));
     image_ = ctx.output<msg::Image>("image", "the camera image, rgb8", Qos::sensor(2));
     right_ = ctx.output<msg::Image>("image_right", "the right camera's image (stereo), rgb8", Qos::sensor(2));
     info_ = ctx.output<msg::CameraInfo>("camera_info", "intrinsics (no distortion)", Qos::sensor(2));
@@ -110,15 +120,23 @@ class CameraSim final : public Component {
   }
 
   void tick(Time now) override {
+    auto stamp = [&](const std_msgs::Header& h) { return h.stamp_ns() > 0 ? h.stamp_ns() : now.ns; };
     while (joints_in_.take(joints_msg_)) {
       robot::Vector6d q;
       for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
-      if (q.allFinite()) q_ = q, have_joints_ = true;
+      if (!q.allFinite()) continue;
+      q_ = q, have_joints_ = true;
+      if (exposure_ > 0) joint_history_.emplace_back(stamp(joints_msg_.header()), q);
     }
     while (hand_in_.take(hand_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(hand_msg_.pose());
-      if (T.matrix().allFinite()) base_T_hand_ = T, have_hand_ = true;
+      if (!T.matrix().allFinite()) continue;
+      base_T_hand_ = T, have_hand_ = true;
+      if (exposure_ > 0) hand_history_.emplace_back(stamp(hand_msg_.header()), T);
     }
+    const std::int64_t oldest = now.ns - static_cast<std::int64_t>(exposure_ * 1e9) - 1'000'000;
+    while (joint_history_.size() > 1 && joint_history_[1].first <= oldest) joint_history_.pop_front();
+    while (hand_history_.size() > 1 && hand_history_[1].first <= oldest) hand_history_.pop_front();
     if (start_ns_ < 0) start_ns_ = now.ns;
     const double t = static_cast<double>(now.ns - start_ns_) * 1e-9;
     t_ = t;
@@ -129,6 +147,7 @@ class CameraSim final : public Component {
     render(eye_T_base, false);
     renderer_->read_depth(depth_);
     renderer_->read_rgb(rgb_);
+    if (exposure_ > 0) expose(now, rgb_, [&](std::int64_t) { return eye_T_base; });
     render(eye_T_base, true);  // the hand alone, white, everything else black: the true mask
     renderer_->read_rgb(mask_rgb_);
     cv::Mat mask;
@@ -145,6 +164,7 @@ class CameraSim final : public Component {
       const Eigen::Isometry3d right_T_base = (base_T_eye_ * eye_T_right).inverse();
       render(right_T_base, false);
       renderer_->read_rgb(right_rgb_);
+      if (exposure_ > 0) expose(now, right_rgb_, [&](std::int64_t) { return right_T_base; });
       cv::Mat right_mask;  // the right camera sees the spill on the hand's edges too, from its own view
       if (spill_ > 0) {
         render(right_T_base, true);
@@ -270,6 +290,37 @@ class CameraSim final : public Component {
     work_.convertTo(img, CV_8UC3);  // saturates
   }
 
+  // The colour image averaged over the exposure: exposure_samples renders at the middles of equal
+  // slices of [now - exposure, now], each with the arm and hand as they were then (the latest
+  // state stamped at or before it) and the camera pose view(t). The current state is restored.
+  template <class View>
+  void expose(Time now, std::vector<std::uint8_t>& rgb, View view) {
+    const robot::Vector6d q_now = q_;
+    const Eigen::Isometry3d hand_now = base_T_hand_;
+    exposure_sum_.create(camera_.height, camera_.width, CV_32FC3);
+    exposure_sum_.setTo(0);
+    for (int k = 0; k < exposure_samples_; ++k) {
+      const double before = exposure_ * (1.0 - (k + 0.5) / exposure_samples_);
+      const std::int64_t t = now.ns - static_cast<std::int64_t>(std::llround(before * 1e9));
+      q_ = state_at(joint_history_, t, q_now);
+      base_T_hand_ = state_at(hand_history_, t, hand_now);
+      render(view(t), false);
+      renderer_->read_rgb(sample_rgb_);
+      cv::accumulate(cv::Mat(camera_.height, camera_.width, CV_8UC3, sample_rgb_.data()), exposure_sum_);
+    }
+    q_ = q_now;
+    base_T_hand_ = hand_now;
+    exposure_sum_.convertTo(cv::Mat(camera_.height, camera_.width, CV_8UC3, rgb.data()), CV_8UC3,
+                            1.0 / exposure_samples_);
+  }
+  template <class T>
+  static T state_at(const std::deque<std::pair<std::int64_t, T>>& history, std::int64_t t, const T& fallback) {
+    const T* found = history.empty() ? &fallback : &history.front().second;
+    for (const auto& [stamp, value] : history)
+      if (stamp <= t) found = &value;
+    return *found;
+  }
+
   void publish_image(Output<msg::Image>& out, const cv::Mat& m, const char* encoding, Time now) {
     out_msg_.header().stamp_ns(now.ns);
     out_msg_.header().seq(seq_);
@@ -300,7 +351,12 @@ class CameraSim final : public Component {
   std::int64_t start_ns_ = -1;
   std::uint64_t seq_ = 0;
   cv::RNG rng_;
-  std::vector<std::uint8_t> rgb_, mask_rgb_, right_rgb_;
+  std::vector<std::uint8_t> rgb_, mask_rgb_, right_rgb_, sample_rgb_;
+  double exposure_ = 0;
+  int exposure_samples_ = 8;
+  std::deque<std::pair<std::int64_t, robot::Vector6d>> joint_history_;
+  std::deque<std::pair<std::int64_t, Eigen::Isometry3d>> hand_history_;
+  cv::Mat exposure_sum_;
   std::vector<float> depth_;
   cv::Mat work_, noise_img_;
   msg::JointState joints_msg_;
