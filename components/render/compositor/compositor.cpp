@@ -22,10 +22,11 @@ cv::Mat view(msg::Image& m, int type) {
 // chain made five passes and a float conversion). With both depths, the hand counts only where
 // no virtual surface (depth > 0) is nearer than the real one (depth > 0) plus `margin`.
 template <bool kZKey>
-void blend_rows(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
-                float margin) {
+void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
+                float margin, cv::Mat& composite) {
   for (int y = 0; y < scene.rows; ++y) {
-    std::uint8_t* out = scene.ptr<std::uint8_t>(y);
+    const std::uint8_t* sc = scene.ptr<std::uint8_t>(y);
+    std::uint8_t* out = composite.ptr<std::uint8_t>(y);
     const std::uint8_t* h = hand.ptr<std::uint8_t>(y);
     const float* real = kZKey ? real_depth.ptr<float>(y) : nullptr;
     const float* virt = kZKey ? virtual_depth.ptr<float>(y) : nullptr;
@@ -46,7 +47,7 @@ void blend_rows(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, 
     for (; x + 16 <= scene.cols; x += 16) {
       cv::v_uint8x16 hr, hg, hb, ha, sr, sg, sb;
       cv::v_load_deinterleave(h + 4 * x, hr, hg, hb, ha);
-      cv::v_load_deinterleave(out + 3 * x, sr, sg, sb);
+      cv::v_load_deinterleave(sc + 3 * x, sr, sg, sb);
       if constexpr (kZKey) {
         const cv::v_float32x4 zero = cv::v_setall_f32(0.0f), m = cv::v_setall_f32(margin);
         cv::v_uint32x4 hidden[4];
@@ -67,7 +68,7 @@ void blend_rows(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, 
       if constexpr (kZKey) keep = !(virt[x] > 0.0f && real[x] > 0.0f && virt[x] < real[x] + margin);
       const unsigned a = h[4 * x + 3] * keep, inverse = 255u - a;
       for (int c = 0; c < 3; ++c) {
-        const unsigned v = out[3 * x + c] * inverse + 128u;
+        const unsigned v = sc[3 * x + c] * inverse + 128u;
         const unsigned blended = h[4 * x + c] * keep + ((v + (v >> 8)) >> 8);
         out[3 * x + c] = static_cast<std::uint8_t>(blended > 255u ? 255u : blended);
       }
@@ -75,12 +76,12 @@ void blend_rows(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, 
   }
 }
 
-void blend(cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
-           float margin) {
+void blend(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
+           float margin, cv::Mat& composite) {
   if (real_depth.empty())
-    blend_rows<false>(scene, hand, real_depth, virtual_depth, margin);
+    blend_rows<false>(scene, hand, real_depth, virtual_depth, margin, composite);
   else
-    blend_rows<true>(scene, hand, real_depth, virtual_depth, margin);
+    blend_rows<true>(scene, hand, real_depth, virtual_depth, margin, composite);
 }
 
 bool valid(const msg::Image& m, const char* encoding, std::size_t bytes_per_pixel) {
@@ -118,17 +119,25 @@ class Compositor final : public Component {
     scene_depth_in_.take_latest(scene_depth_);
     real_depth_in_.take_latest(real_depth_);
     if (!fresh || !valid(scene_, "rgb8", 3)) return;
-    out_msg_ = scene_;  // same size and header; reuses the buffer after the first frame
+    // The composite is written straight into the outgoing message (sized once).
+    out_msg_.header() = scene_.header();
     out_msg_.header().stamp_ns(now.ns);
     out_msg_.header().seq(seq_++);
+    out_msg_.width(scene_.width()), out_msg_.height(scene_.height()), out_msg_.encoding("rgb8");
+    out_msg_.step(scene_.width() * 3);
+    out_msg_.data().resize(static_cast<std::size_t>(out_msg_.step()) * scene_.height());
     cv::Mat out = view(out_msg_, CV_8UC3);
+    const cv::Mat scene = view(scene_, CV_8UC3);
+    bool blended = false;
     if (valid(hand_, "rgba8", 4) && hand_.width() == scene_.width() && hand_.height() == scene_.height()) {
       const bool z_key = use_depth_ && valid(real_depth_, "32FC1", 4) && valid(scene_depth_, "32FC1", 4) &&
                          real_depth_.width() == scene_.width() && scene_depth_.width() == scene_.width() &&
                          real_depth_.height() == scene_.height() && scene_depth_.height() == scene_.height();
-      blend(out, view(hand_, CV_8UC4), z_key ? view(real_depth_, CV_32FC1) : cv::Mat(),
-            z_key ? view(scene_depth_, CV_32FC1) : cv::Mat(), margin_);
+      blend(scene, view(hand_, CV_8UC4), z_key ? view(real_depth_, CV_32FC1) : cv::Mat(),
+            z_key ? view(scene_depth_, CV_32FC1) : cv::Mat(), margin_, out);
+      blended = true;
     }
+    if (!blended) scene.copyTo(out);
     out_.write(out_msg_);
   }
 
