@@ -444,6 +444,10 @@ StepReport World::step(double dt) {
       Cvode::check(CVodeReInit(cv.mem, t_, cv.y), "CVodeReInit");
     }
     Cvode::check(CVodeSStolerances(cv.mem, params_.rtol, params_.atol), "CVodeSStolerances");
+    // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of the
+    // first step, which costs right-hand sides; a small fixed one grows within a few steps.
+    if (params_.initial_step > 0)
+      Cvode::check(CVodeSetInitStep(cv.mem, params_.initial_step), "CVodeSetInitStep");
     if (roots_changed_) reinit_roots();
     restart_ = false;
   }

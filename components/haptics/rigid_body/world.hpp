@@ -38,6 +38,7 @@ struct WorldParams {
   double margin = 0.01;             // features closer than this are watched (resting or root)
   double resting_speed = 0.01;      // approach slower than this: inelastic (ends bounce sequences)
   double stabilisation_hz = 20.0;   // Baumgarte feedback on resting gaps (0: off)
+  double initial_step = 1e-6;       // s, CVODE's first step after a restart (0: CVODE estimates it)
   int max_collisions_per_step = 32;
 };
 
