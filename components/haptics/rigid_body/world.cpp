@@ -237,15 +237,21 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
   }
 }
 
-void World::update_friction(double dt) {
-  std::vector<Pose> poses;
-  poses_of(states_, poses);
+std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
   std::size_t live = 0;
   for (auto& c : resting_) {
     c.point = evaluate(c.feature, models_, poses);
-    c.friction = Vec3::Zero();
     if (c.point.valid) std::swap(c, resting_[live++]);
   }
+  return live;
+}
+
+void World::update_friction(double dt) {
+  // (classify_contacts made resting_ afresh, friction zero: a frictionless world has nothing to do)
+  if (!friction_coefficients(resting_.data(), resting_.size())) return;
+  std::vector<Pose> poses;
+  poses_of(states_, poses);
+  const std::size_t live = evaluate_resting(poses);
   if (live == 0 || !friction_coefficients(resting_.data(), live)) return;
   applied_loads(poses, false);
   contact_matrix(resting_.data(), live, poses, true);
@@ -266,12 +272,8 @@ void World::rhs(const double* y, double* ydot) {
   unpack(y, scratch_states_);
   poses_of(scratch_states_, scratch_poses_);
   // Resting contacts at this very state.
-  std::size_t live = 0;
-  for (auto& c : resting_) {
-    c.point = evaluate(c.feature, models_, scratch_poses_);
-    c.force = 0;
-    if (c.point.valid) std::swap(c, resting_[live++]);
-  }
+  const std::size_t live = evaluate_resting(scratch_poses_);
+  for (std::size_t i = live; i < resting_.size(); ++i) resting_[i].force = 0;  // (the live ones get theirs below)
   // Gravity, the user's wrench and the friction held for this step, then the normal forces of
   // eqs. (9)-(10) that keep the contacts from closing under them.
   applied_loads(scratch_poses_, true);

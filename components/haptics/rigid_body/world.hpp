@@ -100,6 +100,9 @@ class World {
   // tangent_horizon > 0 bt_ (tangential acceleration that stops sliding within the horizon).
   void contact_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
                      const std::vector<Pose>& poses, double tangent_horizon);
+  // Evaluates the resting contacts at `poses` and moves those still facing to the front; returns
+  // how many they are.
+  std::size_t evaluate_resting(const std::vector<Pose>& poses);
   // The resting contacts' friction for the next step of dt (held through it).
   void update_friction(double dt);
 
