@@ -50,8 +50,7 @@ void percentiles(benchmark::State& state, std::vector<double>& us) {
 }
 
 // A new sensor sample every step (noise on a 2 N push): the integrator restarts every step.
-void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
-  World w = cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0))));
+void noisy_push_steps(benchmark::State& state, World w) {
   for (int i = 0; i < 100; ++i) w.step(1e-3);
   std::mt19937 rng(1);
   std::normal_distribution<double> noise(0, 0.05);
@@ -67,27 +66,16 @@ void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
   state.counters["contacts"] = static_cast<double>(w.resting_contacts().size());
   percentiles(state, us);
 }
+void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
+  noisy_push_steps(state, cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0)))));
+}
 // Argument: -log10 of CVODE's relative tolerance.
 BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(8)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
 // The noisy push on a table with Coulomb friction mu = 0.4 (the push stays below mu m g: the cube
 // sticks): the friction solve at each step's start comes on top.
 void BM_HapticStep_RestingCube_NoisyPush_Friction(benchmark::State& state) {
-  World w = cube_on_table(1e-8, 0.4);
-  for (int i = 0; i < 100; ++i) w.step(1e-3);
-  std::mt19937 rng(1);
-  std::normal_distribution<double> noise(0, 0.05);
-  std::vector<double> us;
-  for (auto _ : state) {
-    w.set_external_wrench(0, Vec3(2 + noise(rng), noise(rng), noise(rng)), Vec3::Zero());
-    const auto t0 = Clock::now();
-    w.step(1e-3);
-    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-    state.SetIterationTime(dt);
-    us.push_back(dt * 1e6);
-  }
-  state.counters["contacts"] = static_cast<double>(w.resting_contacts().size());
-  percentiles(state, us);
+  noisy_push_steps(state, cube_on_table(1e-8, 0.4));
 }
 BENCHMARK(BM_HapticStep_RestingCube_NoisyPush_Friction)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
