@@ -18,12 +18,12 @@
 #include "link_client.hpp"
 #include "puma_model/puma_model.hpp"
 #include "safety/safety_gate.hpp"
+#include "trajectory/arm_messages.hpp"
 #include "trajectory/gate_params.hpp"
 #include "trajectory/gate_status.hpp"
 #include "trajectory/setpoint_follower.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
-#include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::robot {
@@ -214,21 +214,9 @@ class PumaDriver final : public Component {
   }
 
   void publish(Time now, const Vector6d& q, const Vector6d& qd) {
-    joint_msg_.header().stamp_ns(now.ns);
-    joint_msg_.header().seq(seq_);
-    joint_msg_.header().frame_id("base");
-    for (int j = 0; j < kDof; ++j) {
-      const auto k = static_cast<std::size_t>(j);
-      joint_msg_.position()[k] = q[j];
-      joint_msg_.velocity()[k] = qd[j];
-      joint_msg_.effort()[k] = state_.tau[k];
-    }
+    fill_joint_state(joint_msg_, now.ns, seq_, q, qd, Eigen::Map<const Vector6d>(state_.tau.data()));
     joint_out_.write(joint_msg_);
-    pose_msg_.header().stamp_ns(now.ns);
-    pose_msg_.header().seq(seq_);
-    pose_msg_.header().frame_id("base");
-    pose_msg_.child_frame_id(tip_frame_);
-    msgs::to_msg(model_->fk(q), pose_msg_.pose());
+    fill_device_pose(pose_msg_, now.ns, seq_, tip_frame_, model_->fk(q));
     pose_out_.write(pose_msg_);
     ++seq_;
   }

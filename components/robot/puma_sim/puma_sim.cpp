@@ -25,6 +25,7 @@
 #include "puma_model/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
 #include "safety/safety_gate.hpp"
+#include "trajectory/arm_messages.hpp"
 #include "trajectory/gate_params.hpp"
 #include "trajectory/gate_status.hpp"
 #include "trajectory/setpoint_follower.hpp"
@@ -292,22 +293,9 @@ class PumaSim final : public Component {
   }
 
   void publish(Time now, const Vector6d& q, const Vector6d& qd, const Eigen::Vector3d& f, const Eigen::Vector3d& t) {
-    joint_msg_.header().stamp_ns(now.ns);
-    joint_msg_.header().seq(seq_);
-    joint_msg_.header().frame_id("base");
-    for (int j = 0; j < kDof; ++j) {
-      const auto k = static_cast<std::size_t>(j);
-      joint_msg_.position()[k] = q[j];
-      joint_msg_.velocity()[k] = qd[j];
-      joint_msg_.effort()[k] = tau_[j];
-    }
+    fill_joint_state(joint_msg_, now.ns, seq_, q, qd, tau_);
     joint_out_.write(joint_msg_);
-
-    pose_msg_.header().stamp_ns(now.ns);
-    pose_msg_.header().seq(seq_);
-    pose_msg_.header().frame_id("base");
-    pose_msg_.child_frame_id(tip_frame_);
-    msgs::to_msg(model_->fk(q, tip_), pose_msg_.pose());
+    fill_device_pose(pose_msg_, now.ns, seq_, tip_frame_, model_->fk(q, tip_));
     pose_out_.write(pose_msg_);
 
     wrench_msg_.header().stamp_ns(now.ns);
