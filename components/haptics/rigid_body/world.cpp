@@ -18,6 +18,7 @@ struct World::Cvode {
   void* mem = nullptr;
   SUNNonlinearSolver nls = nullptr;
   bool initialised = false;
+  long steps_seen = 0, failures_seen = 0;  // CVODE's counters at the last count (reset by CVodeReInit)
 
   explicit Cvode(int n) {
     if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
@@ -38,6 +39,18 @@ struct World::Cvode {
   static int roots(realtype, N_Vector y, realtype* g, void* user) {
     static_cast<World*>(user)->roots(N_VGetArrayPointer(y), g);
     return 0;
+  }
+  void reinit(double t) {
+    check(CVodeReInit(mem, t, y), "CVodeReInit");
+    steps_seen = failures_seen = 0;
+  }
+  void count_work(StepReport& report) {
+    long steps = 0, failures = 0;
+    CVodeGetNumSteps(mem, &steps);
+    CVodeGetNumErrTestFails(mem, &failures);
+    report.integrator_steps += static_cast<int>(steps - steps_seen);
+    report.error_test_failures += static_cast<int>(failures - failures_seen);
+    steps_seen = steps, failures_seen = failures;
   }
   static void check(int flag, const char* call) {
     if (flag < 0) throw std::runtime_error(std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag));
@@ -443,7 +456,7 @@ StepReport World::step(double dt) {
       Cvode::check(CVodeSetMaxNumSteps(cv.mem, 100000), "CVodeSetMaxNumSteps");
       cv.initialised = true;
     } else {
-      Cvode::check(CVodeReInit(cv.mem, t_, cv.y), "CVodeReInit");
+      cv.reinit(t_);
     }
     Cvode::check(CVodeSStolerances(cv.mem, params_.rtol, params_.atol), "CVodeSStolerances");
     // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of the
@@ -459,6 +472,7 @@ StepReport World::step(double dt) {
     realtype t_reached = t_;
     const int flag = CVode(cv.mem, t_end, cv.y, &t_reached, CV_NORMAL);
     Cvode::check(flag, "CVode");
+    cv.count_work(report_);
     unpack(y, states_);
     t_ = t_reached;
     if (flag != CV_ROOT_RETURN) break;
@@ -484,7 +498,7 @@ StepReport World::step(double dt) {
     watched_ = std::move(still_watched);
     if (report_.collisions >= params_.max_collisions_per_step) watched_.clear();  // no more events this step
     pack(y);
-    Cvode::check(CVodeReInit(cv.mem, t_, cv.y), "CVodeReInit");
+    cv.reinit(t_);
     reinit_roots();
     if (t_ >= t_end) break;
   }

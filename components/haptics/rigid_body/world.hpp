@@ -52,6 +52,8 @@ struct ActiveContact {
 struct StepReport {
   int collisions = 0;       // impact events (roots) inside the step
   int rhs_evaluations = 0;
+  int integrator_steps = 0;      // CVODE's internal steps
+  int error_test_failures = 0;   // CVODE's rejected steps
   int lcp_failures = 0;
   int friction_unconverged = 0;  // friction rounds that did not settle (forces still bounded)
 };
