@@ -1,5 +1,6 @@
 #include "contact.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -107,9 +108,24 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   vertex_faces(a, b, ca);
   vertex_faces(b, a, cb);  // corners of b on faces of a (a table corner under the cube)
   const auto& edges = BoxTopology::edges();
+  // An edge in contact with the other box passes within the other's bounding sphere (a table's
+  // far edges, metres away, are not looked at again).
+  auto near_edges = [&](const std::array<Vec3, 8>& corners, const Vec3& centre, double radius) {
+    std::array<bool, 12> near{};
+    for (int e = 0; e < 12; ++e) {
+      const Vec3 e0 = corners[edges[e][0]], de = corners[edges[e][1]] - e0;
+      const double s = std::clamp((centre - e0).dot(de) / de.squaredNorm(), 0.0, 1.0);
+      near[e] = (e0 + s * de - centre).squaredNorm() <= radius * radius;
+    }
+    return near;
+  };
+  const std::array<bool, 12> near_a = near_edges(ca, poses[b].x, mb.half_extents.norm() + margin);
+  const std::array<bool, 12> near_b = near_edges(cb, poses[a].x, ma.half_extents.norm() + margin);
   for (int ea = 0; ea < 12; ++ea) {
+    if (!near_a[ea]) continue;
     const Vec3 a0 = ca[edges[ea][0]], da = ca[edges[ea][1]] - a0;
     for (int eb = 0; eb < 12; ++eb) {
+      if (!near_b[eb]) continue;
       const Vec3 b0 = cb[edges[eb][0]], db = cb[edges[eb][1]] - b0;
       // Cheap rejection: the edges' bounding spheres.
       const double r = 0.5 * (da.norm() + db.norm()) + margin;
