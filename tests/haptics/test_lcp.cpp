@@ -121,4 +121,50 @@ TEST(Lcp, SeparatingContactsGetNoForce) {
   EXPECT_EQ(r.f.cwiseAbs().maxCoeff(), 0.0);
 }
 
+// A warm start from the clamped set of a nearby problem (the previous right-hand side's) is
+// taken when it is a solution and skips the pivoting; a stale or malformed one is never trusted.
+TEST(Lcp, WarmStartFromANearbyProblemSolvesWithoutPivotingAndNeverTrustsABadSet) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  LcpSolver solver;
+  int warm = 0, trials = 0;
+  double worst = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Problem p = trial % 2 ? contact_problem(rng, 1 + trial % 12, 2) : Problem{resting_cube_matrix(trial % 4 == 0), {}};
+    if (trial % 2 == 0) p.b = Eigen::VectorXd::Constant(p.A.rows(), -9.81 + u(rng));
+    const LcpResult first = solver.solve(p.A, p.b);
+    ASSERT_TRUE(first.ok);
+    // The next right-hand side: the same contacts, slightly different loads.
+    Eigen::VectorXd b2 = p.b;
+    for (Eigen::Index i = 0; i < b2.size(); ++i) b2[i] += 1e-3 * u(rng);
+    const LcpResult cold = solver.solve(p.A, b2);
+    const LcpResult r = solver.solve(p.A, b2, first.clamped);
+    ASSERT_TRUE(r.ok);
+    ++trials;
+    if (r.warm) {
+      ++warm;
+      EXPECT_EQ(r.pivots, 0);
+    }
+    worst = std::max(worst, r.residual());
+    EXPECT_LE((p.A * r.f + b2 - r.a).cwiseAbs().maxCoeff(), 1e-9);
+    // The accelerations of a frictionless LCP are unique, whichever forces produce them.
+    EXPECT_LE((r.a - cold.a).cwiseAbs().maxCoeff(), 1e-9) << "trial " << trial;
+  }
+  EXPECT_LE(worst, 1e-9);
+  EXPECT_GT(warm, trials / 2);  // nearby problems mostly keep their clamped set
+
+  // A set that is no solution (a lifted corner clamped), indices out of range, duplicates:
+  // the pivoting method answers.
+  const Eigen::MatrixXd A = resting_cube_matrix(false);
+  Eigen::VectorXd b = Eigen::VectorXd::Constant(4, -9.81);
+  b[3] = 50;  // corner 3 is pulled away hard
+  for (const LcpIndices& bad : {LcpIndices{{0, 1, 3}}, LcpIndices{{0, 7}}, LcpIndices{{1, 1}}, LcpIndices{{-1}}}) {
+    const LcpResult r = solver.solve(A, b, bad);
+    ASSERT_TRUE(r.ok);
+    EXPECT_FALSE(r.warm);
+    EXPECT_LE(r.residual(), 1e-9);
+    EXPECT_EQ(r.f[3], 0.0);
+  }
+}
+
 }  // namespace wysiwyf::haptics

@@ -32,11 +32,13 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   std::vector<Eigen::Index> stick_rows;
   Eigen::MatrixXd Akk;
   Eigen::VectorXd rhs, weight;
+  LcpIndices clamped;  // each round's normal LCP starts from the last one's clamped set
   for (r.iterations = 1; r.iterations <= max_rounds; ++r.iterations) {
     // Normal forces, friction as a known load.
     bn_eff_ = bn + Ant * r.ft;
-    const LcpResult normal = lcp.solve(Ann_, bn_eff_);
+    const LcpResult normal = lcp.solve(Ann_, bn_eff_, clamped);
     if (!normal.ok) return r;
+    clamped = normal.clamped;
     r.ok = true;
     r.fn = normal.f;
     // Friction forces, normal forces fixed: sliders at the rim, stickers exact; a sticker beyond

@@ -31,21 +31,26 @@ double LcpResult::residual() const {
   return r;
 }
 
-// The force direction that keeps every clamped contact's acceleration at zero while f_d grows by 1.
-LcpVector LcpSolver::direction(const LcpMatrix& A, int d) {
-  const Eigen::Index n = A.rows();
-  LcpVector df = LcpVector::Zero(n);
-  df[d] = 1;
+// x with A_CC x_C = rhs_C on the clamped set C, zero elsewhere.
+LcpVector LcpSolver::on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const {
+  LcpVector x = LcpVector::Zero(A.rows());
   const auto nc = static_cast<Eigen::Index>(clamped_.size());
-  if (nc == 0) return df;
+  if (nc == 0) return x;
   LcpMatrix Acc(nc, nc);
-  LcpVector rhs(nc);
+  LcpVector rhs_c(nc);
   for (Eigen::Index i = 0; i < nc; ++i) {
-    rhs[i] = -A(clamped_[i], d);
+    rhs_c[i] = rhs[clamped_[i]];
     for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
   }
-  const LcpVector x = solve_clamped(Acc, rhs);
-  for (Eigen::Index i = 0; i < nc; ++i) df[clamped_[i]] = x[i];
+  const LcpVector x_c = solve_clamped(Acc, rhs_c);
+  for (Eigen::Index i = 0; i < nc; ++i) x[clamped_[i]] = x_c[i];
+  return x;
+}
+
+// The force direction that keeps every clamped contact's acceleration at zero while f_d grows by 1.
+LcpVector LcpSolver::direction(const LcpMatrix& A, int d) {
+  LcpVector df = on_clamped_set(A, -A.col(d));
+  df[d] = 1;
   return df;
 }
 
@@ -54,28 +59,64 @@ LcpVector LcpSolver::direction(const LcpMatrix& A, int d) {
 // forces of the final clamped set carry no such squeeze; they replace the pivoting result when
 // they are still a solution.
 void LcpSolver::polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r) {
-  const auto nc = static_cast<Eigen::Index>(clamped_.size());
-  if (nc == 0) return;
-  LcpMatrix Acc(nc, nc);
-  LcpVector rhs(nc);
-  for (Eigen::Index i = 0; i < nc; ++i) {
-    rhs[i] = -b[clamped_[i]];
-    for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
-  }
-  const LcpVector x = solve_clamped(Acc, rhs);
-  LcpVector f = LcpVector::Zero(b.size());
-  for (Eigen::Index i = 0; i < nc; ++i) f[clamped_[i]] = x[i];
+  if (clamped_.empty()) return;
+  const LcpVector f = on_clamped_set(A, -b);
   const LcpVector a = A * f + b;
   const double tol = 1e-12 * std::max(1.0, b.cwiseAbs().maxCoeff());
   if (f.minCoeff() < -tol || a.minCoeff() < -tol) return;  // not a solution: keep the pivoting one
   if (f.cwiseAbs().maxCoeff() < r.f.cwiseAbs().maxCoeff()) r.f = f;
 }
 
+namespace {
+void check_size(Eigen::Index n) {
+  if (n > kMaxLcpSize)
+    throw std::length_error("LCP with " + std::to_string(n) + " contacts; at most " + std::to_string(kMaxLcpSize) +
+                            " are supported");
+}
+}
+
 LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
-  if (b.size() > kMaxLcpSize)
-    throw std::length_error("LCP with " + std::to_string(b.size()) + " contacts; at most " +
-                            std::to_string(kMaxLcpSize) + " are supported");
+  check_size(b.size());
   return solve_small(A, b);
+}
+
+LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const LcpIndices& warm_start) {
+  check_size(b.size());
+  const LcpMatrix As = A;
+  const LcpVector bs = b;
+  const Eigen::Index n = b.size();
+  state_.assign(static_cast<std::size_t>(n), kNotClamped);
+  clamped_.clear();
+  for (const int i : warm_start) {
+    if (i < 0 || i >= n || state_[static_cast<std::size_t>(i)] == kClamped) {  // not a set of this problem
+      clamped_.clear();
+      break;
+    }
+    state_[static_cast<std::size_t>(i)] = kClamped;
+    clamped_.push_back(i);
+  }
+  LcpResult r;
+  if (!clamped_.empty() && solve_on_clamped_set(As, bs, r)) return r;
+  return solve_small(As, bs);
+}
+
+bool LcpSolver::solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r) {
+  const Eigen::Index n = b.size();
+  r.f = on_clamped_set(A, -b);
+  r.a = A * r.f + b;
+  // The same judgement of round-off as the pivoting method's.
+  const double scale_A = std::max(A.cwiseAbs().maxCoeff(), 1e-300);
+  const double tol = tol_ * std::max({1.0, b.cwiseAbs().maxCoeff(), scale_A * r.f.cwiseAbs().maxCoeff()});
+  const double f_tol = tol / scale_A;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const bool in_c = state_[static_cast<std::size_t>(i)] == kClamped;
+    if (in_c ? (r.f[i] < -f_tol || std::abs(r.a[i]) > tol) : r.a[i] < -tol) return false;
+  }
+  for (Eigen::Index i = 0; i < n; ++i) r.f[i] = std::max(r.f[i], 0.0);
+  r.a = A * r.f + b;
+  r.clamped = Eigen::Map<const LcpIndices>(clamped_.data(), static_cast<Eigen::Index>(clamped_.size()));
+  r.warm = r.ok = true;
+  return true;
 }
 
 LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
@@ -157,6 +198,7 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
   // Clean round-off: forces never negative, accelerations consistent with them.
   for (Eigen::Index i = 0; i < n; ++i) r.f[i] = std::max(r.f[i], 0.0);
   r.a = A * r.f + b;
+  r.clamped = Eigen::Map<const LcpIndices>(clamped_.data(), static_cast<Eigen::Index>(clamped_.size()));
   r.ok = true;
   return r;
 }

@@ -15,11 +15,14 @@ namespace wysiwyf::haptics {
 constexpr int kMaxLcpSize = 48;
 using LcpVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
 using LcpMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLcpSize, kMaxLcpSize>;
+using LcpIndices = Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
 
 struct LcpResult {
   LcpVector f;     // the forces (or impulses), >= 0
   LcpVector a;     // A f + b, >= 0
+  LcpIndices clamped;  // the final clamped set C: a warm start for a nearby problem
   int pivots = 0;
+  bool warm = false;     // solved on the warm start's clamped set, without pivoting
   bool ok = false;       // false: no solution within the pivot limit (A not PSD, or degenerate cycling)
   // The natural complementarity residual max_i |min(f_i, a_i)|: 0 exactly at a solution.
   double residual() const;
@@ -30,10 +33,18 @@ class LcpSolver {
   // tolerance: how negative a_i may be and still count as satisfied (scaled by max |A|, |b|).
   explicit LcpSolver(double tolerance = 1e-12) : tol_(tolerance) {}
   LcpResult solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
+  // Warm start: the clamped set of a nearby problem (the previous right-hand side's, the previous
+  // friction round's). If the forces that hold exactly those contacts at zero acceleration are a
+  // solution (f_C >= 0, a elsewhere >= 0), they are returned without pivoting; otherwise the
+  // pivoting method runs as without it. Either way the result is an exact solution.
+  LcpResult solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const LcpIndices& warm_start);
 
  private:
   // Throws std::length_error beyond kMaxLcpSize contacts.
   LcpResult solve_small(const LcpMatrix& A, const LcpVector& b);
+  // The solution with clamped set C (clamped_), if there is one.
+  bool solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
+  LcpVector on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const;
   LcpVector direction(const LcpMatrix& A, int d);
   void polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
 

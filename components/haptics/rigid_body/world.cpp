@@ -137,28 +137,31 @@ void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& po
   }
 }
 
-// J (rows x 6 per dynamic body), then A = J M^-1 J^T.
+// A = J M^-1 J^T, one entry at a time: a row of J touches at most two bodies, so the dense
+// product over 6 columns per dynamic body would be mostly zeros.
 void World::contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
                            bool with_tangents) {
-  const auto m = static_cast<Eigen::Index>(count);
-  const Eigen::Index rows = with_tangents ? 3 * m : m;
-  const auto n = static_cast<Eigen::Index>(6 * dynamic_.size());
-  J_.setZero(rows, n);
-  MinvJt_.resize(n, rows);
+  const std::size_t rows = with_tangents ? 3 * count : count;
+  jacobian_.resize(rows);
   if (with_tangents) tangents_.resize(count);
-  auto add_row = [&](Eigen::Index row, const ActiveContact& c, const Vec3& d) {
+  auto set_row = [&](std::size_t row, const ActiveContact& c, const Vec3& d) {
+    JacobianRow& out = jacobian_[row];
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? c.feature.a : c.feature.b;
+      out.slot[side] = slot_[body];
       if (slot_[body] < 0) continue;
-      const double sgn = side == 0 ? 1.0 : -1.0;
-      const Vec3 r = c.point.p - poses[body].x;
-      J_.block<1, 3>(row, 6 * slot_[body]) += sgn * d.transpose();
-      J_.block<1, 3>(row, 6 * slot_[body] + 3) += sgn * r.cross(d).transpose();
+      const Pose& p = poses[body];
+      const Vec3 ds = side == 0 ? d : Vec3(-d);
+      const Vec3 moment = (c.point.p - p.x).cross(ds);
+      out.j[side].head<3>() = ds;
+      out.j[side].tail<3>() = moment;
+      out.minv_j[side].head<3>() = p.inv_mass * ds;
+      out.minv_j[side].tail<3>() = p.inv_inertia * moment;
     }
   };
-  for (Eigen::Index i = 0; i < m; ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     const auto& c = contacts[i];
-    add_row(i, c, c.point.n);
+    set_row(i, c, c.point.n);
     if (!with_tangents) continue;
     // Any orthonormal pair spanning the tangent plane (the friction disc is isotropic).
     const Vec3& nn = c.point.n;
@@ -166,17 +169,21 @@ void World::contact_matrix(const ActiveContact* contacts, std::size_t count, con
     nn.cwiseAbs().minCoeff(&least);
     const Vec3 t1 = nn.cross(Vec3::Unit(least)).normalized();
     const Vec3 t2 = nn.cross(t1);
-    tangents_[static_cast<std::size_t>(i)] = {t1, t2};
-    add_row(m + 2 * i, c, t1);
-    add_row(m + 2 * i + 1, c, t2);
+    tangents_[i] = {t1, t2};
+    set_row(count + 2 * i, c, t1);
+    set_row(count + 2 * i + 1, c, t2);
   }
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const Pose& p = poses[dynamic_[k]];
-    const auto cols = static_cast<Eigen::Index>(6 * k);
-    MinvJt_.middleRows<3>(cols) = p.inv_mass * J_.middleCols<3>(cols).transpose();
-    MinvJt_.middleRows<3>(cols + 3) = p.inv_inertia * J_.middleCols<3>(cols + 3).transpose();
-  }
-  A_.noalias() = J_ * MinvJt_;
+  const auto n = static_cast<Eigen::Index>(rows);
+  A_.resize(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index k = 0; k <= i; ++k) {
+      const JacobianRow &ri = jacobian_[static_cast<std::size_t>(i)], &rk = jacobian_[static_cast<std::size_t>(k)];
+      double sum = 0;
+      for (int s = 0; s < 2; ++s)
+        for (int t = 0; t < 2; ++t)
+          if (ri.slot[s] >= 0 && ri.slot[s] == rk.slot[t]) sum += ri.j[s].dot(rk.minv_j[t]);
+      A_(i, k) = A_(k, i) = sum;
+    }
 }
 
 bool World::friction_coefficients(const ActiveContact* contacts, std::size_t count) {
@@ -218,6 +225,18 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
   b_free_.resize(m);
   if (tangent_horizon > 0) bt_.resize(2 * m), vt_.resize(2 * m);
   const double ws = 2 * M_PI * params_.stabilisation_hz;
+  // Each body's accelerations under the applied loads alone (zero for static bodies).
+  acc_.resize(models_.size());
+  for (std::size_t body = 0; body < models_.size(); ++body) {
+    auto& [linear, angular] = acc_[body];
+    if (slot_[body] < 0) {
+      linear.setZero(), angular.setZero();
+      continue;
+    }
+    const Pose& p = poses[body];
+    linear = force_[body] * p.inv_mass;
+    angular = p.inv_inertia * (torque_[body] - p.omega.cross(states[body].L));
+  }
   for (std::size_t i = 0; i < live; ++i) {
     const auto& c = active[i].point;
     double acc = 0, gap_rate = 0;
@@ -227,11 +246,8 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
       const double sgn = side == 0 ? 1.0 : -1.0;
       const Pose& p = poses[body];
       const Vec3 r = c.p - p.x;
-      Vec3 a = p.omega.cross(p.omega.cross(r));  // centripetal
-      if (slot_[body] >= 0) {
-        const Vec3 alpha = p.inv_inertia * (torque_[body] - p.omega.cross(states[body].L));
-        a += force_[body] * p.inv_mass + alpha.cross(r);
-      }
+      const auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
+      const Vec3 a = p.omega.cross(p.omega.cross(r)) + linear + angular.cross(r);  // centripetal + applied
       const Vec3 vp = p.v + p.omega.cross(r);
       acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
       gap_rate += sgn * c.n.dot(vp);
@@ -296,12 +312,17 @@ void World::rhs(const double* y, double* ydot) {
     const ActiveContact* active = resting_.data();
     contact_matrix(active, live, scratch_poses_);
     contact_terms(active, live, scratch_states_, scratch_poses_, 0);
-    LcpResult r = lcp_.solve(A_, b_);
+    // Warm-started from the last right-hand side's clamped set: the contacts rarely change
+    // between evaluations, and then one small solve replaces the pivoting.
+    LcpResult r = lcp_.solve(A_, b_, rhs_clamped_);
     // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
     // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
     // problem is always solvable (frictionless, b in the range of J): fall back to it.
     if (!r.ok) r = lcp_.solve(A_, b_free_);
-    if (!r.ok) ++report_.lcp_failures;
+    if (r.ok)
+      rhs_clamped_ = r.clamped;
+    else
+      ++report_.lcp_failures;
     for (std::size_t i = 0; i < live; ++i) {
       const double f = r.f[static_cast<Eigen::Index>(i)];
       resting_[i].force = f;

@@ -91,7 +91,7 @@ class World {
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to states_; returns false if it failed.
   bool collide(std::vector<ActiveContact>& contacts);
   // A = J M^-1 J^T over the first `count` of `contacts`: their normal rows, then (with_tangents)
-  // two tangent rows per contact along tangents_.
+  // two tangent rows per contact along tangents_. The rows of J are kept in jacobian_.
   void contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
                       bool with_tangents = false);
   // The contacts' friction coefficients into mu_; true if any is > 0.
@@ -121,12 +121,21 @@ class World {
   bool roots_changed_ = true;                // CVodeRootInit must be called again
   std::unique_ptr<Cvode> cvode_;
   LcpSolver lcp_;
+  LcpIndices rhs_clamped_;  // the last right-hand side's clamped contacts (indices into resting_)
   FrictionSolver friction_;
   // Scratch, reused across right-hand-side evaluations.
   std::vector<BodyState> scratch_states_;
   std::vector<Pose> scratch_poses_;
   std::vector<Vec3> force_, torque_;
-  Eigen::MatrixXd J_, MinvJt_, A_;
+  // A row of J: a unit force along a contact direction as it acts on each side's body (force and
+  // moment about the centre of mass), and M^-1 times that; slot -1 for a static body.
+  struct JacobianRow {
+    int slot[2];
+    Eigen::Matrix<double, 6, 1> j[2], minv_j[2];
+  };
+  std::vector<JacobianRow> jacobian_;
+  std::vector<std::pair<Vec3, Vec3>> acc_;  // per body: linear and angular acceleration under the applied loads
+  Eigen::MatrixXd A_;
   Eigen::VectorXd b_, b_free_;  // with and without the gap feedback
   Eigen::VectorXd bt_, vt_, mu_;  // tangent rows' free terms and sliding velocities, friction coefficients
   std::vector<std::array<Vec3, 2>> tangents_;
