@@ -74,7 +74,7 @@ void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
   noisy_push_steps(state, cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0)))));
 }
 // Argument: -log10 of CVODE's relative tolerance.
-BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(8)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(8)->Arg(7)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
 // The noisy push on a table with Coulomb friction mu = 0.4 (the push stays below mu m g: the cube
 // sticks): the friction solve at each step's start comes on top.

@@ -7,7 +7,11 @@ Mat3 BodyModel::box_inertia(double mass, const Vec3& h) {
   return (mass / 12.0 * Vec3(s.y() + s.z(), s.x() + s.z(), s.x() + s.y())).asDiagonal();
 }
 
-BodyKinematics::BodyKinematics(const BodyModel& m, const BodyState& s) : R(s.q.normalized().toRotationMatrix()) {
+BodyKinematics::BodyKinematics(const BodyModel& m, const BodyState& s)
+    : BodyKinematics(m, s, m.dynamic ? Mat3(m.inertia_body.inverse()) : Mat3::Zero()) {}
+
+BodyKinematics::BodyKinematics(const BodyModel& m, const BodyState& s, const Mat3& inv_inertia_body)
+    : R(s.q.normalized().toRotationMatrix()) {
   if (!m.dynamic) {
     v.setZero();
     omega.setZero();
@@ -15,7 +19,7 @@ BodyKinematics::BodyKinematics(const BodyModel& m, const BodyState& s) : R(s.q.n
     return;
   }
   inv_mass = 1.0 / m.mass;
-  inv_inertia_world = R * m.inertia_body.inverse() * R.transpose();
+  inv_inertia_world = R * inv_inertia_body * R.transpose();
   v = s.P * inv_mass;
   omega = inv_inertia_world * s.L;
 }

@@ -41,6 +41,8 @@ struct BodyKinematics {
   double inv_mass = 0;     // zero for static bodies
 
   BodyKinematics(const BodyModel& m, const BodyState& s);
+  // With the body-frame inverse inertia already at hand (the simulation's inner loop).
+  BodyKinematics(const BodyModel& m, const BodyState& s, const Mat3& inv_inertia_body);
   Vec3 point_velocity(const Vec3& p, const Vec3& x) const { return v + omega.cross(p - x); }
 };
 

@@ -10,6 +10,15 @@ namespace {
 
 Vec3 corner_world(const BodyModel& m, const Pose& s, int i) { return s.x + s.R * BoxTopology::corner(m.half_extents, i); }
 
+// All eight, from the three half-edge vectors (corner_world's order: x fastest, then y, z).
+std::array<Vec3, 8> corners_world(const BodyModel& m, const Pose& s) {
+  const Vec3 hx = m.half_extents.x() * s.R.col(0), hy = m.half_extents.y() * s.R.col(1),
+             hz = m.half_extents.z() * s.R.col(2);
+  std::array<Vec3, 8> c;
+  for (int i = 0; i < 8; ++i) c[i] = s.x + ((i & 1) ? hx : Vec3(-hx)) + ((i & 2) ? hy : Vec3(-hy)) + ((i & 4) ? hz : Vec3(-hz));
+  return c;
+}
+
 ContactPoint vertex_face(const ContactFeature& f, const BodyModel& ma, const Pose& sa, const BodyModel& mb,
                          const Pose& sb, double slack) {
   ContactPoint c;
@@ -71,11 +80,7 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   if ((poses[a].x - poses[b].x).squaredNorm() > reach * reach) return;  // bounding spheres apart
   // Deeper than this is the far side of the other box, not a contact.
   const double depth = 0.5 * std::min(ma.half_extents.minCoeff(), mb.half_extents.minCoeff());
-  std::array<Vec3, 8> ca, cb;  // world corners, computed once
-  for (int i = 0; i < 8; ++i) {
-    ca[i] = corner_world(ma, poses[a], i);
-    cb[i] = corner_world(mb, poses[b], i);
-  }
+  const std::array<Vec3, 8> ca = corners_world(ma, poses[a]), cb = corners_world(mb, poses[b]);
   // Corners of one box against the faces of the other, in the other's frame.
   auto vertex_faces = [&](int va, int vb, const std::array<Vec3, 8>& corners) {
     const BodyModel& other = models[vb];
@@ -110,22 +115,26 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   const auto& edges = BoxTopology::edges();
   // An edge in contact with the other box passes within the other's bounding sphere (a table's
   // far edges, metres away, are not looked at again).
+  struct NearEdges {
+    std::array<int, 12> index;
+    int count = 0;
+  };
   auto near_edges = [&](const std::array<Vec3, 8>& corners, const Vec3& centre, double radius) {
-    std::array<bool, 12> near{};
+    NearEdges near;
     for (int e = 0; e < 12; ++e) {
       const Vec3 e0 = corners[edges[e][0]], de = corners[edges[e][1]] - e0;
       const double s = std::clamp((centre - e0).dot(de) / de.squaredNorm(), 0.0, 1.0);
-      near[e] = (e0 + s * de - centre).squaredNorm() <= radius * radius;
+      if ((e0 + s * de - centre).squaredNorm() <= radius * radius) near.index[near.count++] = e;
     }
     return near;
   };
-  const std::array<bool, 12> near_a = near_edges(ca, poses[b].x, mb.half_extents.norm() + margin);
-  const std::array<bool, 12> near_b = near_edges(cb, poses[a].x, ma.half_extents.norm() + margin);
-  for (int ea = 0; ea < 12; ++ea) {
-    if (!near_a[ea]) continue;
+  const NearEdges near_b = near_edges(cb, poses[a].x, ma.half_extents.norm() + margin);
+  const NearEdges near_a = near_b.count ? near_edges(ca, poses[b].x, mb.half_extents.norm() + margin) : NearEdges{};
+  for (int i = 0; i < near_a.count; ++i) {
+    const int ea = near_a.index[i];
     const Vec3 a0 = ca[edges[ea][0]], da = ca[edges[ea][1]] - a0;
-    for (int eb = 0; eb < 12; ++eb) {
-      if (!near_b[eb]) continue;
+    for (int j = 0; j < near_b.count; ++j) {
+      const int eb = near_b.index[j];
       const Vec3 b0 = cb[edges[eb][0]], db = cb[edges[eb][1]] - b0;
       // Cheap rejection: the edges' bounding spheres.
       const double r = 0.5 * (da.norm() + db.norm()) + margin;

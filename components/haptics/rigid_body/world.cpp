@@ -5,6 +5,7 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,15 @@ struct World::Cvode {
     static_cast<World*>(user)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     return 0;
   }
+  // CVODE's error weights 1 / (rtol |y_i| + atol), in one pass (its own scalar-tolerance
+  // version takes five vector operations, at every step).
+  static int error_weights(N_Vector y, N_Vector ewt, void* user) {
+    const WorldParams& p = static_cast<World*>(user)->params_;
+    const double* yy = N_VGetArrayPointer(y);
+    double* w = N_VGetArrayPointer(ewt);
+    for (sunindextype i = 0, n = N_VGetLength(y); i < n; ++i) w[i] = 1.0 / (p.rtol * std::abs(yy[i]) + p.atol);
+    return 0;
+  }
   static int roots(realtype, N_Vector y, realtype* g, void* user) {
     static_cast<World*>(user)->roots(N_VGetArrayPointer(y), g);
     return 0;
@@ -60,6 +70,9 @@ struct World::Cvode {
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
     : models_(std::move(models)), states_(std::move(initial)), params_(params) {
   if (models_.size() != states_.size()) throw std::invalid_argument("World: one initial state per body expected");
+  if (!(params_.rtol >= 0) || !(params_.atol > 0))
+    throw std::invalid_argument("World: tolerances rtol >= 0 and atol > 0 expected, got rtol " +
+                                std::to_string(params_.rtol) + ", atol " + std::to_string(params_.atol));
   slot_.assign(models_.size(), -1);
   for (std::size_t i = 0; i < models_.size(); ++i) {
     const auto& m = models_[i];
@@ -73,6 +86,10 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, Worl
       dynamic_.push_back(static_cast<int>(i));
     }
     states_[i].q.normalize();
+  }
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    inv_inertia_body_.push_back(models_[i].dynamic ? Mat3(models_[i].inertia_body.inverse()) : Mat3::Zero());
+    static_poses_.push_back(pose_of(static_cast<int>(i), states_[i]));
   }
   ext_force_.assign(models_.size(), Vec3::Zero());
   ext_torque_.assign(models_.size(), Vec3::Zero());
@@ -93,6 +110,7 @@ void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque)
 void World::set_state(int i, const BodyState& s) {
   states_[i] = s;
   states_[i].q.normalize();
+  static_poses_[i] = pose_of(i, states_[i]);
   restart_ = true;
 }
 
@@ -129,12 +147,14 @@ void World::unpack(const double* y, std::vector<BodyState>& states) const {
   }
 }
 
+Pose World::pose_of(int i, const BodyState& s) const {
+  const BodyKinematics k(models_[i], s, inv_inertia_body_[i]);
+  return Pose{s.x, k.R, k.v, k.omega, k.inv_mass, k.inv_inertia_world};
+}
+
 void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const {
-  poses.resize(states.size());
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    const BodyKinematics k(models_[i], states[i]);
-    poses[i] = Pose{states[i].x, k.R, k.v, k.omega, k.inv_mass, k.inv_inertia_world};
-  }
+  poses = static_poses_;  // (static bodies do not move)
+  for (int i : dynamic_) poses[i] = pose_of(i, states[i]);
 }
 
 // A = J M^-1 J^T, one entry at a time: a row of J touches at most two bodies, so the dense
@@ -225,14 +245,10 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
   b_free_.resize(m);
   if (tangent_horizon > 0) bt_.resize(2 * m), vt_.resize(2 * m);
   const double ws = 2 * M_PI * params_.stabilisation_hz;
-  // Each body's accelerations under the applied loads alone (zero for static bodies).
+  // Each dynamic body's accelerations under the applied loads alone.
   acc_.resize(models_.size());
-  for (std::size_t body = 0; body < models_.size(); ++body) {
-    auto& [linear, angular] = acc_[body];
-    if (slot_[body] < 0) {
-      linear.setZero(), angular.setZero();
-      continue;
-    }
+  for (const int body : dynamic_) {
+    auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
     const Pose& p = poses[body];
     linear = force_[body] * p.inv_mass;
     angular = p.inv_inertia * (torque_[body] - p.omega.cross(states[body].L));
@@ -243,6 +259,7 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
     Vec3 a_rel = Vec3::Zero(), v_rel = Vec3::Zero();  // of a's point relative to b's
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
+      if (slot_[body] < 0) continue;  // a static body's points neither move nor accelerate
       const double sgn = side == 0 ? 1.0 : -1.0;
       const Pose& p = poses[body];
       const Vec3 r = c.p - p.x;
@@ -409,16 +426,18 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
 }
 
 void World::classify_contacts() {
-  std::vector<Pose> poses;
+  std::vector<Pose>& poses = scratch_poses_;
   poses_of(states_, poses);
-  std::vector<ContactFeature> candidates;
+  candidates_.clear();
   for (int a : dynamic_)
     for (int b = 0; b < body_count(); ++b)
-      if (b != a && (!models_[b].dynamic || a < b)) find_candidates(a, b, models_, poses, params_.margin, candidates);
-  std::vector<ActiveContact> touching;
-  std::vector<ContactFeature> watched;
+      if (b != a && (!models_[b].dynamic || a < b)) find_candidates(a, b, models_, poses, params_.margin, candidates_);
+  std::vector<ActiveContact>& touching = touching_;
+  std::vector<ContactFeature>& watched = watched_next_;
+  touching.clear();
+  watched.clear();
   bool colliding = false;
-  for (const auto& f : candidates) {
+  for (const auto& f : candidates_) {
     const ContactPoint c = evaluate(f, models_, poses);
     if (!c.valid) continue;
     if (c.gap > params_.contact_tolerance) {
@@ -435,18 +454,14 @@ void World::classify_contacts() {
     ++report_.collisions;
     restart_ = true;
   }
-  auto same = [](const std::vector<ContactFeature>& x, const std::vector<ActiveContact>& y) {
-    if (x.size() != y.size()) return false;
-    for (std::size_t i = 0; i < x.size(); ++i)
-      if (!(x[i] == y[i].feature)) return false;
-    return true;
-  };
-  std::vector<ContactFeature> old_resting;
-  for (const auto& c : resting_) old_resting.push_back(c.feature);
+  const bool same_resting =
+      touching.size() == resting_.size() &&
+      std::equal(touching.begin(), touching.end(), resting_.begin(),
+                 [](const ActiveContact& x, const ActiveContact& y) { return x.feature == y.feature; });
+  if (!same_resting) restart_ = true;
   if (watched != watched_) restart_ = roots_changed_ = true;
-  if (!same(old_resting, touching)) restart_ = true;
-  resting_ = std::move(touching);
-  watched_ = std::move(watched);
+  resting_.swap(touching);  // (the scratch vectors keep their capacity)
+  watched_.swap(watched);
 }
 
 StepReport World::step(double dt) {
@@ -475,15 +490,17 @@ StepReport World::step(double dt) {
       cv.nls = SUNNonlinSol_FixedPoint(cv.y, 0, cv.ctx);
       Cvode::check(CVodeSetNonlinearSolver(cv.mem, cv.nls), "CVodeSetNonlinearSolver");
       Cvode::check(CVodeSetMaxNumSteps(cv.mem, 100000), "CVodeSetMaxNumSteps");
-      cv.initialised = true;
+      Cvode::check(CVodeWFtolerances(cv.mem, &Cvode::error_weights), "CVodeWFtolerances");
+      // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of
+      // the first step, which costs right-hand sides; a small fixed one grows within a few steps.
+      if (params_.initial_step > 0)
+        Cvode::check(CVodeSetInitStep(cv.mem, params_.initial_step), "CVodeSetInitStep");
+      Cvode::check(CVodeSetEtaMaxEarlyStep(cv.mem, params_.restart_growth), "CVodeSetEtaMaxEarlyStep");
+      Cvode::check(CVodeSetNonlinConvCoef(cv.mem, params_.nonlinear_convergence), "CVodeSetNonlinConvCoef");
+      cv.initialised = true;  // (CVodeReInit keeps these options)
     } else {
       cv.reinit(t_);
     }
-    Cvode::check(CVodeSStolerances(cv.mem, params_.rtol, params_.atol), "CVodeSStolerances");
-    // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of the
-    // first step, which costs right-hand sides; a small fixed one grows within a few steps.
-    if (params_.initial_step > 0)
-      Cvode::check(CVodeSetInitStep(cv.mem, params_.initial_step), "CVodeSetInitStep");
     if (roots_changed_) reinit_roots();
     restart_ = false;
   }
