@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -23,7 +24,7 @@ namespace wysiwyf::haptics {
 
 using Clock = std::chrono::steady_clock;
 
-World cube_on_table(double rtol = 1e-8, double friction = 0.0) {
+World cube_on_table(double rtol = kHapticRtol, double friction = 0.0) {
   BodyModel cube;
   cube.name = "cube";
   cube.half_extents = Vec3::Constant(0.1);
@@ -38,7 +39,7 @@ World cube_on_table(double rtol = 1e-8, double friction = 0.0) {
   c.x = Vec3(0, 0, 0.1);
   t.x = Vec3(0, 0, -0.05);
   WorldParams p;
-  p.rtol = rtol;  // admittance_sim's default: 1e-8
+  p.rtol = rtol;  // admittance_sim's default: kHapticRtol (1e-7)
   p.atol = rtol * 1e-2;
   return World({cube, table}, {c, t}, p);
 }
@@ -73,13 +74,13 @@ void noisy_push_steps(benchmark::State& state, World w) {
 void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
   noisy_push_steps(state, cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0)))));
 }
-// Argument: -log10 of CVODE's relative tolerance.
-BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(8)->Arg(7)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+// Argument: -log10 of CVODE's relative tolerance (7: admittance_sim's default).
+BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(7)->Arg(8)->Arg(6)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
 // The noisy push on a table with Coulomb friction mu = 0.4 (the push stays below mu m g: the cube
 // sticks): the friction solve at each step's start comes on top.
 void BM_HapticStep_RestingCube_NoisyPush_Friction(benchmark::State& state) {
-  noisy_push_steps(state, cube_on_table(1e-8, 0.4));
+  noisy_push_steps(state, cube_on_table(kHapticRtol, 0.4));
 }
 BENCHMARK(BM_HapticStep_RestingCube_NoisyPush_Friction)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
@@ -154,9 +155,11 @@ void BM_RealTimeLoop_1kHz_10s(benchmark::State& state) {
 BENCHMARK(BM_RealTimeLoop_1kHz_10s)->Iterations(1)->Unit(benchmark::kSecond);
 
 #ifdef WYSIWYF_HAVE_MUJOCO
-// The peer: MuJoCo, the same cube on a frictionless plane, 1 ms steps, the same 2 N push.
-void BM_MuJoCo_Step_RestingCube_Push(benchmark::State& state) {
-  static const char* xml = R"(
+// The peer: MuJoCo, the same 1 kg, 20 cm cube on a frictionless plane, 1 ms steps.
+class MujocoCube {
+ public:
+  MujocoCube() {
+    static const char* xml = R"(
 <mujoco>
   <option timestep="0.001"/>
   <worldbody>
@@ -167,36 +170,98 @@ void BM_MuJoCo_Step_RestingCube_Push(benchmark::State& state) {
     </body>
   </worldbody>
 </mujoco>)";
-  char error[1000] = "";
-  auto vfs = std::make_unique<mjVFS>();  // large: not on the stack
-  mj_defaultVFS(vfs.get());
-  mj_makeEmptyFileVFS(vfs.get(), "cube.xml", static_cast<int>(std::strlen(xml)));
-  std::memcpy(vfs->filedata[vfs->nfile - 1], xml, std::strlen(xml));
-  mjModel* m = mj_loadXML("cube.xml", vfs.get(), error, sizeof error);
-  if (!m) {
-    state.SkipWithError(error);
-    return;
+    vfs_ = std::make_unique<mjVFS>();  // large: not on the stack
+    mj_defaultVFS(vfs_.get());
+    mj_makeEmptyFileVFS(vfs_.get(), "cube.xml", static_cast<int>(std::strlen(xml)));
+    std::memcpy(vfs_->filedata[vfs_->nfile - 1], xml, std::strlen(xml));
+    char error[1000] = "";
+    m_ = mj_loadXML("cube.xml", vfs_.get(), error, sizeof error);
+    if (!m_) {
+      error_ = error;
+      return;
+    }
+    d_ = mj_makeData(m_);
+    for (int i = 0; i < 500; ++i) mj_step(m_, d_);  // settle on the plane
   }
-  mjData* d = mj_makeData(m);
-  for (int i = 0; i < 500; ++i) mj_step(m, d);  // settle on the plane
-  d->xfrc_applied[6 * 1 + 0] = 2.0;          // body 1, force x
+  ~MujocoCube() {
+    if (d_) mj_deleteData(d_);
+    if (m_) mj_deleteModel(m_);
+    if (vfs_) mj_deleteVFS(vfs_.get());
+  }
+  const std::string& error() const { return error_; }
+  void push(const Vec3& f) {
+    for (int k = 0; k < 3; ++k) d_->xfrc_applied[6 * 1 + k] = f[k];  // body 1, force
+  }
+  void step() { mj_step(m_, d_); }
+  double sink() const { return 0.1 - d_->qpos[2]; }
+
+ private:
+  std::unique_ptr<mjVFS> vfs_;
+  mjModel* m_ = nullptr;
+  mjData* d_ = nullptr;
+  std::string error_;
+};
+
+// MuJoCo alone, the push held at 2 N.
+void BM_MuJoCo_Step_RestingCube_Push(benchmark::State& state) {
+  MujocoCube mj;
+  if (!mj.error().empty()) return state.SkipWithError(mj.error().c_str());
+  mj.push(Vec3(2, 0, 0));
   std::vector<double> us;
   double sink = 0;
   for (auto _ : state) {
     const auto t0 = Clock::now();
-    mj_step(m, d);
+    mj.step();
     const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
     state.SetIterationTime(dt);
     us.push_back(dt * 1e6);
-    sink = std::max(sink, 0.1 - d->qpos[2]);
+    sink = std::max(sink, mj.sink());
   }
   state.counters["sink_mm"] = sink * 1e3;
   percentiles(state, us);
-  mj_deleteData(d);
-  mj_deleteModel(m);
-  mj_deleteVFS(vfs.get());
 }
 BENCHMARK(BM_MuJoCo_Step_RestingCube_Push)->UseManualTime()->Iterations(5000)->Unit(benchmark::kMicrosecond);
+
+// The comparison the goal is about: our haptic step (admittance_sim's tolerance) and MuJoCo's,
+// alternately, on the same noisy sampled push, so both see the same load of this shared machine.
+// The push sways (2 cos t N, plus the noise) so that 20 s keep the cube on the table.
+// Manual time is ours; ratio_p50 = our p50 / MuJoCo's p50.
+void BM_Peer_Interleaved_NoisyPush(benchmark::State& state) {
+  MujocoCube mj;
+  if (!mj.error().empty()) return state.SkipWithError(mj.error().c_str());
+  World w = cube_on_table();
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0, 0.05);
+  std::vector<double> ours, theirs;
+  double sink = 0;
+  double t = 0;
+  for (auto _ : state) {
+    const Vec3 f(2 * std::cos(t) + noise(rng), noise(rng), noise(rng));
+    t += 1e-3;
+    w.set_external_wrench(0, f, Vec3::Zero());
+    mj.push(f);
+    const auto t0 = Clock::now();
+    w.step(1e-3);
+    const auto t1 = Clock::now();
+    mj.step();
+    const auto t2 = Clock::now();
+    const double dt = std::chrono::duration<double>(t1 - t0).count();
+    state.SetIterationTime(dt);
+    ours.push_back(dt * 1e6);
+    theirs.push_back(std::chrono::duration<double>(t2 - t1).count() * 1e6);
+    sink = std::max(sink, mj.sink());
+  }
+  std::sort(ours.begin(), ours.end());
+  std::sort(theirs.begin(), theirs.end());
+  state.counters["ours_p50_us"] = ours[ours.size() / 2];
+  state.counters["ours_p99_us"] = ours[ours.size() * 99 / 100];
+  state.counters["mujoco_p50_us"] = theirs[theirs.size() / 2];
+  state.counters["ratio_p50"] = ours[ours.size() / 2] / theirs[theirs.size() / 2];
+  state.counters["mujoco_sink_mm"] = sink * 1e3;
+  state.counters["our_sink_mm"] = std::max(0.0, (0.1 - w.state(0).x.z()) * 1e3);
+}
+BENCHMARK(BM_Peer_Interleaved_NoisyPush)->UseManualTime()->Iterations(20000)->Unit(benchmark::kMicrosecond);
 #endif
 
 }  // namespace wysiwyf::haptics

@@ -14,14 +14,40 @@ constexpr char kUnset = 0, kClamped = 1, kNotClamped = 2;
 // Solves A_CC x = rhs. The clamped set is kept non-singular, so a Cholesky (LDLT) factorisation
 // does; where round-off made it singular after all, the minimum-norm solution of a complete
 // orthogonal decomposition.
+template <typename Matrix, typename Vector>
+bool solve_ldlt(const Matrix& Acc, const Vector& rhs, Vector& x) {
+  const Eigen::LDLT<Matrix> ldlt(Acc);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
+  const double smallest = ldlt.vectorD().cwiseAbs().minCoeff();
+  const double largest = ldlt.vectorD().cwiseAbs().maxCoeff();
+  if (!(smallest > 1e-12 * largest)) return false;
+  x = ldlt.solve(rhs);
+  return true;
+}
+
+// The same with a fixed-size matrix, which Eigen unrolls: the common small clamped sets (a
+// resting face holds three of its four corners) cost a fraction of the general code.
+template <int N>
+bool solve_ldlt_fixed(const LcpMatrix& Acc, const LcpVector& rhs, LcpVector& x) {
+  const Eigen::Matrix<double, N, N> A = Acc;
+  const Eigen::Matrix<double, N, 1> b = rhs;
+  Eigen::Matrix<double, N, 1> y;
+  if (!solve_ldlt(A, b, y)) return false;
+  x = y;
+  return true;
+}
+
 LcpVector solve_clamped(const LcpMatrix& Acc, const LcpVector& rhs) {
-  const Eigen::LDLT<LcpMatrix> ldlt(Acc);
-  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
-    const double smallest = ldlt.vectorD().cwiseAbs().minCoeff();
-    const double largest = ldlt.vectorD().cwiseAbs().maxCoeff();
-    if (smallest > 1e-12 * largest) return ldlt.solve(rhs);
+  LcpVector x;
+  bool ok = false;
+  switch (Acc.rows()) {
+    case 1: ok = solve_ldlt_fixed<1>(Acc, rhs, x); break;
+    case 2: ok = solve_ldlt_fixed<2>(Acc, rhs, x); break;
+    case 3: ok = solve_ldlt_fixed<3>(Acc, rhs, x); break;
+    case 4: ok = solve_ldlt_fixed<4>(Acc, rhs, x); break;
+    default: ok = solve_ldlt(Acc, rhs, x);
   }
-  return Acc.completeOrthogonalDecomposition().solve(rhs);
+  return ok ? x : LcpVector(Acc.completeOrthogonalDecomposition().solve(rhs));
 }
 }
 
@@ -108,12 +134,16 @@ bool LcpSolver::solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, Lcp
   const double scale_A = std::max(A.cwiseAbs().maxCoeff(), 1e-300);
   const double tol = tol_ * std::max({1.0, b.cwiseAbs().maxCoeff(), scale_A * r.f.cwiseAbs().maxCoeff()});
   const double f_tol = tol / scale_A;
+  bool negative = false;  // round-off below zero, cleaned as the pivoting method does
   for (Eigen::Index i = 0; i < n; ++i) {
     const bool in_c = state_[static_cast<std::size_t>(i)] == kClamped;
     if (in_c ? (r.f[i] < -f_tol || std::abs(r.a[i]) > tol) : r.a[i] < -tol) return false;
+    negative = negative || r.f[i] < 0;
   }
-  for (Eigen::Index i = 0; i < n; ++i) r.f[i] = std::max(r.f[i], 0.0);
-  r.a = A * r.f + b;
+  if (negative) {
+    r.f = r.f.cwiseMax(0.0);
+    r.a = A * r.f + b;
+  }
   r.clamped = Eigen::Map<const LcpIndices>(clamped_.data(), static_cast<Eigen::Index>(clamped_.size()));
   r.warm = r.ok = true;
   return true;
