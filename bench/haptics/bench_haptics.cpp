@@ -56,7 +56,7 @@ void noisy_push_steps(benchmark::State& state, World w) {
   std::mt19937 rng(1);
   std::normal_distribution<double> noise(0, 0.05);
   std::vector<double> us;
-  double rhs = 0, steps = 0;
+  double rhs = 0, steps = 0, rounds = 0;
   for (auto _ : state) {
     w.set_external_wrench(0, Vec3(2 + noise(rng), noise(rng), noise(rng)), Vec3::Zero());
     const auto t0 = Clock::now();
@@ -64,11 +64,12 @@ void noisy_push_steps(benchmark::State& state, World w) {
     const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
     state.SetIterationTime(dt);
     us.push_back(dt * 1e6);
-    rhs += r.rhs_evaluations, steps += r.integrator_steps;
+    rhs += r.rhs_evaluations, steps += r.integrator_steps, rounds += r.friction_rounds;
   }
   state.counters["contacts"] = static_cast<double>(w.resting_contacts().size());
   state.counters["rhs"] = rhs / static_cast<double>(us.size());  // right-hand sides a haptic step
   state.counters["cvode_steps"] = steps / static_cast<double>(us.size());
+  if (rounds > 0) state.counters["friction_rounds"] = rounds / static_cast<double>(us.size());
   percentiles(state, us);
 }
 void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {

@@ -3,6 +3,7 @@
 // on a slope flatter than atan(mu) a cube stays, on a steeper one it slides down with
 // g (sin - mu cos); an oblique impact keeps no tangential velocity when friction suffices.
 // All on simulated time.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -49,12 +50,20 @@ TEST(Friction, APushBelowMuMgDoesNotMoveTheCube) {
   for (int i = 0; i < 100; ++i) w.step(1e-3);
   const Vec3 x0 = w.state(0).x;
   w.set_external_wrench(0, Vec3(0.9 * mu * m * g, 0.0, 0.0), Vec3::Zero());  // 90 % of the breakaway force
-  for (int i = 0; i < 2000; ++i) w.step(1e-3);
+  int most_rounds = 0;  // of the friction solve, once the push is on
+  for (int i = 0; i < 2000; ++i) {
+    const StepReport r = w.step(1e-3);
+    if (i > 0) most_rounds = std::max(most_rounds, r.friction_rounds);
+    EXPECT_EQ(r.friction_unconverged, 0);
+  }
   const double moved = (w.state(0).x - x0).head<2>().norm();
   double friction = 0;
   for (const auto& c : w.resting_contacts()) friction += c.friction.x();
-  std::printf("[measured] 0.9 mu m g for 2 s: moved %.3g m, friction %.6f N (push %.6f N)\n", moved, friction,
-              0.9 * mu * m * g);
+  std::printf("[measured] 0.9 mu m g for 2 s: moved %.3g m, friction %.6f N (push %.6f N), at most %d rounds a step\n",
+              moved, friction, 0.9 * mu * m * g, most_rounds);
+  // The clamped normal contacts' answer to the friction is anticipated (friction.hpp): the
+  // sticking solve settles at once instead of converging by 0.6 a round.
+  EXPECT_LE(most_rounds, 3);
   EXPECT_LT(moved, 1e-4);
   EXPECT_NEAR(friction, -0.9 * mu * m * g, 1e-2) << "static friction holds the push";
   EXPECT_NEAR(w.state(0).x.z(), 0.1, 1e-5) << "nor sinks";

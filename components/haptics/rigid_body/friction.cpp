@@ -6,11 +6,12 @@
 namespace wysiwyf::haptics {
 
 FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn,
-                                     const Eigen::VectorXd& bt, const Eigen::VectorXd& mu, const Eigen::VectorXd& vt) {
+                                     const Eigen::VectorXd& bt, const Eigen::VectorXd& mu, const Eigen::VectorXd& vt,
+                                     const Eigen::VectorXd& ft_start) {
   const Eigen::Index m = bn.size();
   FrictionResult r;
   r.fn = Eigen::VectorXd::Zero(m);
-  r.ft = Eigen::VectorXd::Zero(2 * m);
+  r.ft = ft_start.size() == 2 * m ? ft_start : Eigen::VectorXd::Zero(2 * m);
   Ann_ = A.topLeftCorner(m, m);
   const auto Ant = A.topRightCorner(m, 2 * m);
   const auto Atn = A.bottomLeftCorner(2 * m, m);
@@ -41,6 +42,29 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     clamped = normal.clamped;
     r.ok = true;
     r.fn = normal.f;
+    // The friction step sees the tangential rows as the clamped normal contacts will answer them:
+    // a friction force tilts the body, and the clamped contacts' forces change to stop the tilt.
+    // With the Schur complement S = Att - Atn_C Ann_CC^-1 Ant_C in place of Att (and the load
+    // moved to match), the friction found is already the one that holds after the next normal
+    // solve, as long as the clamped set stays: the rounds settle in two or three, not the
+    // twenty-odd of plain alternation (which converges by about 0.6 a round).
+    S_ = Att;
+    c_ = bt + Atn * r.fn;  // the tangential rows' load at the current forces, less Att ft
+    if (const Eigen::Index nc = clamped.size(); nc > 0) {
+      AntC_.resize(nc, 2 * m);
+      Acc_.resize(nc, nc);
+      for (Eigen::Index i = 0; i < nc; ++i) {
+        AntC_.row(i) = Ant.row(clamped[i]);
+        for (Eigen::Index j = 0; j < nc; ++j) Acc_(i, j) = Ann_(clamped[i], clamped[j]);
+      }
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(Acc_);
+      const auto d = ldlt.vectorD().cwiseAbs();
+      if (ldlt.info() == Eigen::Success && d.minCoeff() > 1e-12 * d.maxCoeff()) {  // (C is kept regular)
+        X_ = ldlt.solve(AntC_);  // Ann_CC^-1 Ant_C: how the clamped forces answer a friction force
+        S_.noalias() -= AntC_.transpose() * X_;
+        c_.noalias() += AntC_.transpose() * (X_ * r.ft);
+      }
+    }
     // Friction forces, normal forces fixed: sliders at the rim, stickers exact; a sticker beyond
     // its rim becomes a slider and the stickers are solved again.
     sliding = moving;
@@ -58,11 +82,11 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       rhs.resize(k);
       for (Eigen::Index a = 0; a < k; ++a) {
         const Eigen::Index row = stick_rows[static_cast<std::size_t>(a)];
-        double load_a = bt[row] + Atn.row(row).dot(r.fn);
+        double load_a = c_[row];
         for (Eigen::Index i = 0; i < m; ++i)
-          if (sliding[static_cast<std::size_t>(i)]) load_a += Att.row(row).segment<2>(2 * i).dot(r.ft.segment<2>(2 * i));
+          if (sliding[static_cast<std::size_t>(i)]) load_a += S_.row(row).segment<2>(2 * i).dot(r.ft.segment<2>(2 * i));
         rhs[a] = -load_a;
-        for (Eigen::Index b = 0; b < k; ++b) Akk(a, b) = Att(row, stick_rows[static_cast<std::size_t>(b)]);
+        for (Eigen::Index b = 0; b < k; ++b) Akk(a, b) = S_(row, stick_rows[static_cast<std::size_t>(b)]);
       }
       // The exact solution nearest zero in the metric sum |f_t,i|^2 / (mu f_n,i): each contact
       // carries friction in proportion to what it can hold (none without a normal force), so

@@ -293,17 +293,26 @@ std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
 }
 
 void World::update_friction(double dt) {
-  // (classify_contacts made resting_ afresh, friction zero: a frictionless world has nothing to do)
+  // (without friction coefficients no contact ever carries friction: nothing to do)
   if (!friction_coefficients(resting_.data(), resting_.size())) return;
-  std::vector<Pose> poses;
+  std::vector<Pose>& poses = scratch_poses_;
   poses_of(states_, poses);
   const std::size_t live = evaluate_resting(poses);
+  // The last step's friction (classify_contacts carries it over while the contacts stay the
+  // same) starts the rounds; it is cleared first, so that no failed solve leaves it applied.
+  carried_.resize(live);
+  for (std::size_t i = 0; i < live; ++i) carried_[i] = resting_[i].friction;
+  for (auto& c : resting_) c.friction.setZero();
   if (live == 0 || !friction_coefficients(resting_.data(), live)) return;
   applied_loads(poses, false);
   contact_matrix(resting_.data(), live, poses, true);
   contact_terms(resting_.data(), live, states_, poses, dt);
-  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_);
+  ft_start_.resize(static_cast<Eigen::Index>(2 * live));
+  for (std::size_t i = 0; i < live; ++i)
+    for (std::size_t j = 0; j < 2; ++j) ft_start_[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(carried_[i]);
+  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_, ft_start_);
   if (!r.ok) r = friction_.solve(lcp_, A_, b_free_, bt_, mu_, vt_);
+  report_.friction_rounds += r.iterations;
   if (!r.ok) return;  // frictionless this step; the normal LCP of the right-hand side reports it
   if (!r.converged) ++report_.friction_unconverged;
   for (std::size_t i = 0; i < live; ++i) {
@@ -458,7 +467,10 @@ void World::classify_contacts() {
       touching.size() == resting_.size() &&
       std::equal(touching.begin(), touching.end(), resting_.begin(),
                  [](const ActiveContact& x, const ActiveContact& y) { return x.feature == y.feature; });
-  if (!same_resting) restart_ = true;
+  if (same_resting)  // the same contacts: the friction they held starts this step's solve
+    for (std::size_t i = 0; i < touching.size(); ++i) touching[i].friction = resting_[i].friction;
+  else
+    restart_ = true;
   if (watched != watched_) restart_ = roots_changed_ = true;
   resting_.swap(touching);  // (the scratch vectors keep their capacity)
   watched_.swap(watched);

@@ -70,6 +70,7 @@ struct StepReport {
   int error_test_failures = 0;   // CVODE's rejected steps
   int lcp_failures = 0;
   int friction_unconverged = 0;  // friction rounds that did not settle (forces still bounded)
+  int friction_rounds = 0;       // staggered rounds of the step's friction solve
 };
 
 class World {
@@ -143,6 +144,8 @@ class World {
   // Scratch, reused across steps and right-hand-side evaluations.
   std::vector<ContactFeature> candidates_, watched_next_;
   std::vector<ActiveContact> touching_;
+  std::vector<Vec3> carried_;   // the resting contacts' friction of the last step
+  Eigen::VectorXd ft_start_;    // the same in the tangent bases
   std::vector<BodyState> scratch_states_;
   std::vector<Pose> scratch_poses_;
   std::vector<Vec3> force_, torque_;
