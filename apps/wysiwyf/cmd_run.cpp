@@ -41,16 +41,19 @@ std::optional<Loaded> load_and_validate(Args& args, Loader& loader, std::string&
   return loaded;
 }
 
-void print_report(const RunResult& r) {
+void print_report(const RunResult& r, bool real) {
   std::cout << std::fixed << std::setprecision(3) << "stopped: " << (r.ok ? r.stop_reason : "fault")
             << " at t=" << r.sim_time_ns * 1e-9 << " s after " << r.wall_seconds << " s wall\n";
   std::cout << std::left << std::setw(18) << "component" << std::setw(20) << "type" << std::right << std::setw(10)
             << "ticks" << std::setw(11) << "p50 us" << std::setw(11) << "p99 us" << std::setw(11) << "max us"
-            << std::setw(10) << "overruns" << "\n";
-  for (const auto& c : r.components)
+            << std::setw(10) << "overruns" << (real ? "   late p50 us   late p99 us" : "") << "\n";
+  for (const auto& c : r.components) {
     std::cout << std::left << std::setw(18) << c.name << std::setw(20) << c.type << std::right << std::setw(10)
               << c.ticks << std::setprecision(1) << std::setw(11) << c.tick_p50_us << std::setw(11) << c.tick_p99_us
-              << std::setw(11) << c.tick_max_us << std::setw(10) << c.overruns << "\n";
+              << std::setw(11) << c.tick_max_us << std::setw(10) << c.overruns;
+    if (real) std::cout << std::setw(14) << c.late_p50_us << std::setw(14) << c.late_p99_us;
+    std::cout << "\n";
+  }
 }
 
 }  // namespace
@@ -69,7 +72,7 @@ int cmd_run(Args args) {
   options.progress = progress || (!no_progress && isatty(STDERR_FILENO));
   Runtime runtime(loaded->spec, loader, options);
   const RunResult result = runtime.run();
-  print_report(result);
+  print_report(result, loaded->spec.clock_mode() == ClockMode::kReal);
   if (!result.ok) {
     std::cerr << "error: " << result.error << "\n";
     return 1;

@@ -62,7 +62,8 @@ namespace {
 const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain", "clock", "dds", "components"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
-const std::vector<std::string> kComponentKeys = {"type", "rate", "process", "enabled", "params", "topics", "qos"};
+const std::vector<std::string> kComponentKeys = {"type",   "rate",   "process", "enabled", "spin",
+                                                 "priority", "params", "topics",  "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
 
@@ -375,6 +376,14 @@ class Parser {
       else
         error(at(m, file), label + " enabled: found " + describe_node(m) + "; expected true or false");
     }
+    if (const YAML::Node m = n["spin"]) get_duration(m, file, label + " spin", true, c.spin_ns);
+    if (const YAML::Node m = n["priority"]) {
+      int p = 0;
+      if (!to_int(m, p) || p < 1 || p > 99)
+        error(at(m, file), label + " priority: found " + describe_node(m) + "; expected a SCHED_FIFO priority from 1 to 99");
+      else
+        c.priority.assign(p, at(m, file));
+    }
     if (const YAML::Node m = n["params"]; m && !m.IsNull() && expect_map(m, file, label + " params")) {
       check_duplicates(m, file);
       for (auto it = m.begin(); it != m.end(); ++it) {
@@ -445,8 +454,14 @@ void check_merged(PipelineSpec& spec, std::vector<ConfigIssue>& issues) {
       issues.push_back({c.where, "component '" + c.name + "' has no rate; expected rate: <ticks per second>"});
       continue;
     }
-    if (spec.clock_mode() != ClockMode::kSim) continue;
     const double period = 1e9 / c.rate.value;
+    if (c.spin_ns.set && static_cast<double>(c.spin_ns.value) >= period) {
+      std::ostringstream msg;
+      msg << "component '" << c.name << "' spin: found " << c.spin_ns.value / 1e3 << " us, not less than its period of "
+          << period / 1e3 << " us; expected a spin shorter than the period (typically 50-200 us)";
+      issues.push_back({c.spin_ns.where, msg.str()});
+    }
+    if (spec.clock_mode() != ClockMode::kSim) continue;
     const double steps = period / static_cast<double>(step);
     if (std::fabs(steps - std::round(steps)) > 1e-9 * steps || std::round(steps) < 1) {
       std::ostringstream msg;

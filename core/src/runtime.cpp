@@ -2,6 +2,8 @@
 // clocks, diagnostics, and clean stops on faults and signals.
 #include "wysiwyf/runtime.hpp"
 
+#include <pthread.h>
+#include <sched.h>
 #include <sys/prctl.h>
 #include <unistd.h>
 
@@ -9,6 +11,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <mutex>
 #include <thread>
@@ -16,6 +19,7 @@
 #include "dds_bridge.hpp"
 #include "tick_stats.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
+#include "wysiwyf/spin_wait.hpp"
 
 namespace wysiwyf {
 
@@ -96,10 +100,11 @@ struct Runtime::Impl final : ComponentHost {
     return false;
   }
 
-  void tick(Slot& slot, Time now) {
+  // late_us: how long after its deadline the tick started (real clock).
+  void tick(Slot& slot, Time now, double late_us = 0) {
     const auto t0 = Clock::now();
     guarded(slot, "tick at t=" + std::to_string(now.ns) + " ns", [&] { slot.component->tick(now); });
-    slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+    slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
   }
 
   void publish_diagnostics(Time now, double window_s, bool final) {
@@ -121,11 +126,25 @@ struct Runtime::Impl final : ComponentHost {
       d.tick_time_p50_us(s.p50_us);
       d.tick_time_p99_us(s.p99_us);
       d.tick_time_max_us(s.max_us);
+      d.tick_late_p50_us(s.late_p50_us);
+      d.tick_late_p99_us(s.late_p99_us);
+      d.tick_late_max_us(s.late_max_us);
       d.ticks(s.ticks);
       d.overruns(s.overruns);
       d.last_error(slot->last_error.substr(0, 255));
       diagnostics.write(d);
     }
+  }
+
+  // SCHED_FIFO for the slot's thread; without the right (CAP_SYS_NICE or an rtprio limit) it
+  // says so and runs at normal priority.
+  void set_fifo_priority(Slot& slot) {
+    sched_param p{};
+    p.sched_priority = slot.spec->priority.value;
+    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0)
+      log(slot.spec->name, "priority " + std::to_string(p.sched_priority) + " (SCHED_FIFO) refused: " +
+                               std::strerror(err) +
+                               "; expected CAP_SYS_NICE or an rtprio limit (ulimit -r); running at normal priority");
   }
 
   bool setup(RunResult& result);
@@ -249,15 +268,21 @@ void Runtime::Impl::run_real(RunResult& result) {
     Slot* slot = slot_ptr.get();
     threads.emplace_back([this, slot, start] {
       prctl(PR_SET_TIMERSLACK, 1UL);  // by default Linux may wake this thread up to 50 us late
+      if (slot->spec->priority.set) set_fifo_priority(*slot);
       const auto period = std::chrono::nanoseconds(slot->period_ns);
+      // The kernel wakes a sleeping thread tens of microseconds late (hundreds at times on a
+      // virtual machine); with `spin` the thread wakes that much early and busy-waits the rest.
+      const auto spin = std::chrono::nanoseconds(slot->spec->spin_ns.set ? slot->spec->spin_ns.value : 0);
       auto next = start;
       while (true) {
         {
           std::unique_lock<std::mutex> lock(stop_mutex);
           // Absolute deadlines on a fixed grid: no drift, whatever each tick costs.
-          if (stop_cv.wait_until(lock, next, [this] { return stopping.load(); })) return;
+          if (stop_cv.wait_until(lock, next - spin, [this] { return stopping.load(); })) return;
         }
-        tick(*slot, Time{wall_now_ns()});
+        if (!spin_until(next, stopping)) return;
+        const double late_us = std::chrono::duration<double, std::micro>(Clock::now() - next).count();
+        tick(*slot, Time{wall_now_ns()}, late_us);
         next += period;
         const auto now = Clock::now();
         if (now >= next) {  // late by a whole period or more: count and skip the missed ticks
@@ -299,7 +324,8 @@ void Runtime::Impl::teardown(RunResult& result) {
   for (auto& slot : slots) {
     const auto s = slot->stats.summarise();
     result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns,
-                                                s.p50_us, s.p99_us, s.max_us});
+                                                s.p50_us, s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us,
+                                                s.late_max_us});
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

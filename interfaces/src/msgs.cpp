@@ -121,6 +121,8 @@ std::string to_yaml(const kernel_msgs::Diagnostics& m) {
   y.str("instance", m.instance()).str("type", m.type()).str("process", m.process()).kv("state", state_name(m.state()));
   y.kv("rate_hz", m.rate_hz()).kv("tick_rate_hz", m.tick_rate_hz()).kv("tick_time_p50_us", m.tick_time_p50_us());
   y.kv("tick_time_p99_us", m.tick_time_p99_us()).kv("tick_time_max_us", m.tick_time_max_us());
+  y.kv("tick_late_p50_us", m.tick_late_p50_us()).kv("tick_late_p99_us", m.tick_late_p99_us());
+  y.kv("tick_late_max_us", m.tick_late_max_us());
   y.kv("ticks", m.ticks()).kv("overruns", m.overruns()).str("last_error", m.last_error());
   return y.text();
 }

@@ -32,6 +32,28 @@ TEST(RealClock, ATickLongerThanItsPeriodIsCountedAsAnOverrun) {
   EXPECT_GE(r.components[0].overruns, 4 * (r.components[0].ticks - 1));
 }
 
+TEST(RealClock, SpinAndPriorityRunAndTheLatenessOfEveryTickIsReported) {
+  // spin: wake 200 us early and busy-wait; priority: SCHED_FIFO if this process may (a warning
+  // otherwise; the run goes on either way). What is checked is behaviour, not precision.
+  std::string said;
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 55\ndds: {transport: local}\nclock: {mode: real, duration: 100ms}\ncomponents:\n"
+      "  fast: {type: test_probe, rate: 1000, spin: 200us, priority: 10}\n"
+      "  slow: {type: test_probe, rate: 100}\n",
+      {}, &said);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.components.size(), 2u);
+  for (const auto& c : r.components) {
+    EXPECT_GT(c.ticks, 0u) << c.name;
+    EXPECT_GE(c.late_p50_us, 0.0) << c.name;
+    EXPECT_GE(c.late_p99_us, c.late_p50_us) << c.name;
+    EXPECT_GE(c.late_max_us, c.late_p99_us) << c.name;
+  }
+  if (said.find("SCHED_FIFO") != std::string::npos) {  // refused here: said so, and for the right one
+    EXPECT_NE(said.find("[fast] priority 10 (SCHED_FIFO) refused"), std::string::npos) << said;
+  }
+}
+
 TEST(DdsSetup, AFastDdsXmlParticipantProfileCanBeNamed) {
   const auto dir = scratch_dir();
   std::ofstream(dir / "profiles.xml") << R"(<?xml version="1.0" encoding="UTF-8" ?>

@@ -36,15 +36,19 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
-// Parses, validates (failing the test on any error) and runs a pipeline in this process.
-inline RunResult run_pipeline(const std::string& yaml, const std::vector<std::string>& sets = {}) {
+// Parses, validates (failing the test on any error) and runs a pipeline in this process;
+// `log_text`, if given, receives what the runtime and the components logged.
+inline RunResult run_pipeline(const std::string& yaml, const std::vector<std::string>& sets = {},
+                              std::string* log_text = nullptr) {
   Loader loader(test_search_dirs());
   const PipelineSpec spec = load_pipeline_from_string(yaml, "test.yaml", sets);
   const ValidationResult v = validate_pipeline(spec, loader);
   for (const auto& e : v.errors) ADD_FAILURE() << e.str();
   std::ostringstream log;
   Runtime runtime(spec, loader, RunOptions{"", false, &log});
-  return runtime.run();
+  RunResult r = runtime.run();
+  if (log_text) *log_text = log.str();
+  return r;
 }
 
 }  // namespace wysiwyf::test

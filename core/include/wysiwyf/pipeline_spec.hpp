@@ -43,6 +43,9 @@ struct ComponentSpec {
   Sourced<double> rate;   // Hz
   Sourced<std::string> process;
   Sourced<bool> enabled;
+  // Real clock only (ignored on the sim clock, so a pipeline swaps clocks by one line):
+  Sourced<std::int64_t> spin_ns;  // wake this long before each tick and busy-wait the rest
+  Sourced<int> priority;          // SCHED_FIFO priority of the component's thread, 1..99
   std::map<std::string, Sourced<YAML::Node>> params;
   std::map<std::string, Sourced<std::string>> topics;  // port -> topic
   std::map<std::string, QosOverride> qos;              // port -> overrides

@@ -22,6 +22,10 @@ struct ComponentReport {
   double tick_p50_us = 0;
   double tick_p99_us = 0;
   double tick_max_us = 0;
+  // Real clock: how late ticks started after their deadlines (0 on the sim clock).
+  double late_p50_us = 0;
+  double late_p99_us = 0;
+  double late_max_us = 0;
 };
 
 struct RunResult {
