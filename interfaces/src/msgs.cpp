@@ -104,6 +104,15 @@ const char* mode_name(msg::DisplayModeKind k) {
   return "?";
 }
 
+const char* arm_state_name(msg::ArmState s) {
+  switch (s) {
+    case msg::ARM_OK: return "ok";
+    case msg::ARM_HOLDING: return "holding";
+    case msg::ARM_FAULT: return "fault";
+  }
+  return "?";
+}
+
 const char* tracking_name(msg::TrackingStatus s) {
   switch (s) {
     case msg::TRACKING_LOST: return "lost";
@@ -219,6 +228,13 @@ std::string to_yaml(const msg::DisplayMode& m) {
   return y.text();
 }
 
+std::string to_yaml(const msg::RobotStatus& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("state", arm_state_name(m.state())).str("source", m.source()).str("reason", m.reason());
+  return y.text();
+}
+
 std::string to_yaml(const msg::MarkerObservation& m) {
   Yaml y;
   header(y, m.header());
@@ -242,6 +258,7 @@ const MessageRegistry& registry() {
     reg.add<msg::CartesianSetpoint>(&to_yaml);
     reg.add<msg::ObjectState>(&to_yaml);
     reg.add<msg::DisplayMode>(&to_yaml);
+    reg.add<msg::RobotStatus>(&to_yaml);
     reg.add<msg::MarkerObservation>(&to_yaml);
     return reg;
   }();

@@ -83,8 +83,8 @@ struct Arm {
   Harness h;
   Output<msg::CartesianSetpoint> sp;
   Input<msg::JointState> js;
-  Input<msg::DisplayMode> status;
-  msg::DisplayMode last_status;
+  Input<msg::RobotStatus> status;
+  msg::RobotStatus last_status;
   std::vector<Vector6d> q, qd, effort;
   std::int64_t t = 0;
   int published = 0;
@@ -93,7 +93,7 @@ struct Arm {
       : h(type, params, 1000),
         sp(h.feed<msg::CartesianSetpoint>("setpoint")),
         js(h.watch<msg::JointState>("joint_state", 4)),
-        status(h.watch<msg::DisplayMode>("status", 64)) {
+        status(h.watch<msg::RobotStatus>("status", 64)) {
     h.activate();
   }
   void tick(const msg::CartesianSetpoint* s = nullptr) {
@@ -115,7 +115,8 @@ struct Arm {
     while (status.take(last_status)) {
     }
   }
-  int mode() const { return static_cast<int>(last_status.mode()); }
+  int state() const { return static_cast<int>(last_status.state()); }
+  std::string source() const { return last_status.source().c_str(); }
   std::string reason() const { return last_status.reason().c_str(); }
 };
 
@@ -134,8 +135,8 @@ Difference run_both(int ms, int period_ms) {
     driver.tick(due ? &s : nullptr);
     if (::testing::Test::HasFailure()) break;
   }
-  EXPECT_EQ(sim.mode(), msg::MODE_SURFACE) << sim.reason();
-  EXPECT_EQ(driver.mode(), msg::MODE_SURFACE) << driver.reason();
+  EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+  EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
   EXPECT_EQ(sim.q.size(), static_cast<std::size_t>(ms));
   EXPECT_EQ(driver.q.size(), static_cast<std::size_t>(ms));
   Difference d;
@@ -171,19 +172,19 @@ TEST(PumaDriver, ALostLinkHoldsAndFaultsAndARestoredOneHoldsAtTheArm) {
              "{lockstep: true, reply_timeout: 0.02, port: " + std::to_string(controller.port()) + "}");
   msg::CartesianSetpoint s;
   for (int i = 0; i < 1500; ++i) driver.tick(setpoint_at(i, 20, s) ? &s : nullptr);
-  ASSERT_EQ(driver.mode(), msg::MODE_SURFACE) << driver.reason();
+  ASSERT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
   const Vector6d q_before = controller.true_q();
 
   controller.set_silent(true);  // the cable is pulled
   int lost_after = -1, published_while_lost = 0;
   for (int i = 1500; i < 1520; ++i) {
     driver.tick(setpoint_at(i, 20, s) ? &s : nullptr);
-    if (lost_after < 0 && driver.mode() == msg::MODE_FAULT) lost_after = i - 1500;
+    if (lost_after < 0 && driver.state() == msg::ARM_FAULT) lost_after = i - 1500;
     if (lost_after >= 0) published_while_lost += driver.published;
   }
   std::printf("[measured] link lost after %d ticks without an answer (reason: %s)\n", lost_after,
               driver.reason().c_str());
-  EXPECT_EQ(driver.mode(), msg::MODE_FAULT);
+  EXPECT_EQ(driver.state(), msg::ARM_FAULT);
   EXPECT_NE(driver.reason().find("puma-link"), std::string::npos) << driver.reason();
   EXPECT_LE(lost_after, 4);
   EXPECT_EQ(published_while_lost, 0) << "no stale joint states while the link is down";
@@ -192,7 +193,7 @@ TEST(PumaDriver, ALostLinkHoldsAndFaultsAndARestoredOneHoldsAtTheArm) {
 
   controller.set_silent(false);  // plugged in again: the commands carry the hold flag
   for (int i = 1520; i < 1600; ++i) driver.tick();
-  EXPECT_EQ(driver.mode(), msg::MODE_IDLE) << driver.reason();
+  EXPECT_EQ(driver.state(), msg::ARM_HOLDING) << driver.reason();
   const Vector6d held = controller.true_q();
   for (int i = 1600; i < 1700; ++i) driver.tick();
   EXPECT_LT((controller.true_q() - held).cwiseAbs().maxCoeff(), 1e-3) << "holds where it is";
@@ -202,7 +203,7 @@ TEST(PumaDriver, ALostLinkHoldsAndFaultsAndARestoredOneHoldsAtTheArm) {
     const msg::CartesianSetpoint hold_here = setpoint(here);
     driver.tick(i % 20 == 0 ? &hold_here : nullptr);
   }
-  EXPECT_EQ(driver.mode(), msg::MODE_SURFACE) << driver.reason();
+  EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
 }
 
 TEST(PumaDriver, NoControllerIsAClearActivationError) {

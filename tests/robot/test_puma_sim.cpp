@@ -60,8 +60,8 @@ struct Sim {
   Input<msg::JointState> js;
   Input<msg::PoseStamped> dev, hand;
   Input<msg::WrenchStamped> wrench;
-  Input<msg::DisplayMode> status;
-  msg::DisplayMode last_status;
+  Input<msg::RobotStatus> status;
+  msg::RobotStatus last_status;
   std::vector<Sample> samples;
   std::int64_t t = 0;
 
@@ -73,7 +73,7 @@ struct Sim {
         dev(h.watch<msg::PoseStamped>("device_pose", 4)),
         hand(h.watch<msg::PoseStamped>("hand_pose", 4)),
         wrench(h.watch<msg::WrenchStamped>("wrench", 4)),
-        status(h.watch<msg::DisplayMode>("status", 64)) {
+        status(h.watch<msg::RobotStatus>("status", 64)) {
     h.activate();
   }
 
@@ -125,7 +125,8 @@ struct Sim {
     }
   }
   const Sample& last() const { return samples.back(); }
-  int mode() const { return static_cast<int>(last_status.mode()); }
+  int state() const { return static_cast<int>(last_status.state()); }
+  std::string source() const { return last_status.source().c_str(); }
   std::string reason() const { return last_status.reason().c_str(); }
 };
 
@@ -175,8 +176,9 @@ TEST(PumaSim, HoldsStillUnderGravityAtTheReadyPose) {
   EXPECT_LT(drift, 2e-4);  // about two encoder counts of joint 1
   EXPECT_LT(speed, 1e-3);
   EXPECT_LT(cart, 1e-4);
-  EXPECT_EQ(sim.mode(), msg::MODE_IDLE);
+  EXPECT_EQ(sim.state(), msg::ARM_HOLDING);
   EXPECT_NE(sim.reason().find("waiting for the first setpoint"), std::string::npos) << sim.reason();
+  EXPECT_EQ(sim.source(), "");
 }
 
 // A step of one joint, commanded as the pose it gives: the whole chain (tracker, IK, gate, servo).
@@ -198,7 +200,7 @@ TEST_P(JointStep, StaysWithinEveryLimitAtEverySampleAndSettles) {
   EXPECT_LT(error, 3e-4);  // settled: within three counts of joint 1's encoder
   EXPECT_LT(cart, 2e-4);
   EXPECT_LT(max_abs_velocity(sim.last()), 1e-3);
-  EXPECT_NE(sim.mode(), msg::MODE_FAULT) << sim.reason();
+  EXPECT_NE(sim.state(), msg::ARM_FAULT) << sim.reason();
 }
 
 INSTANTIATE_TEST_SUITE_P(PumaSim, JointStep,
@@ -233,7 +235,8 @@ TEST(PumaSim, CartesianStepOf5cmStaysWithinLimitsAndSettles) {
     EXPECT_GT(settle_ms, 0);
     EXPECT_LT(settle_ms, 600);
     EXPECT_LT(overshoot, 1e-3);
-    EXPECT_EQ(sim.mode(), msg::MODE_SURFACE) << sim.reason();
+    EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+    EXPECT_EQ(sim.source(), "test") << "the status names whose setpoints the arm follows";
   }
 }
 
@@ -257,7 +260,7 @@ void stream_circle(Sim& sim, int ms, int period_ms, double r = 0.03, double hz =
 TEST(PumaSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
   Sim sim;
   stream_circle(sim, 1500, 20, 0.05, 1.0);  // 0.31 m/s
-  ASSERT_EQ(sim.mode(), msg::MODE_SURFACE) << sim.reason();
+  ASSERT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
   const double v0 = max_abs_velocity(sim.last());
   ASSERT_GT(v0, 0.2);
   const std::size_t stop = sim.samples.size();
@@ -280,18 +283,18 @@ TEST(PumaSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
               "the last setpoint (bound %.0f ms)\n",
               v0, stopped_ms, 60 + braking_ms + 100);
   EXPECT_LT(stopped_ms, 60 + braking_ms + 100);
-  EXPECT_EQ(sim.mode(), msg::MODE_IDLE);
+  EXPECT_EQ(sim.state(), msg::ARM_HOLDING);
   EXPECT_NE(sim.reason().find("no setpoint for"), std::string::npos) << sim.reason();
   // And it resumes from where it stopped.
   sim.hold_pose(sim.last().dev, 300);
-  EXPECT_EQ(sim.mode(), msg::MODE_SURFACE) << sim.reason();
+  EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
 }
 
 TEST(PumaSim, NanSetpointHoldsAndFaultsAndTheArmDoesNotMove) {
   Sim sim;
   const Eigen::Isometry3d ready = model().fk(kReady);
   sim.hold_pose(ready, 500);
-  ASSERT_EQ(sim.mode(), msg::MODE_SURFACE) << sim.reason();
+  ASSERT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
   const Vector6d before = sim.last().q;
   Eigen::Isometry3d bad = ready;
   bad.translation().y() = std::numeric_limits<double>::quiet_NaN();
@@ -305,7 +308,7 @@ TEST(PumaSim, NanSetpointHoldsAndFaultsAndTheArmDoesNotMove) {
     moved = std::max(moved, (sim.samples[i].q - before).cwiseAbs().maxCoeff());
   std::printf("[measured] NaN setpoint: largest joint motion afterwards %.3g rad; status '%s'\n", moved,
               sim.reason().c_str());
-  EXPECT_EQ(sim.mode(), msg::MODE_FAULT);
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
   EXPECT_NE(sim.reason().find("non-finite"), std::string::npos) << sim.reason();
   EXPECT_LT(moved, 2e-4);
 }
@@ -318,7 +321,7 @@ TEST(PumaSim, NanWhileMovingBrakesWithinTheLimits) {
   sim.sp.write(bad);
   for (int i = 0; i < 800; ++i) sim.tick();
   check_limits(sim.samples);
-  EXPECT_EQ(sim.mode(), msg::MODE_FAULT);
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
   EXPECT_LT(max_abs_velocity(sim.last()), 1e-3);
 }
 
@@ -342,7 +345,7 @@ TEST(PumaSim, CommandingAPoseBeyondAJointLimitNeverExceedsIt) {
               q[4], peak, lim.upper[4], lim.upper[4] - kPositionMargin, sim.reason().c_str());
   EXPECT_LE(peak, lim.upper[4] - kPositionMargin + 1e-3);
   EXPECT_GT(peak, lim.upper[4] - kPositionMargin - 0.05);  // it did go up to the limit
-  EXPECT_EQ(sim.mode(), msg::MODE_FAULT);
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
   EXPECT_NE(sim.reason().find("inverse kinematics"), std::string::npos) << sim.reason();
 }
 
@@ -373,8 +376,8 @@ CircleRuns run_circles(const std::string& params) {
   stream_circle(fast, 4000, 1);
   check_limits(slow.samples);
   check_limits(fast.samples);
-  EXPECT_EQ(slow.mode(), msg::MODE_SURFACE) << slow.reason();
-  EXPECT_EQ(fast.mode(), msg::MODE_SURFACE) << fast.reason();
+  EXPECT_EQ(slow.state(), msg::ARM_OK) << slow.reason();
+  EXPECT_EQ(fast.state(), msg::ARM_OK) << fast.reason();
   out.s20 = smoothness(slow.samples, 1000);
   out.s1 = smoothness(fast.samples, 1000);
   const Eigen::Isometry3d centre = model().fk(kReady);
@@ -473,7 +476,7 @@ TEST(PumaSim, TheHandPushingThePlateIsMeasuredAndStoppedByIt) {
   EXPECT_LT((torque - expected_torque).norm(), 5e-3);
   EXPECT_NEAR(penetration, push.norm() / k_contact, 2e-4);
   EXPECT_LT(deepest, 2.5e-3);  // stopped by the plate: never more than 2.5 mm in
-  EXPECT_NE(sim.mode(), msg::MODE_FAULT) << sim.reason();
+  EXPECT_NE(sim.state(), msg::ARM_FAULT) << sim.reason();
   // The plate gives a little under the push (the servo's stiffness), and holds it.
   const double gives = (sim.last().dev.translation() - ready.translation()).norm();
   std::printf("[measured] the plate gives %.3g m under the push\n", gives);
@@ -492,7 +495,7 @@ TEST(PumaSim, AHardBlowTripsTheForceLimit) {
   sim.hold_pose(ready, 1000);
   // The blow itself accelerates the arm beyond what the servo would: only positions are checked.
   check_limits(sim.samples, 1, false);
-  EXPECT_EQ(sim.mode(), msg::MODE_FAULT);
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
   EXPECT_NE(sim.reason().find("measured force"), std::string::npos) << sim.reason();
 }
 

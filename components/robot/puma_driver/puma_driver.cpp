@@ -74,8 +74,8 @@ class PumaDriver final : public Component {
         Qos::sensor(16));
     joint_out_ = ctx.output<msg::JointState>("joint_state", "encoder angles, velocities, motor torques from the controller");
     pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
-    status_out_ = ctx.output<msg::DisplayMode>(
-        "status", "safety state: MODE_FAULT + reason, MODE_IDLE holding, else following (reason says which)",
+    status_out_ = ctx.output<msg::RobotStatus>(
+        "status", "safety state (RobotStatus): ok following a source, holding, or fault, with the reason",
         Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
 
     dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
@@ -250,12 +250,12 @@ class PumaDriver final : public Component {
   msg::WrenchStamped wrench_msg_;
   msg::JointState joint_msg_;
   msg::PoseStamped pose_msg_;
-  msg::DisplayMode status_msg_;
+  msg::RobotStatus status_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   Input<msg::WrenchStamped> wrench_in_;
   Output<msg::JointState> joint_out_;
   Output<msg::PoseStamped> pose_out_;
-  Output<msg::DisplayMode> status_out_;
+  Output<msg::RobotStatus> status_out_;
 };
 
 }  // namespace wysiwyf::robot

@@ -127,8 +127,8 @@ class PumaSim final : public Component {
     wrench_out_ = ctx.output<msg::WrenchStamped>("wrench", "wrist F/T sensor, frame ft_sensor, about its origin",
                                                  Qos::sensor(8));
     hand_out_ = ctx.output<msg::PoseStamped>("hand_pose", "the fingertip's true position (base frame)");
-    status_out_ = ctx.output<msg::DisplayMode>(
-        "status", "safety state: MODE_FAULT + reason, MODE_IDLE holding, else following (reason says which)",
+    status_out_ = ctx.output<msg::RobotStatus>(
+        "status", "safety state (RobotStatus): ok following a source, holding, or fault, with the reason",
         Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
 
     auto six = [](const std::vector<double>& v, const char* name) {
@@ -361,14 +361,14 @@ class PumaSim final : public Component {
   msg::PoseStamped hand_msg_, pose_msg_, hand_msg_out_;
   msg::JointState joint_msg_;
   msg::WrenchStamped wrench_msg_;
-  msg::DisplayMode status_msg_;
+  msg::RobotStatus status_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   Input<msg::PoseStamped> hand_in_;
   Output<msg::JointState> joint_out_;
   Output<msg::PoseStamped> pose_out_;
   Output<msg::WrenchStamped> wrench_out_;
   Output<msg::PoseStamped> hand_out_;
-  Output<msg::DisplayMode> status_out_;
+  Output<msg::RobotStatus> status_out_;
 };
 
 }  // namespace wysiwyf::robot::sim

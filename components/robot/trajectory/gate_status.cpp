@@ -2,9 +2,10 @@
 
 namespace wysiwyf::robot {
 
-bool GateStatus::update(std::int64_t now_ns, const SafetyGate& gate, const std::string& source, msg::DisplayMode& out) {
+bool GateStatus::update(std::int64_t now_ns, const SafetyGate& gate, const std::string& source, msg::RobotStatus& out) {
   const SafetyState state = gate.state();
-  const bool changed = last_ns_ < 0 || state != last_state_ || gate.reason() != last_reason_;
+  const bool changed =
+      last_ns_ < 0 || state != last_state_ || gate.reason() != last_reason_ || (state == SafetyState::kOk && source != last_source_);
   new_fault_ = false;
   if (!changed && now_ns - last_ns_ < 100'000'000) return false;
   last_ns_ = now_ns;
@@ -12,15 +13,14 @@ bool GateStatus::update(std::int64_t now_ns, const SafetyGate& gate, const std::
     new_fault_ = state == SafetyState::kFault;
     last_state_ = state;
     last_reason_ = gate.reason();
+    last_source_ = source;
     switch (state) {
-      case SafetyState::kFault: out.mode(msg::MODE_FAULT); break;
-      case SafetyState::kHolding: out.mode(msg::MODE_IDLE); break;
-      case SafetyState::kOk: out.mode(source == "admittance" ? msg::MODE_ADMITTANCE : msg::MODE_SURFACE); break;
+      case SafetyState::kFault: out.state(msg::ARM_FAULT); break;
+      case SafetyState::kHolding: out.state(msg::ARM_HOLDING); break;
+      case SafetyState::kOk: out.state(msg::ARM_OK); break;
     }
-    std::string reason = std::string(to_string(state)) + ": " + gate.reason();
-    if (state == SafetyState::kOk) reason += " (source '" + source + "')";
-    if (reason.size() > 127) reason.resize(127);
-    out.reason(reason);
+    out.source(state == SafetyState::kOk ? source.substr(0, 31) : std::string());
+    out.reason(gate.reason().substr(0, 127));
   }
   out.header().stamp_ns(now_ns);
   out.header().seq(seq_++);

@@ -1,7 +1,7 @@
 #pragma once
-// The arm's safety status as a DisplayMode message: MODE_FAULT with the reason, MODE_IDLE while
-// holding, else following (MODE_ADMITTANCE or MODE_SURFACE by the setpoints' source). Sent on
-// every change and repeated every 100 ms; the repeats reuse the message (no allocation).
+// The arm's safety status as a RobotStatus message: ARM_FAULT with the reason, ARM_HOLDING, or
+// ARM_OK following the setpoints' source. Sent on every change and repeated every 100 ms; the
+// repeats reuse the message (no allocation).
 #include <cstdint>
 #include <string>
 
@@ -14,12 +14,12 @@ class GateStatus {
  public:
   // Updates `out` and returns true when a status is due at now_ns. new_fault() then tells whether
   // a fault (or another fault reason) has just appeared, for the caller's log.
-  bool update(std::int64_t now_ns, const SafetyGate& gate, const std::string& source, msg::DisplayMode& out);
+  bool update(std::int64_t now_ns, const SafetyGate& gate, const std::string& source, msg::RobotStatus& out);
   bool new_fault() const { return new_fault_; }
 
  private:
   SafetyState last_state_ = SafetyState::kFault;
-  std::string last_reason_;
+  std::string last_reason_, last_source_;
   std::int64_t last_ns_ = -1;
   std::uint64_t seq_ = 0;
   bool new_fault_ = false;

@@ -17,6 +17,7 @@ WYSIWYF_MESSAGE(wysiwyf::msg, WrenchStamped)
 WYSIWYF_MESSAGE(wysiwyf::msg, CartesianSetpoint)
 WYSIWYF_MESSAGE(wysiwyf::msg, ObjectState)
 WYSIWYF_MESSAGE(wysiwyf::msg, DisplayMode)
+WYSIWYF_MESSAGE(wysiwyf::msg, RobotStatus)
 WYSIWYF_MESSAGE(wysiwyf::msg, MarkerObservation)
 
 namespace wysiwyf::msgs {
@@ -32,6 +33,7 @@ std::string to_yaml(const msg::WrenchStamped& m);
 std::string to_yaml(const msg::CartesianSetpoint& m);
 std::string to_yaml(const msg::ObjectState& m);
 std::string to_yaml(const msg::DisplayMode& m);
+std::string to_yaml(const msg::RobotStatus& m);
 std::string to_yaml(const msg::MarkerObservation& m);
 
 // Every port message type of this build, by DDS type name.
