@@ -181,7 +181,7 @@ class PumaDriver final : public Component {
         ++missed_;
       }
     }
-    publish_status(now);
+    if (status_.publish(now.ns, *gate_, follower_->source(), status_out_)) log("fault: " + gate_->reason());
   }
 
   void deactivate() override {
@@ -221,12 +221,6 @@ class PumaDriver final : public Component {
     ++seq_;
   }
 
-  void publish_status(Time now) {
-    if (!status_.update(now.ns, *gate_, follower_->source(), status_msg_)) return;
-    if (status_.new_fault()) log("fault: " + gate_->reason());
-    status_out_.write(status_msg_);
-  }
-
   // parameters
   std::string host_, urdf_path_, tip_frame_;
   int port_ = link::kDefaultPort, link_timeout_ = 3;
@@ -250,7 +244,6 @@ class PumaDriver final : public Component {
   msg::WrenchStamped wrench_msg_;
   msg::JointState joint_msg_;
   msg::PoseStamped pose_msg_;
-  msg::RobotStatus status_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   Input<msg::WrenchStamped> wrench_in_;
   Output<msg::JointState> joint_out_;

@@ -223,7 +223,7 @@ class PumaSim final : public Component {
       hand_v_ += f_hand / hand_mass_ * h;
       hand_x_ += hand_v_ * h;
     }
-    publish_status(now);
+    if (status_.publish(now.ns, *gate_, follower_->source(), status_out_)) log("fault: " + gate_->reason());
   }
 
   void hold() noexcept override {
@@ -317,12 +317,6 @@ class PumaSim final : public Component {
     ++seq_;
   }
 
-  void publish_status(Time now) {
-    if (!status_.update(now.ns, *gate_, follower_->source(), status_msg_)) return;
-    if (status_.new_fault()) log("fault: " + gate_->reason());
-    status_out_.write(status_msg_);
-  }
-
   // parameters
   std::string urdf_path_, drive_path_, tip_frame_, sensor_frame_;
   Vector6d q0_ = Vector6d::Zero(), bias_ = Vector6d::Zero();
@@ -361,7 +355,6 @@ class PumaSim final : public Component {
   msg::PoseStamped hand_msg_, pose_msg_, hand_msg_out_;
   msg::JointState joint_msg_;
   msg::WrenchStamped wrench_msg_;
-  msg::RobotStatus status_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   Input<msg::PoseStamped> hand_in_;
   Output<msg::JointState> joint_out_;

@@ -7,22 +7,22 @@
 
 #include "safety/safety_gate.hpp"
 #include "wysiwyf/msgs.hpp"
+#include "wysiwyf/port.hpp"
 
 namespace wysiwyf::robot {
 
 class GateStatus {
  public:
-  // Updates `out` and returns true when a status is due at now_ns. new_fault() then tells whether
-  // a fault (or another fault reason) has just appeared, for the caller's log.
-  bool update(std::int64_t now_ns, const SafetyGate& gate, const std::string& source, msg::RobotStatus& out);
-  bool new_fault() const { return new_fault_; }
+  // Writes the status to `out` when one is due at now_ns; returns true when a fault (or another
+  // fault reason) has just appeared, for the caller's log.
+  bool publish(std::int64_t now_ns, const SafetyGate& gate, const std::string& source, Output<msg::RobotStatus>& out);
 
  private:
+  msg::RobotStatus msg_;
   SafetyState last_state_ = SafetyState::kFault;
   std::string last_reason_, last_source_;
   std::int64_t last_ns_ = -1;
   std::uint64_t seq_ = 0;
-  bool new_fault_ = false;
 };
 
 }  // namespace wysiwyf::robot
