@@ -11,9 +11,10 @@ namespace wysiwyf::haptics {
 namespace {
 constexpr char kUnset = 0, kClamped = 1, kNotClamped = 2;
 
-// Solves A_CC x = rhs. The clamped set is kept non-singular, so a Cholesky (LDLT) factorisation
-// does; where round-off made it singular after all, the minimum-norm solution of a complete
-// orthogonal decomposition.
+// The largest |entry| of A or b, for judging round-off against (never 0 for A: it divides).
+double scale_of(const LcpMatrix& A) { return std::max(A.size() ? A.cwiseAbs().maxCoeff() : 0.0, 1e-300); }
+double scale_of(const LcpVector& b) { return b.size() ? b.cwiseAbs().maxCoeff() : 0.0; }
+
 template <typename Matrix, typename Vector>
 bool solve_ldlt(const Matrix& Acc, const Vector& rhs, Vector& x) {
   const Eigen::LDLT<Matrix> ldlt(Acc);
@@ -37,6 +38,9 @@ bool solve_ldlt_fixed(const LcpMatrix& Acc, const LcpVector& rhs, LcpVector& x) 
   return true;
 }
 
+// Solves A_CC x = rhs. The clamped set is kept non-singular, so a Cholesky (LDLT) factorisation
+// does; where round-off made it singular after all, the minimum-norm solution of a complete
+// orthogonal decomposition.
 LcpVector solve_clamped(const LcpMatrix& Acc, const LcpVector& rhs) {
   LcpVector x;
   bool ok = false;
@@ -131,8 +135,8 @@ bool LcpSolver::solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, Lcp
   r.f = on_clamped_set(A, -b);
   r.a = A * r.f + b;
   // The same judgement of round-off as the pivoting method's.
-  const double scale_A = std::max(A.cwiseAbs().maxCoeff(), 1e-300);
-  const double tol = tol_ * std::max({1.0, b.cwiseAbs().maxCoeff(), scale_A * r.f.cwiseAbs().maxCoeff()});
+  const double scale_A = scale_of(A);
+  const double tol = accel_tolerance(scale_A, scale_of(b), r.f);
   const double f_tol = tol / scale_A;
   bool negative = false;  // round-off below zero, cleaned as the pivoting method does
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -156,11 +160,11 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
   r.a = b;
   clamped_.clear();
   state_.assign(static_cast<std::size_t>(n), kUnset);
-  const double scale_A = std::max(A.size() ? A.cwiseAbs().maxCoeff() : 0.0, 1e-300);
-  const double scale_b = b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
+  const double scale_A = scale_of(A);
+  const double scale_b = scale_of(b);
   const int max_pivots = static_cast<int>(50 * n + 100);  // a guard against cycling
   // Round-off in a = A f + b grows with the forces; "satisfied" and "blocking" are judged against it.
-  auto accel_tolerance = [&] { return tol_ * std::max({1.0, scale_b, scale_A * r.f.cwiseAbs().maxCoeff()}); };
+  auto accel_tolerance = [&] { return this->accel_tolerance(scale_A, scale_b, r.f); };
 
   for (Eigen::Index d = 0; d < n; ++d) {
     if (r.a[d] >= -accel_tolerance()) {  // already satisfied with f_d = 0

@@ -9,6 +9,9 @@
 // rank-revealing decomposition, which Baraff shows always has a solution in the frictionless case.
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <vector>
+
 namespace wysiwyf::haptics {
 
 // Up to this many contacts the solver works on the stack: no heap allocation per solve.
@@ -45,6 +48,11 @@ class LcpSolver {
   // The solution with clamped set C (clamped_), if there is one.
   bool solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
   LcpVector on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const;
+  // How negative an acceleration may be and still count as satisfied: round-off in a = A f + b
+  // grows with the forces.
+  double accel_tolerance(double scale_A, double scale_b, const LcpVector& f) const {
+    return tol_ * std::max({1.0, scale_b, scale_A * f.cwiseAbs().maxCoeff()});
+  }
   LcpVector direction(const LcpMatrix& A, int d);
   void polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
 
