@@ -298,18 +298,20 @@ void World::update_friction(double dt) {
   std::vector<Pose>& poses = scratch_poses_;
   poses_of(states_, poses);
   const std::size_t live = evaluate_resting(poses);
-  // The last step's friction (classify_contacts carries it over while the contacts stay the
-  // same) starts the rounds; it is cleared first, so that no failed solve leaves it applied.
-  carried_.resize(live);
-  for (std::size_t i = 0; i < live; ++i) carried_[i] = resting_[i].friction;
-  for (auto& c : resting_) c.friction.setZero();
-  if (live == 0 || !friction_coefficients(resting_.data(), live)) return;
-  applied_loads(poses, false);
-  contact_matrix(resting_.data(), live, poses, true);
-  contact_terms(resting_.data(), live, states_, poses, dt);
-  ft_start_.resize(static_cast<Eigen::Index>(2 * live));
-  for (std::size_t i = 0; i < live; ++i)
-    for (std::size_t j = 0; j < 2; ++j) ft_start_[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(carried_[i]);
+  const bool any = live > 0 && friction_coefficients(resting_.data(), live);
+  if (any) {
+    applied_loads(poses, false);
+    contact_matrix(resting_.data(), live, poses, true);
+    contact_terms(resting_.data(), live, states_, poses, dt);
+    // The last step's friction (classify_contacts carries it over while the contacts stay the
+    // same), in the tangent bases, starts the rounds.
+    ft_start_.resize(static_cast<Eigen::Index>(2 * live));
+    for (std::size_t i = 0; i < live; ++i)
+      for (std::size_t j = 0; j < 2; ++j)
+        ft_start_[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(resting_[i].friction);
+  }
+  for (auto& c : resting_) c.friction.setZero();  // before solving: no failed solve leaves it applied
+  if (!any) return;
   FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_, ft_start_);
   if (!r.ok) r = friction_.solve(lcp_, A_, b_free_, bt_, mu_, vt_);
   report_.friction_rounds += r.iterations;

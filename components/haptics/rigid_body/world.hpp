@@ -144,8 +144,7 @@ class World {
   // Scratch, reused across steps and right-hand-side evaluations.
   std::vector<ContactFeature> candidates_, watched_next_;
   std::vector<ActiveContact> touching_;
-  std::vector<Vec3> carried_;   // the resting contacts' friction of the last step
-  Eigen::VectorXd ft_start_;    // the same in the tangent bases
+  Eigen::VectorXd ft_start_;    // the resting contacts' friction of the last step, in the tangent bases
   std::vector<BodyState> scratch_states_;
   std::vector<Pose> scratch_poses_;
   std::vector<Vec3> force_, torque_;
