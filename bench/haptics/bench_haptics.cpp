@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "rigid_body/world.hpp"
-#include "wysiwyf/spin_wait.hpp"
+#include "wysiwyf/tick_deadline.hpp"
 
 namespace wysiwyf::haptics {
 
@@ -149,7 +149,7 @@ void BM_RealTimeLoop_1kHz_10s(benchmark::State& state) {
     const auto start = Clock::now();
     auto next = start + period;
     int ticks = 0;
-    std::int64_t overruns = 0;
+    std::uint64_t overruns = 0;
     while (next - start <= std::chrono::seconds(10)) {
       std::this_thread::sleep_until(next - spin);
       spin_until(next, never);
@@ -159,12 +159,7 @@ void BM_RealTimeLoop_1kHz_10s(benchmark::State& state) {
       w.step(1e-3);
       step_us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
       ++ticks;
-      next += period;
-      if (const auto now = Clock::now(); now >= next) {  // missed whole periods: skip them
-        const auto missed = (now - next) / period + 1;
-        overruns += missed;
-        next += missed * period;
-      }
+      overruns += advance_deadline(next, period);
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     state.counters["rate_hz"] = ticks / seconds;

@@ -19,7 +19,7 @@
 #include "dds_bridge.hpp"
 #include "tick_stats.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
-#include "wysiwyf/spin_wait.hpp"
+#include "wysiwyf/tick_deadline.hpp"
 
 namespace wysiwyf {
 
@@ -283,13 +283,7 @@ void Runtime::Impl::run_real(RunResult& result) {
         if (!spin_until(next, stopping)) return;
         const double late_us = std::chrono::duration<double, std::micro>(Clock::now() - next).count();
         tick(*slot, Time{wall_now_ns()}, late_us);
-        next += period;
-        const auto now = Clock::now();
-        if (now >= next) {  // late by a whole period or more: count and skip the missed ticks
-          const auto missed = (now - next) / period + 1;
-          slot->stats.add_overruns(static_cast<std::uint64_t>(missed));
-          next += missed * period;
-        }
+        if (const auto missed = advance_deadline(next, period)) slot->stats.add_overruns(missed);
       }
     });
   }
