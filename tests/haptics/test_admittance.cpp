@@ -74,6 +74,20 @@ TEST(Scene, MistakesAreReportedWithTheirLine) {
 
 constexpr std::int64_t kMs = 1'000'000;
 
+// What the wrist sensor reads when the user pushes the plate with `newtons` toward the robot
+// (plate -z) while the sensor carries the tool (its weight and moment, in the sensor frame).
+msg::WrenchStamped sensor_reading_of_push(const std::string& scene, double newtons) {
+  const Scene s = load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/" + scene);
+  const Eigen::Matrix3d R = (s.device.obj_T_dev * s.device.dev_T_sensor).linear();
+  const Vec3 weight = R.transpose() * (s.device.tool_mass * s.gravity);
+  msg::WrenchStamped w;
+  const Vec3 f = Vec3(0, 0, -newtons) + weight;
+  const Vec3 t = s.device.tool_com.cross(weight);
+  w.wrench().force().x(f.x()), w.wrench().force().y(f.y()), w.wrench().force().z(f.z());
+  w.wrench().torque().x(t.x()), w.wrench().torque().y(t.y()), w.wrench().torque().z(t.z());
+  return w;
+}
+
 TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
   Harness h("admittance_sim", "{scene: scenes/cube_on_table.yaml}", 1000);
   auto wrench = h.feed<msg::WrenchStamped>("wrench");
@@ -82,14 +96,7 @@ TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
   h.activate();
   // The sensor (plate frame: z along world +x, out of the cube) carries the tool; the user pushes
   // the plate with 2 N toward the robot (world -x, plate -z).
-  const Scene s = load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/scenes/cube_on_table.yaml");
-  const Eigen::Matrix3d R = (s.device.obj_T_dev * s.device.dev_T_sensor).linear();
-  const Vec3 weight = R.transpose() * (s.device.tool_mass * s.gravity);
-  msg::WrenchStamped w;
-  const Vec3 f = Vec3(0, 0, -2.0) + weight;
-  const Vec3 t = s.device.tool_com.cross(weight);
-  w.wrench().force().x(f.x()), w.wrench().force().y(f.y()), w.wrench().force().z(f.z());
-  w.wrench().torque().x(t.x()), w.wrench().torque().y(t.y()), w.wrench().torque().z(t.z());
+  const msg::WrenchStamped w = sensor_reading_of_push("scenes/cube_on_table.yaml", 2.0);
   for (int i = 0; i <= 500; ++i) {
     wrench.write(w);
     h.tick(Time{i * kMs});
@@ -116,14 +123,7 @@ msg::CartesianSetpoint push_for_501ms(const std::string& scene, double newtons) 
   auto wrench = h.feed<msg::WrenchStamped>("wrench");
   auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
   h.activate();
-  const Scene s = load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/" + scene);
-  const Eigen::Matrix3d R = (s.device.obj_T_dev * s.device.dev_T_sensor).linear();
-  const Vec3 weight = R.transpose() * (s.device.tool_mass * s.gravity);
-  msg::WrenchStamped w;
-  const Vec3 f = Vec3(0, 0, -newtons) + weight;
-  const Vec3 t = s.device.tool_com.cross(weight);
-  w.wrench().force().x(f.x()), w.wrench().force().y(f.y()), w.wrench().force().z(f.z());
-  w.wrench().torque().x(t.x()), w.wrench().torque().y(t.y()), w.wrench().torque().z(t.z());
+  const msg::WrenchStamped w = sensor_reading_of_push(scene, newtons);
   for (int i = 0; i <= 500; ++i) {
     wrench.write(w);
     h.tick(Time{i * kMs});
