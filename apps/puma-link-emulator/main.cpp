@@ -11,7 +11,7 @@
 #include <string>
 #include <thread>
 
-#include "puma_link_emulator/controller_emulator.hpp"
+#include "puma_controller_emulator/controller_emulator.hpp"
 
 namespace {
 volatile std::sig_atomic_t g_stop = 0;

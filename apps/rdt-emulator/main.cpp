@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "rdt_emulator.hpp"
+#include "netft_rdt/rdt_emulator.hpp"
 
 static volatile std::sig_atomic_t g_stop = 0;
 

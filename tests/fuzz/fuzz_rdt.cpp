@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "rdt_protocol.hpp"
+#include "netft_rdt/rdt_protocol.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace wysiwyf::robot::rdt;

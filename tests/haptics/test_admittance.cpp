@@ -1,8 +1,8 @@
 // The user's wrench path, scenes, and the admittance_sim component driven like the robot would.
 #include <gtest/gtest.h>
 
-#include "rigid_body/scene.hpp"
-#include "rigid_body/wrench_path.hpp"
+#include "scene/scene.hpp"
+#include "admittance_sim/wrench_path.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msgs.hpp"
 

@@ -3,8 +3,8 @@
 
 #include <opencv2/calib3d.hpp>
 
-#include "gl/gl_context.hpp"
-#include "gl/offscreen_renderer.hpp"
+#include "offscreen_gl/gl_context.hpp"
+#include "offscreen_gl/offscreen_renderer.hpp"
 
 namespace wysiwyf::render {
 

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <thread>
 
-#include "rdt_emulator.hpp"
-#include "rdt_protocol.hpp"
+#include "netft_rdt/rdt_emulator.hpp"
+#include "netft_rdt/rdt_protocol.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msgs.hpp"
 

@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "link_client.hpp"
-#include "puma_link_emulator/controller_emulator.hpp"
+#include "puma_controller_emulator/controller_emulator.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "puma_link.hpp"
+#include "puma_link/puma_link.hpp"
 
 namespace wysiwyf::robot::link {
 

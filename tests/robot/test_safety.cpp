@@ -1,4 +1,4 @@
-// The safety gate (components/robot/safety) on its own: every guarantee of safety_gate.hpp on
+// The safety gate (libs/safety_gate) on its own: every guarantee of safety_gate.hpp on
 // synthetic targets, stepped on simulated time (no clock).
 #include <cmath>
 #include <limits>
@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "puma_model/puma_model.hpp"
-#include "safety/safety_gate.hpp"
+#include "safety_gate/safety_gate.hpp"
 
 namespace wysiwyf::robot {
 namespace {

@@ -5,9 +5,9 @@
 // (the virtual environment frame is the robot base, eq. 6).
 #include <cmath>
 
-#include "rigid_body/scene.hpp"
+#include "scene/scene.hpp"
 #include "rigid_body/world.hpp"
-#include "rigid_body/wrench_path.hpp"
+#include "wrench_path.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msg_eigen.hpp"

@@ -3,7 +3,7 @@
 // way a test or a demo drives the robot without the haptic loop.
 #include <Eigen/Geometry>
 
-#include "../keyframes/keyframes.hpp"
+#include "keyframes/keyframes.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 

@@ -2,7 +2,7 @@
 // the user's hand on the wrist sensor when the haptic side is tested without a user.
 #include <cmath>
 
-#include "../keyframes/keyframes.hpp"
+#include "keyframes/keyframes.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 

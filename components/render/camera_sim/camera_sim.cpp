@@ -11,8 +11,9 @@
 
 #include <cmath>
 
-#include "gl/gl_context.hpp"
-#include "gl/offscreen_renderer.hpp"
+#include "offscreen_gl/gl_context.hpp"
+#include "offscreen_gl/offscreen_renderer.hpp"
+#include "frames/look_at.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -22,19 +23,6 @@
 namespace wysiwyf::render {
 
 namespace {
-
-// A camera at `eye` looking at `target`, base z up: base_T_eye in OpenCV axes (x right, y down).
-Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ());
-  if (x.norm() < 1e-9) x = Eigen::Vector3d::UnitX();
-  x.normalize();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = x, T.linear().col(1) = y, T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
-}
 
 // A segment a -> b as the pose of a z-aligned mesh centred between them.
 Eigen::Isometry3d segment_pose(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -93,7 +81,7 @@ class CameraSim final : public Component {
     if (hidden_.size() % 3 != 0) throw std::invalid_argument("hidden_markers: expected rows of 3 numbers [t_start, t_end, marker]");
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
-    base_T_eye_ = look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
+    base_T_eye_ = frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
     model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "flange");
   }
 
@@ -224,7 +212,7 @@ class CameraSim final : public Component {
     const double* b = &path_[7 * std::min(i + 1, rows - 1)];
     const double s = (b[0] > a[0]) ? std::clamp((t - a[0]) / (b[0] - a[0]), 0.0, 1.0) : 0.0;
     auto lerp = [&](int k) { return Eigen::Vector3d(a[k] + s * (b[k] - a[k]), a[k + 1] + s * (b[k + 1] - a[k + 1]), a[k + 2] + s * (b[k + 2] - a[k + 2])); };
-    return look_at(lerp(1), lerp(4));
+    return frames::look_at(lerp(1), lerp(4));
   }
 
   // One pass of the scene; mask_pass: the hand white and unlit, everything else black.

@@ -4,9 +4,9 @@
 // eye_T_dev (eq. 4) and eye_T_v_env = eye_T_base (eq. 6). Publishes colour and metric depth.
 #include <map>
 
-#include "gl/gl_context.hpp"
-#include "gl/offscreen_renderer.hpp"
-#include "rigid_body/scene.hpp"
+#include "offscreen_gl/gl_context.hpp"
+#include "offscreen_gl/offscreen_renderer.hpp"
+#include "scene/scene.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msg_eigen.hpp"

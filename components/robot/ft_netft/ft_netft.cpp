@@ -11,7 +11,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "rdt_protocol.hpp"
+#include "netft_rdt/rdt_protocol.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 

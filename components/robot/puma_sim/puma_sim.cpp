@@ -20,15 +20,15 @@
 #include <random>
 #include <stdexcept>
 
-#include "arm_sim/arm_dynamics.hpp"
-#include "arm_sim/joint_servo.hpp"
+#include "arm_joint_sim/arm_dynamics.hpp"
+#include "arm_joint_sim/joint_servo.hpp"
 #include "puma_model/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
-#include "safety/safety_gate.hpp"
-#include "trajectory/arm_messages.hpp"
-#include "trajectory/gate_params.hpp"
-#include "trajectory/gate_status.hpp"
-#include "trajectory/setpoint_follower.hpp"
+#include "safety_gate/safety_gate.hpp"
+#include "arm_interface/arm_messages.hpp"
+#include "arm_interface/gate_params.hpp"
+#include "arm_interface/gate_status.hpp"
+#include "setpoint_following/setpoint_follower.hpp"
 #include "tool_geometry.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"

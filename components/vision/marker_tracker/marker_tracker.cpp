@@ -11,6 +11,7 @@
 #include "camera_model.hpp"
 #include "joint_history.hpp"
 #include "plate_tracker.hpp"
+#include "frames/look_at.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -20,19 +21,6 @@
 namespace wysiwyf::vision {
 
 namespace {
-
-// base_T_eye of a camera at `eye` looking at `target` (OpenCV axes: x right, y down), `up` up in
-// the image, as camera_sim places it.
-Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, const Eigen::Vector3d& up) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  Eigen::Vector3d x = z.cross(up.normalized());
-  if (x.norm() < 1e-9) x = z.unitOrthogonal();
-  x.normalize();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = x, T.linear().col(1) = z.cross(x), T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
-}
 
 }  // namespace
 
@@ -100,7 +88,7 @@ class MarkerTracker final : public Component {
       const Eigen::Vector3d eye(prior_eye[0], prior_eye[1], prior_eye[2]), at(prior_look_at[0], prior_look_at[1], prior_look_at[2]);
       if ((at - eye).norm() < 1e-6) throw std::invalid_argument("prior_look_at must differ from prior_eye");
       s.has_prior = true;
-      s.prior_eye_T_base = look_at(eye, at, s.up_in_base).inverse();
+      s.prior_eye_T_base = frames::look_at(eye, at, s.up_in_base).inverse();
       s.prior_sigma_m = prior_sigma[0], s.prior_sigma_rad = prior_sigma[1];
     }
     const std::string path = find_config_file(urdf);

@@ -1,0 +1,53 @@
+#include "arm_joint_sim/joint_servo.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace wysiwyf::robot {
+
+void JointServoConfig::validate() const {
+  auto six_or_none = [](const std::vector<double>& v, const char* name) {
+    if (!v.empty() && v.size() != static_cast<std::size_t>(kDof))
+      throw std::invalid_argument(std::string(name) + " needs 6 values, one per joint, or none (got " +
+                                  std::to_string(v.size()) + ")");
+    for (double x : v)
+      if (!(x >= 0.0)) throw std::invalid_argument(std::string(name) + " must be >= 0 (got " + std::to_string(x) + ")");
+  };
+  six_or_none(kp, "servo_kp");
+  six_or_none(kd, "servo_kd");
+  if (!(bandwidth_hz > 0.0)) throw std::invalid_argument("servo bandwidth must be > 0 Hz");
+  if (!(damping > 0.0)) throw std::invalid_argument("servo damping must be > 0");
+  if (!(coulomb_smoothing > 0.0)) throw std::invalid_argument("coulomb_smoothing must be > 0 rad/s");
+}
+
+JointServo::JointServo(const PumaModel& model, const DriveParams& drive, const JointServoConfig& config,
+                       const Vector6d& q_gains)
+    : model_(model), drive_(drive), config_(config) {
+  config_.validate();
+  const Vector6d m_diag = model_.mass_matrix(q_gains).diagonal();
+  const double w = 6.283185307179586 * config_.bandwidth_hz;
+  for (int j = 0; j < kDof; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    kp_[j] = config_.kp.empty() ? m_diag[j] * w * w : config_.kp[k];
+    kd_[j] = config_.kd.empty() ? 2.0 * config_.damping * m_diag[j] * w : config_.kd[k];
+  }
+}
+
+Vector6d JointServo::torque(const Vector6d& q_measured, const Vector6d& qd_measured, const Vector6d& ref_q,
+                            const Vector6d& ref_qd, const Vector6d& ref_qdd) const {
+  const Vector6d gravity = model_.gravity_torques(q_measured);
+  Vector6d tau = kp_.cwiseProduct(ref_q - q_measured) + kd_.cwiseProduct(ref_qd - qd_measured) + gravity;
+  if (config_.accel_feedforward > 0.0)
+    tau += config_.accel_feedforward * (model_.rnea(q_measured, qd_measured, ref_qdd) - gravity);
+  // Friction is compensated while the reference moves; at a standstill it holds the arm (and
+  // damps the hunting that encoder quantisation would give a frictionless joint).
+  if (config_.friction_feedforward > 0.0) {
+    const Vector6d f = drive_.friction_torque(qd_measured, config_.coulomb_smoothing);
+    for (int j = 0; j < kDof; ++j)
+      if (ref_qd[j] != 0.0 || ref_qdd[j] != 0.0) tau[j] += config_.friction_feedforward * f[j];
+  }
+  const Vector6d& effort = model_.limits().effort;
+  return tau.cwiseMax(-effort).cwiseMin(effort);
+}
+
+}  // namespace wysiwyf::robot

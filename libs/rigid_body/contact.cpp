@@ -1,0 +1,152 @@
+#include "rigid_body/contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace wysiwyf::haptics {
+
+namespace {
+
+Vec3 corner_world(const BodyModel& m, const Pose& s, int i) { return s.x + s.R * BoxTopology::corner(m.half_extents, i); }
+
+// All eight, from the three half-edge vectors (corner_world's order: x fastest, then y, z).
+std::array<Vec3, 8> corners_world(const BodyModel& m, const Pose& s) {
+  const Vec3 hx = m.half_extents.x() * s.R.col(0), hy = m.half_extents.y() * s.R.col(1),
+             hz = m.half_extents.z() * s.R.col(2);
+  std::array<Vec3, 8> c;
+  for (int i = 0; i < 8; ++i) c[i] = s.x + ((i & 1) ? hx : Vec3(-hx)) + ((i & 2) ? hy : Vec3(-hy)) + ((i & 4) ? hz : Vec3(-hz));
+  return c;
+}
+
+ContactPoint vertex_face(const ContactFeature& f, const BodyModel& ma, const Pose& sa, const BodyModel& mb,
+                         const Pose& sb, double slack) {
+  ContactPoint c;
+  const int axis = f.feature_b / 2;
+  const double side = (f.feature_b % 2) ? 1.0 : -1.0;
+  c.p = corner_world(ma, sa, f.feature_a);
+  c.n = side * sb.R.col(axis);
+  c.ndot = sb.omega.cross(c.n);
+  const Vec3 local = sb.R.transpose() * (c.p - sb.x);
+  c.gap = side * local[axis] - mb.half_extents[axis];
+  c.valid = true;
+  for (int j = 0; j < 3; ++j)
+    if (j != axis && std::abs(local[j]) > mb.half_extents[j] + slack) c.valid = false;
+  return c;
+}
+
+ContactPoint edge_edge(const ContactFeature& f, const BodyModel& ma, const Pose& sa, const BodyModel& mb,
+                       const Pose& sb, double slack) {
+  ContactPoint c;
+  const auto& ea = BoxTopology::edges()[f.feature_a];
+  const auto& eb = BoxTopology::edges()[f.feature_b];
+  const Vec3 a0 = corner_world(ma, sa, ea[0]), da = corner_world(ma, sa, ea[1]) - a0;
+  const Vec3 b0 = corner_world(mb, sb, eb[0]), db = corner_world(mb, sb, eb[1]) - b0;
+  const Vec3 u = da.cross(db);
+  const double un = u.norm();
+  if (un < 1e-9 * da.norm() * db.norm()) return c;  // parallel: vertex-face contacts cover it
+  // Closest points of the two lines.
+  const Vec3 w = a0 - b0;
+  const double aa = da.dot(da), ab = da.dot(db), bb = db.dot(db), aw = da.dot(w), bw = db.dot(w);
+  const double den = aa * bb - ab * ab;
+  const double s = (ab * bw - bb * aw) / den, t = (aa * bw - ab * aw) / den;
+  const double rel = slack / std::sqrt(std::min(aa, bb));
+  c.valid = s >= -rel && s <= 1 + rel && t >= -rel && t <= 1 + rel;
+  const Vec3 pa = a0 + s * da, pb = b0 + t * db;
+  c.n = f.sign * u / un;
+  c.gap = c.n.dot(pa - pb);
+  c.p = 0.5 * (pa + pb);
+  const Vec3 udot = sa.omega.cross(da).cross(db) + da.cross(sb.omega.cross(db));
+  const Vec3 nu = u / un;
+  c.ndot = f.sign * (udot - nu * nu.dot(udot)) / un;
+  return c;
+}
+
+}  // namespace
+
+ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
+                      double slack) {
+  const auto& ma = models[f.a];
+  const auto& mb = models[f.b];
+  return f.kind == ContactKind::kVertexFace ? vertex_face(f, ma, poses[f.a], mb, poses[f.b], slack)
+                                            : edge_edge(f, ma, poses[f.a], mb, poses[f.b], slack);
+}
+
+void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
+                     double margin, std::vector<ContactFeature>& out) {
+  const auto& ma = models[a];
+  const auto& mb = models[b];
+  const double reach = ma.half_extents.norm() + mb.half_extents.norm() + margin;
+  if ((poses[a].x - poses[b].x).squaredNorm() > reach * reach) return;  // bounding spheres apart
+  // Deeper than this is the far side of the other box, not a contact.
+  const double depth = 0.5 * std::min(ma.half_extents.minCoeff(), mb.half_extents.minCoeff());
+  const std::array<Vec3, 8> ca = corners_world(ma, poses[a]), cb = corners_world(mb, poses[b]);
+  // Corners of one box against the faces of the other, in the other's frame.
+  auto vertex_faces = [&](int va, int vb, const std::array<Vec3, 8>& corners) {
+    const BodyModel& other = models[vb];
+    const Pose& pose = poses[vb];
+    for (int v = 0; v < 8; ++v) {
+      const Vec3 local = pose.R.transpose() * (corners[v] - pose.x);
+      if ((local.cwiseAbs().array() <= other.half_extents.array()).all()) {
+        // Inside the other box: only its nearest face is a contact (the others would push the
+        // corner out through the far side, against the true one).
+        int best = 0;
+        double best_gap = -1e300;
+        for (int face = 0; face < 6; ++face) {
+          const int axis = face / 2;
+          const double gap = ((face % 2) ? local[axis] : -local[axis]) - other.half_extents[axis];
+          if (gap > best_gap) best_gap = gap, best = face;
+        }
+        if (best_gap > -depth) out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, best, 1});
+        continue;
+      }
+      for (int axis = 0; axis < 3; ++axis) {
+        const int j = (axis + 1) % 3, k = (axis + 2) % 3;
+        if (std::abs(local[j]) > other.half_extents[j] || std::abs(local[k]) > other.half_extents[k]) continue;
+        for (int side = 0; side < 2; ++side) {
+          const double gap = (side ? local[axis] : -local[axis]) - other.half_extents[axis];
+          if (gap < margin && gap > -depth) out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, 2 * axis + side, 1});
+        }
+      }
+    }
+  };
+  vertex_faces(a, b, ca);
+  vertex_faces(b, a, cb);  // corners of b on faces of a (a table corner under the cube)
+  const auto& edges = BoxTopology::edges();
+  // An edge in contact with the other box passes within the other's bounding sphere (a table's
+  // far edges, metres away, are not looked at again).
+  struct NearEdges {
+    std::array<int, 12> index;
+    int count = 0;
+  };
+  auto near_edges = [&](const std::array<Vec3, 8>& corners, const Vec3& centre, double radius) {
+    NearEdges near;
+    for (int e = 0; e < 12; ++e) {
+      const Vec3 e0 = corners[edges[e][0]], de = corners[edges[e][1]] - e0;
+      const double s = std::clamp((centre - e0).dot(de) / de.squaredNorm(), 0.0, 1.0);
+      if ((e0 + s * de - centre).squaredNorm() <= radius * radius) near.index[near.count++] = e;
+    }
+    return near;
+  };
+  const NearEdges near_b = near_edges(cb, poses[a].x, ma.half_extents.norm() + margin);
+  const NearEdges near_a = near_b.count ? near_edges(ca, poses[b].x, mb.half_extents.norm() + margin) : NearEdges{};
+  for (int i = 0; i < near_a.count; ++i) {
+    const int ea = near_a.index[i];
+    const Vec3 a0 = ca[edges[ea][0]], da = ca[edges[ea][1]] - a0;
+    for (int j = 0; j < near_b.count; ++j) {
+      const int eb = near_b.index[j];
+      const Vec3 b0 = cb[edges[eb][0]], db = cb[edges[eb][1]] - b0;
+      // Cheap rejection: the edges' bounding spheres.
+      const double r = 0.5 * (da.norm() + db.norm()) + margin;
+      if (((a0 + 0.5 * da) - (b0 + 0.5 * db)).squaredNorm() > r * r) continue;
+      ContactFeature f{ContactKind::kEdgeEdge, a, b, ea, eb, 1};
+      // Strictly inside both edges: a contact at an edge's end is a vertex-face contact.
+      ContactPoint c = evaluate(f, models, poses, -1e-6);
+      if (!c.valid || std::abs(c.gap) > margin) continue;
+      if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.gap = -c.gap;  // point the normal out of b
+      if (c.gap > -depth) out.push_back(f);
+    }
+  }
+}
+
+}  // namespace wysiwyf::haptics
