@@ -60,7 +60,7 @@ class KernelEndpoint {
     auto* out = bus_.channel<T>(out_topic, "bench.out");
     out->add_writer(qos);
     out_ = Output<T>(out);
-    in_ = Input<T>(bus_.channel<T>(in_topic, "bench.in")->add_reader(qos));
+    in_ = Input<T>(bus_.channel<T>(in_topic, "bench.in")->add_reader(qos), "bench.in");
     for (const auto& [name, channel] : bus_.channels()) bridge_.connect(*channel);
   }
   void send(const T& sample) { out_.write(sample); }

@@ -38,10 +38,23 @@ void Harness::deactivate() {
   component_->deactivate();
 }
 
-void Harness::request_stop(const std::string&, const std::string& reason) { stop_request_ = reason; }
+void Harness::request_stop(const std::string& reason) { stop_request_ = reason; }
 
-void Harness::log(const std::string& component, const std::string& message) {
-  std::cerr << "[" << component << "] " << message << "\n";
+void Harness::log(const std::string& message) { std::cerr << "[dut] " << message << "\n"; }
+
+void Harness::warn_once(const std::string& key, const std::string& message) {
+  ++warnings_;
+  if (warned_.insert(key).second) log("warning: " + message);
+}
+
+void Harness::reject_sample(const std::string& port, const std::string& why) {
+  ++rejected_[port];
+  warn_once("reject " + port + ": " + why, "input '" + port + "': rejected a sample: " + why);
+}
+
+std::uint64_t Harness::rejected(const std::string& port) const {
+  const auto it = rejected_.find(port);
+  return it == rejected_.end() ? 0 : it->second;
 }
 
 }  // namespace wysiwyf

@@ -9,6 +9,7 @@
 
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/validator.hpp"
+#include "yaml_scalar.hpp"
 
 namespace fs = std::filesystem;
 
@@ -232,30 +233,8 @@ class Parser {
     }
   }
 
-  static bool to_int(const YAML::Node& n, int& out) {
-    if (!n.IsScalar()) return false;
-    try {
-      std::size_t used = 0;
-      const long v = std::stol(n.Scalar(), &used);
-      if (used != n.Scalar().size() || v < INT32_MIN || v > INT32_MAX) return false;
-      out = static_cast<int>(v);
-      return true;
-    } catch (...) {
-      return false;
-    }
-  }
-  static bool to_double(const YAML::Node& n, double& out) {
-    if (!n.IsScalar()) return false;
-    try {
-      std::size_t used = 0;
-      const double v = std::stod(n.Scalar(), &used);
-      if (used != n.Scalar().size() || !std::isfinite(v)) return false;
-      out = v;
-      return true;
-    } catch (...) {
-      return false;
-    }
-  }
+  static bool to_int(const YAML::Node& n, int& out) { return detail::scalar_to_int(n, out); }
+  static bool to_double(const YAML::Node& n, double& out) { return detail::scalar_to_double(n, out); }
 
   bool expect_map(const YAML::Node& n, const std::string& file, const std::string& what) {
     if (n.IsMap()) return true;
@@ -371,8 +350,8 @@ class Parser {
     }
     if (const YAML::Node m = n["process"]) get_string(m, file, label + " process", c.process);
     if (const YAML::Node m = n["enabled"]) {
-      if (m.IsScalar() && (m.Scalar() == "true" || m.Scalar() == "false"))
-        c.enabled.assign(m.Scalar() == "true", at(m, file));
+      if (bool enabled = true; detail::scalar_to_bool(m, enabled))
+        c.enabled.assign(enabled, at(m, file));
       else
         error(at(m, file), label + " enabled: found " + describe_node(m) + "; expected true or false");
     }

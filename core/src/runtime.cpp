@@ -14,6 +14,8 @@
 #include <cstring>
 #include <iostream>
 #include <mutex>
+#include <set>
+#include <type_traits>
 #include <thread>
 
 #include "dds_bridge.hpp"
@@ -32,20 +34,64 @@ std::int64_t wall_now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-struct Slot {
+// Where a component's requests end up: the executor.
+class RunHost {
+ public:
+  virtual ~RunHost() = default;
+  virtual void request_stop(const std::string& component, const std::string& reason) = 0;
+  virtual void log(const std::string& component, const std::string& message) = 0;
+};
+
+// One component of the run, and the kernel's view of it: its own ComponentHost, so what it
+// reports (warnings, rejected samples) is counted where its diagnostics are made.
+struct Slot final : ComponentHost {
   const ComponentSpec* spec = nullptr;
+  RunHost* run = nullptr;
   ComponentPtr component;
   std::int64_t period_ns = 0;
   enum class Stage { kCreated, kConfigured, kActive, kDeactivated } stage = Stage::kCreated;
   detail::TickStats stats;
   std::string last_error;
   std::uint64_t diag_seq = 0;
+  std::vector<const detail::QueueCounters*> inputs;
+  // What the component reported (from its tick thread: under health_mutex).
+  std::mutex health_mutex;
+  std::set<std::string> warned;
+  std::uint64_t warnings = 0, rejected = 0;
+  std::string last_warning;
+
   std::string label() const { return "component '" + spec->name + "' (" + spec->type.value + ")"; }
+  std::uint64_t dropped() const {
+    std::uint64_t n = 0;
+    for (const auto* q : inputs) n += q->dropped();
+    return n;
+  }
+
+  void request_stop(const std::string& reason) override { run->request_stop(spec->name, reason); }
+  void log(const std::string& message) override { run->log(spec->name, message); }
+  void warn_once(const std::string& key, const std::string& message) override {
+    bool first = false;
+    {
+      std::lock_guard<std::mutex> lock(health_mutex);
+      ++warnings;
+      first = warned.insert(key).second;
+      if (first) last_warning = message;
+    }
+    if (first) run->log(spec->name, "warning: " + message);
+  }
+  void reject_sample(const std::string& port, const std::string& why) override {
+    {
+      std::lock_guard<std::mutex> lock(health_mutex);
+      ++rejected;
+    }
+    warn_once("reject " + port + ": " + why,
+              "input '" + port + "': rejected a sample: " + why + " (further ones are counted in the diagnostics)");
+  }
 };
 
 }  // namespace
 
-struct Runtime::Impl final : ComponentHost {
+struct Runtime::Impl final : RunHost {
   Impl(PipelineSpec s, Loader& l, RunOptions o) : spec(std::move(s)), loader(l), options(std::move(o)) {}
 
   const PipelineSpec spec;
@@ -86,16 +132,21 @@ struct Runtime::Impl final : ComponentHost {
     request_stop("", "fault");
   }
 
-  // Calls fn on the slot's component, turning an exception into a reported fault.
-  template <class Fn>
-  bool guarded(Slot& slot, const std::string& phase, Fn&& fn) {
+  // Calls fn on the slot's component, turning an exception into a reported fault. `phase` (a
+  // string, or a callable that makes one) names what was called; it is made only on failure.
+  template <class Phase, class Fn>
+  bool guarded(Slot& slot, const Phase& phase, Fn&& fn) {
+    const auto phase_text = [&]() -> std::string {
+      if constexpr (std::is_invocable_v<Phase>) return phase();
+      else return phase;
+    };
     try {
       fn();
       return true;
     } catch (const std::exception& e) {
-      fail(slot, phase, e.what());
+      fail(slot, phase_text(), e.what());
     } catch (...) {
-      fail(slot, phase, "an exception that is not a std::exception");
+      fail(slot, phase_text(), "an exception that is not a std::exception");
     }
     return false;
   }
@@ -103,7 +154,7 @@ struct Runtime::Impl final : ComponentHost {
   // late_us: how long after its deadline the tick started (real clock).
   void tick(Slot& slot, Time now, double late_us = 0) {
     const auto t0 = Clock::now();
-    guarded(slot, "tick at t=" + std::to_string(now.ns) + " ns", [&] { slot.component->tick(now); });
+    guarded(slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
     slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
   }
 
@@ -111,9 +162,7 @@ struct Runtime::Impl final : ComponentHost {
     for (auto& slot : slots) {
       const auto s = slot->stats.summarise();
       auto& d = diag_msg;
-      d.header().stamp_ns(now.ns);
-      d.header().seq(slot->diag_seq++);
-      d.header().frame_id("");
+      fill_header(d.header(), now.ns, slot->diag_seq++, "");
       d.instance(slot->spec->name);
       d.type(slot->spec->type.value);
       d.process(slot->spec->process_name());
@@ -131,6 +180,13 @@ struct Runtime::Impl final : ComponentHost {
       d.tick_late_max_us(s.late_max_us);
       d.ticks(s.ticks);
       d.overruns(s.overruns);
+      d.dropped_samples(slot->dropped());
+      {
+        std::lock_guard<std::mutex> lock(slot->health_mutex);
+        d.rejected_samples(slot->rejected);
+        d.warnings(slot->warnings);
+        d.last_warning(slot->last_warning.substr(0, 255));
+      }
       d.last_error(slot->last_error.substr(0, 255));
       diagnostics.write(d);
     }
@@ -159,6 +215,7 @@ bool Runtime::Impl::setup(RunResult& result) {
     if (!c.is_enabled() || (!options.process.empty() && c.process_name() != options.process)) continue;
     auto slot = std::make_unique<Slot>();
     slot->spec = &c;
+    slot->run = this;
     slot->period_ns = static_cast<std::int64_t>(std::llround(1e9 / c.rate.value));
     slots.push_back(std::move(slot));
   }
@@ -185,13 +242,14 @@ bool Runtime::Impl::setup(RunResult& result) {
       fail(*slot, "load", e.what());
       return false;
     }
-    slot->component->attach(this, slot->spec->name);
+    slot->component->attach(slot.get(), slot->spec->name);
     Context ctx(Context::Mode::kRun, slot->spec, &bus);
     if (!guarded(*slot, "configure", [&] { slot->component->configure(ctx); })) return false;
     if (!ctx.issues().empty()) {
       fail(*slot, "configure", ConfigError(ctx.issues()).what());
       return false;
     }
+    slot->inputs = ctx.input_queues();
     slot->stage = Slot::Stage::kConfigured;
   }
   Qos diag_qos = Qos::reliable(1);
@@ -317,9 +375,10 @@ void Runtime::Impl::teardown(RunResult& result) {
   if (diagnostics.connected()) publish_diagnostics(Time{result.sim_time_ns}, 0.0, true);
   for (auto& slot : slots) {
     const auto s = slot->stats.summarise();
+    std::lock_guard<std::mutex> lock(slot->health_mutex);
     result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns,
                                                 s.p50_us, s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us,
-                                                s.late_max_us});
+                                                s.late_max_us, slot->dropped(), slot->rejected, slot->warnings});
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

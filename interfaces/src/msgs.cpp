@@ -4,6 +4,22 @@
 #include <limits>
 #include <sstream>
 
+#include "wysiwyf/idl/geometry_msgsPubSubTypes.h"
+#include "wysiwyf/idl/sensor_msgsPubSubTypes.h"
+#include "wysiwyf/idl/wysiwyf_msgsPubSubTypes.h"
+
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, Image)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, CameraInfo)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, JointState)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, PoseStamped)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, PoseWithCovariance)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, WrenchStamped)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, CartesianSetpoint)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, ObjectState)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, DisplayMode)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, RobotStatus)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, MarkerObservation)
+
 namespace wysiwyf::msgs {
 
 namespace {
@@ -132,7 +148,9 @@ std::string to_yaml(const kernel_msgs::Diagnostics& m) {
   y.kv("tick_time_p99_us", m.tick_time_p99_us()).kv("tick_time_max_us", m.tick_time_max_us());
   y.kv("tick_late_p50_us", m.tick_late_p50_us()).kv("tick_late_p99_us", m.tick_late_p99_us());
   y.kv("tick_late_max_us", m.tick_late_max_us());
-  y.kv("ticks", m.ticks()).kv("overruns", m.overruns()).str("last_error", m.last_error());
+  y.kv("ticks", m.ticks()).kv("overruns", m.overruns()).kv("dropped_samples", m.dropped_samples());
+  y.kv("rejected_samples", m.rejected_samples()).kv("warnings", m.warnings()).str("last_warning", m.last_warning());
+  y.str("last_error", m.last_error());
   return y.text();
 }
 

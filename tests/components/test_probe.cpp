@@ -1,5 +1,6 @@
 // Test component: JointState in -> JointState out, recording what it sees, optionally failing
 // on purpose in a chosen lifecycle phase. Used by the kernel tests only.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -24,6 +25,14 @@ class TestProbe final : public wysiwyf::Component {
     stop_after_ = ctx.param<int>("stop_after_received", 0, "ask the pipeline to stop after this many inputs (0: never)",
                                  wysiwyf::Range{0, 1e9});
     tick_sleep_us_ = ctx.param<int>("tick_sleep_us", 0, "sleep this long in every tick (overrun tests)", wysiwyf::Range{0, 1e6});
+    emit_nan_ = ctx.param<bool>("emit_nan", false, "write NaN in out.position[0] (bad-input tests)");
+    // Parameter shapes and a relation between two parameters, for the validator's tests.
+    weights_ = ctx.param<std::array<double, 3>>("weights", {1, 0, 0}, "three weights (a fixed-size list)", wysiwyf::Range{-1, 1});
+    window_ = ctx.param<std::vector<double>>("window", {}, "rows of [start s, end s]", std::nullopt,
+                                             wysiwyf::Length::rows_of(2));
+    const double lo = ctx.param<double>("lo", 0, "lower bound (with hi)");
+    const double hi = ctx.param<double>("hi", 1, "upper bound, larger than lo");
+    if (!(hi > lo)) ctx.reject("hi", "must be larger than lo (" + std::to_string(lo) + ")");
     in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", wysiwyf::Qos::reliable(100));
     out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]");
     if (ctx.mode() == wysiwyf::Context::Mode::kRun) event("configure");  // validation configures too
@@ -39,6 +48,10 @@ class TestProbe final : public wysiwyf::Component {
     if (tick_sleep_us_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(tick_sleep_us_));
     double sum = 0;
     while (in_.take(sample_)) {
+      if (!std::isfinite(sample_.position()[0])) {
+        reject(in_, "position[0] is not finite");
+        continue;
+      }
       char line[160];
       std::snprintf(line, sizeof line, "%lld %llu %a %a\n", static_cast<long long>(now.ns),
                     static_cast<unsigned long long>(sample_.header().seq()), sample_.position()[0],
@@ -50,7 +63,7 @@ class TestProbe final : public wysiwyf::Component {
     wysiwyf::msg::JointState out;
     out.header().stamp_ns(now.ns);
     out.header().seq(seq_++);
-    out.position()[0] = now.seconds() + gain_ * std::sin(sum);
+    out.position()[0] = emit_nan_ ? std::nan("") : now.seconds() + gain_ * std::sin(sum);
     out_.write(out);
   }
   void deactivate() override {
@@ -66,6 +79,9 @@ class TestProbe final : public wysiwyf::Component {
   }
 
   double gain_ = 0;
+  bool emit_nan_ = false;
+  std::array<double, 3> weights_{};
+  std::vector<double> window_;
   std::string fail_phase_, record_, lifecycle_log_;
   int tick_sleep_us_ = 0;
   int fail_tick_ = 0, stop_after_ = 0, ticks_ = 0, received_ = 0;

@@ -94,3 +94,28 @@ TEST(Lifecycle, AComponentCanEndTheRun) {
 }
 
 }  // namespace wysiwyf::test
+
+namespace wysiwyf::test {
+
+// A component rejects an unusable sample through the kernel: counted, logged once, in the
+// run's report and diagnostics; the run goes on.
+TEST(BadInput, RejectedSamplesAreCountedAndWarnedOnce) {
+  std::string log;
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 56\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 50ms}\ncomponents:\n"
+      "  source: {type: test_probe, rate: 1000, params: {emit_nan: true}, topics: {out: x}}\n"
+      "  sink: {type: test_probe, rate: 1000, topics: {in: x}}\n",
+      {}, &log);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.components.size(), 2u);
+  EXPECT_EQ(r.components[1].rejected_samples, 50u);  // the source ticks first: its sample of each step
+  EXPECT_EQ(r.components[1].warnings, 50u);
+  EXPECT_EQ(r.components[0].rejected_samples, 0u);
+  std::size_t lines = 0;
+  for (std::size_t at = log.find("rejected a sample"); at != std::string::npos; at = log.find("rejected a sample", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, 1u) << log;
+  EXPECT_NE(log.find("[sink] warning: input 'in': rejected a sample: position[0] is not finite"), std::string::npos) << log;
+}
+
+}  // namespace wysiwyf::test

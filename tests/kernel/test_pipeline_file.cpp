@@ -58,4 +58,29 @@ TEST(PipelineFile, ClosestNameCatchesTyposOnly) {
   EXPECT_EQ(closest_name("xyz", {"threshold", "rate"}), "");
 }
 
+// The pipeline's own keys and component parameters read scalars by one set of rules.
+TEST(PipelineFile, KeysAndParametersReadScalarsAlike) {
+  const PipelineSpec spec = load_pipeline_from_string(
+      "wysiwyf: 1\nclock: {mode: sim, step: 1ms}\ncomponents:\n"
+      "  a: {type: test_probe, rate: 0x64, enabled: True,\n"
+      "      params: {fail_tick: 0x64, tick_sleep_us: 010, emit_nan: True, gain: 1e-1, lo: -2, hi: +0o17}}\n",
+      "scalars.yaml");
+  const ComponentSpec* a = spec.find("a");
+  EXPECT_EQ(a->rate.value, 100.0);  // hex integer as a rate
+  EXPECT_TRUE(a->is_enabled());     // True as a key, as it is as a bool parameter
+  Loader loader(test_search_dirs());
+  const auto v = validate_pipeline(spec, loader);
+  EXPECT_TRUE(v.ok()) << (v.errors.empty() ? "" : v.errors[0].str());
+  for (const char* bad : {"rate: 1.5.2", "rate: .inf", "rate: yes", "enabled: yes", "enabled: 1"}) {
+    const std::string yaml = std::string("wysiwyf: 1\ncomponents:\n  a: {type: test_probe, ") + bad + "}\n";
+    EXPECT_THROW(load_pipeline_from_string(yaml, "bad.yaml"), ConfigError) << bad;
+  }
+  // An integer parameter refuses a fraction and reads a leading zero as decimal (YAML 1.2).
+  for (const auto& [text, ok] : std::vector<std::pair<std::string, bool>>{{"1.5", false}, {"010", true}, {"0x1G", false}}) {
+    const PipelineSpec s = load_pipeline_from_string(
+        "wysiwyf: 1\ncomponents:\n  a: {type: test_probe, rate: 100, params: {fail_tick: " + text + "}}\n", "int.yaml");
+    EXPECT_EQ(validate_pipeline(s, loader).ok(), ok) << text;
+  }
+}
+
 }  // namespace wysiwyf::test

@@ -6,13 +6,27 @@
 //   configure(ctx)  declare parameters and ports, read parameter values (no side effects: it also
 //                   runs when a pipeline is only validated or described)
 //   activate()      acquire resources: devices, threads, files
-//   tick(now)       called at the component's rate (sim clock: in file order within each step)
+//   tick(now)       called at the component's rate
 //   deactivate()    release resources; called in reverse order on every stop
 //   hold()          a fault stopped the pipeline: bring hardware to a safe standstill at once;
 //                   called on every component before any deactivate()
 //
 // An exception thrown from any of these is reported with the component's name and stops the
 // pipeline cleanly.
+//
+// Threads. configure, activate, deactivate and hold run on the thread that runs the pipeline,
+// one component after the other. tick() runs
+//   - on the sim clock: on that same thread, every component in file order within each step
+//     (`now` is the simulated time, from 0), so a component never runs while another does;
+//   - on the real clock: on a thread of its own, at absolute deadlines on a fixed grid (`now` is
+//     wall-clock time since the epoch); different components tick at the same time.
+// A component's own calls are never concurrent with each other. Ports are thread-safe.
+//
+// Inside tick(): no blocking (no sleeping, no waiting for I/O or locks held across ticks: a late
+// tick delays everything after it on the sim clock and counts as an overrun on the real one), and
+// no heap allocation in steady state (size buffers once, in activate() or the first tick; the
+// ports reuse theirs). log(), warn_once() and reject() take a lock and format text: they are for
+// events, not for every tick.
 #include <cstdint>
 #include <string>
 
@@ -22,12 +36,19 @@
 
 namespace wysiwyf {
 
-// What a running component may ask of the kernel; implemented by the executor.
+// What a running component may ask of the kernel; the executor (and the test Harness) gives each
+// component its own.
 class ComponentHost {
  public:
   virtual ~ComponentHost() = default;
-  virtual void request_stop(const std::string& component, const std::string& reason) = 0;
-  virtual void log(const std::string& component, const std::string& message) = 0;
+  virtual void request_stop(const std::string& reason) = 0;
+  virtual void log(const std::string& message) = 0;
+  // Logs `message` the first time `key` is warned about; later warnings with the same key are
+  // only counted (in the diagnostics).
+  virtual void warn_once(const std::string& key, const std::string& message) = 0;
+  // A sample that arrived on input `port` could not be used (`why`): counted in the diagnostics,
+  // logged once per port and reason.
+  virtual void reject_sample(const std::string& port, const std::string& why) = 0;
 };
 
 class Component {
@@ -43,7 +64,7 @@ class Component {
   virtual void deactivate() {}
   virtual void hold() noexcept {}
 
-  // Set by the kernel before configure().
+  // Set by the kernel before configure() (host may be null while validating).
   void attach(ComponentHost* host, std::string instance_name) {
     host_ = host;
     instance_name_ = std::move(instance_name);
@@ -53,10 +74,23 @@ class Component {
   const std::string& instance_name() const { return instance_name_; }
   // Ends the pipeline cleanly after the current step (e.g. a scripted run is done).
   void request_stop(const std::string& reason) {
-    if (host_) host_->request_stop(instance_name_, reason);
+    if (host_) host_->request_stop(reason);
   }
+  // A line in the pipeline's log, prefixed with the instance name (takes a lock).
   void log(const std::string& message) {
-    if (host_) host_->log(instance_name_, message);
+    if (host_) host_->log(message);
+  }
+  // A warning logged once per `key` (the message itself by default) and counted every time.
+  void warn_once(const std::string& key, const std::string& message) {
+    if (host_) host_->warn_once(key, message);
+  }
+  void warn_once(const std::string& message) { warn_once(message, message); }
+  // The one way to report an input sample that cannot be used (a wrong encoding, a NaN, a short
+  // buffer): counted in the diagnostics and logged once per port and reason. Skip the sample
+  // after it; hardware holds what it had.
+  template <class T>
+  void reject(const Input<T>& in, const std::string& why) {
+    if (host_) host_->reject_sample(in.port(), why);
   }
 
  private:
@@ -65,7 +99,7 @@ class Component {
 };
 
 // Bumped whenever the Component/Context/port layout changes incompatibly.
-constexpr std::uint32_t kAbiVersion = 1;
+constexpr std::uint32_t kAbiVersion = 2;
 
 // The C entry point's answer. abi_version stays the first field in every version.
 struct ComponentEntry {

@@ -3,21 +3,30 @@
 // in three modes: describe (no pipeline: defaults, for `components describe`), validate (the
 // pipeline's values are checked, nothing is connected) and run (ports connected to topics).
 // configure() must therefore only declare and read: open devices and threads in activate().
-#include <yaml-cpp/yaml.h>
-
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <optional>
-#include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "wysiwyf/detail/topic_bus.hpp"
 #include "wysiwyf/location.hpp"
 #include "wysiwyf/params.hpp"
-#include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/port.hpp"
 #include "wysiwyf/time.hpp"
 
 namespace wysiwyf {
+
+struct ComponentSpec;  // the pipeline's entry for this component (pipeline_spec.hpp)
+
+namespace detail {
+template <class T>
+struct IsStdArray : std::false_type {};
+template <class V, std::size_t N>
+struct IsStdArray<std::array<V, N>> : std::true_type {};
+}  // namespace detail
 
 class Context {
  public:
@@ -26,15 +35,25 @@ class Context {
   // spec is null in describe mode; bus is non-null only in run mode.
   Context(Mode mode, const ComponentSpec* spec, detail::TopicBus* bus);
 
-  // A parameter of type T (bool, int, int64_t, double, std::string, vector<double>,
-  // vector<string>): the pipeline's value, or default_value when the pipeline gives none.
+  // A parameter: the pipeline's value, or default_value when the pipeline gives none. T is bool,
+  // int, int64_t, double, std::string, std::vector<double>, std::vector<std::string>, or
+  // std::array<double, N> (a list of exactly N). `range` bounds numbers (each element of a
+  // list); `length` says how many elements a list may have. A wrong value is reported at its
+  // file:line:column and the default is returned.
   template <class T>
   T param(const std::string& name, const T& default_value, const std::string& description,
-          std::optional<Range> range = std::nullopt);
+          std::optional<Range> range = std::nullopt, std::optional<Length> length = std::nullopt);
   // A string parameter that must be one of `choices`.
   std::string param_choice(const std::string& name, const std::string& default_value,
                            const std::string& description, const std::vector<std::string>& choices);
 
+  // Refuses the value of parameter `name` (declared before) for a reason the declaration cannot
+  // express, such as a relation between two parameters: reported like a wrong type or range, at
+  // the value's file:line:column ("parameter 'outer' of component 'keyer' (chroma_keyer): must be
+  // larger than inner (22)"). configure() goes on; the pipeline does not start.
+  void reject(const std::string& name, const std::string& why);
+
+  // Ports. `qos` is the component's default; the pipeline may override it per port.
   template <class T>
   Input<T> input(const std::string& port, const std::string& description, Qos qos = Qos::reliable());
   template <class T>
@@ -53,42 +72,36 @@ class Context {
   const std::vector<PortSpec>& declared_ports() const { return ports_; }
   const std::string& summary_text() const { return summary_; }
   const std::vector<ConfigIssue>& issues() const { return issues_; }
+  // Run mode: the queues of the component's inputs, for the kernel's diagnostics.
+  const std::vector<const detail::QueueCounters*>& input_queues() const { return input_queues_; }
 
  private:
-  const Sourced<YAML::Node>* lookup_param(const std::string& name) const;
+  // One per parameter type: declare, look up, convert, check range and length (context.cpp).
+  bool read(const std::string& name, const bool& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, bool& out);
+  bool read(const std::string& name, const int& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, int& out);
+  bool read(const std::string& name, const std::int64_t& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, std::int64_t& out);
+  bool read(const std::string& name, const double& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, double& out);
+  bool read(const std::string& name, const std::string& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, std::string& out);
+  bool read(const std::string& name, const std::vector<double>& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, std::vector<double>& out);
+  bool read(const std::string& name, const std::vector<std::string>& default_value, const std::string& description,
+            std::optional<Range> range, std::optional<Length> length, std::vector<std::string>& out);
+  template <class T>
+  bool read_as(const std::string& name, const T& default_value, const std::string& description,
+               std::optional<Range> range, std::optional<Length> length, T& out);
+
   void declare_param(ParamSpec spec);
   void declare_port(PortSpec spec);
   void add_issue(const Location& where, std::string message);
+  Location param_location(const std::string& name) const;
   std::string param_label(const std::string& name) const;
   Qos effective_qos(const std::string& port, Qos declared) const;
   std::string topic_for(const std::string& port) const;
-
-  static bool convert(const YAML::Node& node, bool& out);
-  static bool convert(const YAML::Node& node, std::int64_t& out);
-  static bool convert(const YAML::Node& node, int& out);
-  static bool convert(const YAML::Node& node, double& out);
-  static bool convert(const YAML::Node& node, std::string& out);
-  static bool convert(const YAML::Node& node, std::vector<double>& out);
-  static bool convert(const YAML::Node& node, std::vector<std::string>& out);
-  static std::string yaml_text(bool v);
-  static std::string yaml_text(std::int64_t v);
-  static std::string yaml_text(int v) { return yaml_text(static_cast<std::int64_t>(v)); }
-  static std::string yaml_text(double v);
-  static std::string yaml_text(const std::string& v);
-  static std::string yaml_text(const std::vector<double>& v);
-  static std::string yaml_text(const std::vector<std::string>& v);
-  static bool in_range(bool, const Range&) { return true; }
-  static bool in_range(std::int64_t v, const Range& r) { return v >= r.min && v <= r.max; }
-  static bool in_range(int v, const Range& r) { return v >= r.min && v <= r.max; }
-  static bool in_range(double v, const Range& r) { return v >= r.min && v <= r.max; }
-  static bool in_range(const std::string&, const Range&) { return true; }
-  static bool in_range(const std::vector<double>& v, const Range& r) {
-    for (double x : v)
-      if (!(x >= r.min && x <= r.max)) return false;
-    return true;
-  }
-  static bool in_range(const std::vector<std::string>&, const Range&) { return true; }
-  static std::string range_text(const Range& r);
 
   Mode mode_;
   const ComponentSpec* spec_;
@@ -98,26 +111,25 @@ class Context {
   std::vector<ParamSpec> params_;
   std::vector<PortSpec> ports_;
   std::vector<ConfigIssue> issues_;
+  std::vector<const detail::QueueCounters*> input_queues_;
 };
 
 template <class T>
 T Context::param(const std::string& name, const T& default_value, const std::string& description,
-                 std::optional<Range> range) {
-  declare_param(ParamSpec{name, ParamTypeOf<T>::value, yaml_text(default_value), description, range, {}});
-  const Sourced<YAML::Node>* given = lookup_param(name);
-  if (!given) return default_value;
-  T value{};
-  if (!convert(given->value, value)) {
-    add_issue(given->where, param_label(name) + ": found '" + YAML::Dump(given->value) + "'; expected " +
-                                to_string(ParamTypeOf<T>::value));
-    return default_value;
+                 std::optional<Range> range, std::optional<Length> length) {
+  if constexpr (detail::IsStdArray<T>::value) {
+    static_assert(std::is_same_v<typename T::value_type, double>, "fixed-size parameters are std::array<double, N>");
+    const std::vector<double> list = param<std::vector<double>>(
+        name, std::vector<double>(default_value.begin(), default_value.end()), description, range,
+        Length::exactly(std::tuple_size<T>::value));
+    T out = default_value;
+    if (list.size() == out.size()) std::copy(list.begin(), list.end(), out.begin());
+    return out;
+  } else {
+    T value = default_value;
+    if (!read(name, default_value, description, range, length, value)) return default_value;
+    return value;
   }
-  if (range && !in_range(value, *range)) {
-    add_issue(given->where, param_label(name) + ": found " + YAML::Dump(given->value) +
-                                ", outside the range; expected a value in " + range_text(*range));
-    return default_value;
-  }
-  return value;
 }
 
 template <class T>
@@ -125,7 +137,9 @@ Input<T> Context::input(const std::string& port, const std::string& description,
   const Qos effective = effective_qos(port, qos);
   declare_port(PortSpec{port, PortDirection::kInput, MessageTraits<T>::type_name(), description, qos});
   if (!bus_) return Input<T>();
-  return Input<T>(bus_->channel<T>(topic_for(port), instance_ + "." + port)->add_reader(effective));
+  auto* queue = bus_->channel<T>(topic_for(port), instance_ + "." + port)->add_reader(effective);
+  input_queues_.push_back(queue);
+  return Input<T>(queue, port);
 }
 
 template <class T>

@@ -7,7 +7,10 @@
 //   h.activate();
 //   h.tick(Time{500'000'000});
 //   msg::WrenchStamped w; out.take(w);   // fz == 5
+#include <cstdint>
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "wysiwyf/loader.hpp"
@@ -36,7 +39,8 @@ class Harness : private ComponentHost {
   // An input receiving what the component writes on its output port `port`.
   template <class T>
   Input<T> watch(const std::string& port, int depth = 10000) {
-    return Input<T>(bus_.channel<T>(spec_.components.front().topic_for(port), "harness.watch")->add_reader(Qos::reliable(depth)));
+    return Input<T>(bus_.channel<T>(spec_.components.front().topic_for(port), "harness.watch")->add_reader(Qos::reliable(depth)),
+                    "watch " + port);
   }
 
   void activate();
@@ -46,10 +50,15 @@ class Harness : private ComponentHost {
   const ComponentDescription& description() const { return description_; }
   // Set when the component asked the pipeline to stop.
   const std::string& stop_request() const { return stop_request_; }
+  // Samples the component rejected on input `port` (Component::reject), and warnings it gave.
+  std::uint64_t rejected(const std::string& port) const;
+  std::uint64_t warnings() const { return warnings_; }
 
  private:
-  void request_stop(const std::string& component, const std::string& reason) override;
-  void log(const std::string& component, const std::string& message) override;
+  void request_stop(const std::string& reason) override;
+  void log(const std::string& message) override;
+  void warn_once(const std::string& key, const std::string& message) override;
+  void reject_sample(const std::string& port, const std::string& why) override;
 
   std::unique_ptr<Loader> own_loader_;
   PipelineSpec spec_;
@@ -58,6 +67,9 @@ class Harness : private ComponentHost {
   ComponentPtr component_;
   bool active_ = false;
   std::string stop_request_;
+  std::set<std::string> warned_;
+  std::map<std::string, std::uint64_t> rejected_;
+  std::uint64_t warnings_ = 0;
 };
 
 }  // namespace wysiwyf

@@ -1,6 +1,8 @@
 #pragma once
-// Declared parameters: type, default, range and a one-line description, so a pipeline is checked
-// before it runs and `wysiwyf components describe` can print them.
+// Declared parameters: type, default, range, list length and a one-line description, so a
+// pipeline is checked before it runs and `wysiwyf components describe` can print them.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -17,6 +19,27 @@ struct Range {
   double max;
 };
 
+// How many elements a list parameter may have.
+struct Length {
+  std::size_t min = 0;
+  std::size_t max = SIZE_MAX;
+  std::size_t multiple_of = 1;  // rows of this many values
+  bool or_empty = false;        // the empty list is accepted too (an optional value)
+
+  static Length exactly(std::size_t n) { return Length{n, n, 1, false}; }
+  // n values, or none at all ("not given").
+  static Length exactly_or_empty(std::size_t n) { return Length{n, n, 1, true}; }
+  static Length at_least(std::size_t n) { return Length{n, SIZE_MAX, 1, false}; }
+  // Whole rows of `width` values (at least `min_rows` of them).
+  static Length rows_of(std::size_t width, std::size_t min_rows = 0) {
+    return Length{width * min_rows, SIZE_MAX, width, false};
+  }
+  bool accepts(std::size_t n) const {
+    return (or_empty && n == 0) || (n >= min && n <= max && n % multiple_of == 0);
+  }
+  std::string text() const;  // "3 values", "0 or 4 values", "rows of 7 values", ...
+};
+
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::kDouble;
@@ -24,6 +47,7 @@ struct ParamSpec {
   std::string description;
   std::optional<Range> range;
   std::vector<std::string> choices;  // for strings: the allowed values (empty: any)
+  std::optional<Length> length;      // for lists
 };
 
 template <class T>

@@ -24,18 +24,24 @@ template <class T>
 class Input {
  public:
   Input() = default;
-  explicit Input(detail::SubscriberQueue<T>* queue) : queue_(queue) {}
+  Input(detail::SubscriberQueue<T>* queue, std::string port) : queue_(queue), port_(std::move(port)) {}
 
-  // Oldest unread sample; false when none arrived since the last read.
+  // Oldest unread sample; false when none arrived since the last read. For streams where every
+  // sample counts (setpoints, frames to record).
   bool take(T& out) { return queue_ && queue_->take(out); }
-  // Newest unread sample, dropping older unread ones; false when none arrived.
+  // Newest unread sample, dropping older unread ones; false when none arrived. For latest-value
+  // streams (images, sensor readings) where only the newest matters.
   bool take_latest(T& out) { return queue_ && queue_->take_latest(out); }
   std::size_t pending() const { return queue_ ? queue_->size() : 0; }
   std::uint64_t received() const { return queue_ ? queue_->received() : 0; }
+  // Samples pushed out unread by newer ones (the queue's depth was too small for the reader).
+  std::uint64_t dropped() const { return queue_ ? queue_->dropped() : 0; }
   bool connected() const { return queue_ != nullptr; }
+  const std::string& port() const { return port_; }
 
  private:
   detail::SubscriberQueue<T>* queue_ = nullptr;
+  std::string port_;
 };
 
 // Publishes samples of T to every local reader at once and to DDS.

@@ -26,6 +26,9 @@ struct ComponentReport {
   double late_p50_us = 0;
   double late_p99_us = 0;
   double late_max_us = 0;
+  std::uint64_t dropped_samples = 0;   // input samples pushed out unread
+  std::uint64_t rejected_samples = 0;  // input samples the component could not use
+  std::uint64_t warnings = 0;
 };
 
 struct RunResult {

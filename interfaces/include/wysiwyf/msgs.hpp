@@ -1,10 +1,11 @@
 #pragma once
-// The message types of interfaces/msgs/*.idl, bound to ports, and their YAML printers.
+// The message types of interfaces/msgs/*.idl, bound to ports, and their YAML printers. (Their DDS
+// type support is compiled into the message library, src/msgs.cpp.)
 #include <string>
 
-#include "wysiwyf/idl/geometry_msgsPubSubTypes.h"
-#include "wysiwyf/idl/sensor_msgsPubSubTypes.h"
-#include "wysiwyf/idl/wysiwyf_msgsPubSubTypes.h"
+#include "wysiwyf/idl/geometry_msgs.h"
+#include "wysiwyf/idl/sensor_msgs.h"
+#include "wysiwyf/idl/wysiwyf_msgs.h"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/message_registry.hpp"
 

@@ -9,8 +9,16 @@
 
 namespace wysiwyf::detail {
 
+// What the kernel reads of any input queue for its diagnostics.
+class QueueCounters {
+ public:
+  virtual ~QueueCounters() = default;
+  virtual std::uint64_t received() const = 0;
+  virtual std::uint64_t dropped() const = 0;  // pushed out unread by newer samples (keep-last)
+};
+
 template <class T>
-class SubscriberQueue {
+class SubscriberQueue final : public QueueCounters {
  public:
   explicit SubscriberQueue(int depth) : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)) {}
 
@@ -69,11 +77,11 @@ class SubscriberQueue {
     std::lock_guard<std::mutex> lock(mutex_);
     return count_;
   }
-  std::uint64_t received() const {
+  std::uint64_t received() const override {
     std::lock_guard<std::mutex> lock(mutex_);
     return received_;
   }
-  std::uint64_t dropped() const {
+  std::uint64_t dropped() const override {
     std::lock_guard<std::mutex> lock(mutex_);
     return dropped_;
   }

@@ -1,0 +1,6 @@
+// The DDS type support of the kernel's messages (the only place their PubSubTypes are seen).
+#include "wysiwyf/kernel_msgs.hpp"
+
+#include "wysiwyf/idl/diagnosticsPubSubTypes.h"
+
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::kernel_msgs, Diagnostics)
