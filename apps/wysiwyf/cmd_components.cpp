@@ -40,6 +40,7 @@ int cmd_components(Args args) {
     if (d.params.empty()) std::cout << "  (none)\n";
     for (const auto& p : d.params) {
       std::cout << "  " << p.name << " (" << to_string(p.type) << ", default " << p.default_value;
+      if (p.length) std::cout << ", " << p.length->text();
       if (p.range) std::cout << ", range [" << p.range->min << ", " << p.range->max << "]";
       if (!p.choices.empty()) {
         std::cout << ", one of";

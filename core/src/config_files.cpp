@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "search_path.hpp"
+
 namespace wysiwyf {
 
 std::string find_config_file(const std::string& path) {
@@ -15,12 +17,7 @@ std::string find_config_file(const std::string& path) {
     if (fs::exists(path, ec)) return path;
     throw std::invalid_argument("configuration file '" + path + "' does not exist");
   }
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv("WYSIWYF_CONFIG_PATH")) {
-    std::stringstream s(env);
-    for (std::string d; std::getline(s, d, ':');)
-      if (!d.empty()) dirs.push_back(d);
-  }
+  std::vector<std::string> dirs = detail::search_path_from_env("WYSIWYF_CONFIG_PATH");
   dirs.push_back(WYSIWYF_SOURCE_CONFIG_DIR);
   dirs.push_back(WYSIWYF_INSTALL_CONFIG_DIR);
   std::string looked = "the working directory";

@@ -42,8 +42,11 @@ static eprosima::fastrtps::Duration_t to_duration(std::int64_t ns) {
                                         static_cast<std::uint32_t>(ns % 1'000'000'000));
 }
 
-DataWriterQos writer_qos(const Qos& q) {
-  DataWriterQos qos = DATAWRITER_QOS_DEFAULT;
+namespace {
+
+// What a writer and a reader of one port share: the port's QoS, and memory and transport choices.
+template <class EndpointQos>
+EndpointQos endpoint_qos(EndpointQos qos, const Qos& q) {
   qos.reliability().kind = q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
   qos.durability().kind = q.durability == Durability::kVolatile ? VOLATILE_DURABILITY_QOS : TRANSIENT_LOCAL_DURABILITY_QOS;
   qos.history().kind = KEEP_LAST_HISTORY_QOS;
@@ -56,16 +59,10 @@ DataWriterQos writer_qos(const Qos& q) {
   return qos;
 }
 
-DataReaderQos reader_qos(const Qos& q) {
-  DataReaderQos qos = DATAREADER_QOS_DEFAULT;
-  qos.reliability().kind = q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
-  qos.durability().kind = q.durability == Durability::kVolatile ? VOLATILE_DURABILITY_QOS : TRANSIENT_LOCAL_DURABILITY_QOS;
-  qos.history().kind = KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = q.depth;
-  if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);
-  qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  qos.data_sharing().automatic();
-  return qos;
-}
+}  // namespace
+
+DataWriterQos writer_qos(const Qos& q) { return endpoint_qos(DATAWRITER_QOS_DEFAULT, q); }
+
+DataReaderQos reader_qos(const Qos& q) { return endpoint_qos(DATAREADER_QOS_DEFAULT, q); }
 
 }  // namespace wysiwyf::dds

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "search_path.hpp"
 #include "wysiwyf/build_info.hpp"
 
 namespace fs = std::filesystem;
@@ -18,12 +19,7 @@ const char* kernel_build_id() { return WYSIWYF_BUILD_ID; }
 Loader::Loader(std::vector<std::string> search_dirs) : dirs_(std::move(search_dirs)) {}
 
 std::vector<std::string> Loader::default_search_dirs() {
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv("WYSIWYF_COMPONENT_PATH")) {
-    std::stringstream s(env);
-    for (std::string d; std::getline(s, d, ':');)
-      if (!d.empty()) dirs.push_back(d);
-  }
+  std::vector<std::string> dirs = detail::search_path_from_env("WYSIWYF_COMPONENT_PATH");
   dirs.push_back(WYSIWYF_COMPONENT_BUILD_DIR);
   dirs.push_back(WYSIWYF_COMPONENT_INSTALL_DIR);
   return dirs;

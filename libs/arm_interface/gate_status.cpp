@@ -22,9 +22,7 @@ bool GateStatus::publish(std::int64_t now_ns, const SafetyGate& gate, const std:
     msg_.source(state == SafetyState::kOk ? source.substr(0, 31) : std::string());
     msg_.reason(gate.reason().substr(0, 127));
   }
-  msg_.header().stamp_ns(now_ns);
-  msg_.header().seq(seq_++);
-  msg_.header().frame_id("base");
+  fill_header(msg_.header(), now_ns, seq_++, "base");
   out.write(msg_);
   return new_fault;
 }

@@ -6,19 +6,18 @@
 
 namespace wysiwyf::io {
 
-Keyframes::Keyframes(const std::vector<double>& flat, int values_per_row, const std::string& param)
-    : width_(values_per_row) {
+Keyframes::Keyframes(const std::vector<double>& flat, int values_per_row) : width_(values_per_row) {
   const std::size_t row = static_cast<std::size_t>(values_per_row) + 1;
   if (flat.empty() || flat.size() % row != 0)
-    throw std::invalid_argument(param + ": found " + std::to_string(flat.size()) + " numbers; expected rows of " +
-                                std::to_string(row) + " (time in s, then " + std::to_string(values_per_row) +
-                                " values), at least one row");
+    throw std::invalid_argument("found " + std::to_string(flat.size()) + " values; expected whole rows of " +
+                                std::to_string(row) + " values (at least 1): a time in s, then " +
+                                std::to_string(values_per_row) + " values");
   for (std::size_t i = 0; i < flat.size(); i += row) {
     const double t = flat[i];
     if (times_.empty() && t != 0.0)
-      throw std::invalid_argument(param + ": the first row's time is " + std::to_string(t) + "; expected 0");
+      throw std::invalid_argument("the first row's time is " + std::to_string(t) + "; expected 0");
     if (!times_.empty() && !(t > times_.back()))
-      throw std::invalid_argument(param + ": row " + std::to_string(times_.size()) + " has time " + std::to_string(t) +
+      throw std::invalid_argument("row " + std::to_string(times_.size()) + " has time " + std::to_string(t) +
                                   ", not after the previous row's " + std::to_string(times_.back()) +
                                   "; expected strictly increasing times");
     times_.push_back(t);

@@ -10,8 +10,8 @@ namespace wysiwyf::io {
 
 class Keyframes {
  public:
-  // Throws std::invalid_argument naming `param` and what is wrong.
-  Keyframes(const std::vector<double>& flat, int values_per_row, const std::string& param);
+  // Throws std::invalid_argument saying what is wrong (for Context::reject).
+  Keyframes(const std::vector<double>& flat, int values_per_row);
 
   struct Segment {
     int from, to;    // row indices (equal after the last row)

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "wysiwyf/msg_eigen.hpp"
+
 namespace wysiwyf::robot {
 
 SetpointFollower::SetpointFollower(const PumaModel& model, std::string tip_name, SafetyGate& gate, double tracker_hz,
@@ -14,13 +16,12 @@ void SetpointFollower::take(const msg::CartesianSetpoint& m, std::int64_t now_ns
     gate_.fault("setpoint rejected: it places '" + child + "' in '" + frame + "'; this arm follows base_T_" + tip_name_);
     return;
   }
-  // Field by field on purpose: the gate must see the quaternion as sent (unnormalised ones are faults).
+  // The quaternion as sent, not normalised: the gate refuses unnormalised ones.
   SetpointInput in;
-  in.position = Eigen::Vector3d(m.pose().position().x(), m.pose().position().y(), m.pose().position().z());
-  in.quaternion_xyzw = Eigen::Vector4d(m.pose().orientation().x(), m.pose().orientation().y(),
-                                       m.pose().orientation().z(), m.pose().orientation().w());
-  in.linear_velocity = Eigen::Vector3d(m.twist().linear().x(), m.twist().linear().y(), m.twist().linear().z());
-  in.angular_velocity = Eigen::Vector3d(m.twist().angular().x(), m.twist().angular().y(), m.twist().angular().z());
+  in.position = msgs::to_eigen(m.pose().position());
+  in.quaternion_xyzw = msgs::to_eigen(m.pose().orientation()).coeffs();
+  in.linear_velocity = msgs::to_eigen(m.twist().linear());
+  in.angular_velocity = msgs::to_eigen(m.twist().angular());
   const bool was_following = gate_.following();
   const Eigen::Isometry3d reference_pose = model_.fk(gate_.reference().q);
   Eigen::Isometry3d pose;

@@ -417,17 +417,21 @@ TEST(StereoDepth, SkipsAndReportsBadInput) {
   // Wrong encoding.
   msg::Image bgra = l;
   bgra.encoding("bgra8");
-  EXPECT_NE(run(bgra, r).find("left has encoding 'bgra8', expected rgb8 or mono8"), std::string::npos);
+  EXPECT_NE(run(bgra, r).find("input 'left': rejected a sample: encoding 'bgra8', expected rgb8 or mono8"), std::string::npos);
+  EXPECT_EQ(h.rejected("left"), 1u);
   EXPECT_FALSE(depth.take_latest(d));
   // Sizes that differ.
   msg::Image narrow = r;
   narrow.width(320), narrow.step(320 * 3);
-  EXPECT_NE(run(l, narrow).find("left is 640x480 but right is 320x480"), std::string::npos);
+  EXPECT_NE(run(l, narrow).find("input 'right': rejected a sample: size 320x480, expected 640x480"), std::string::npos);
+  EXPECT_EQ(h.rejected("right"), 1u);
   EXPECT_FALSE(depth.take_latest(d));
   // Data shorter than its size says.
   msg::Image truncated = r;
   truncated.data().resize(1000);
-  EXPECT_NE(run(l, truncated).find("too short for its size"), std::string::npos);
+  EXPECT_NE(run(l, truncated).find("input 'right': rejected a sample: data of 1000 bytes, shorter than step x height"),
+            std::string::npos);
+  EXPECT_EQ(h.rejected("right"), 2u);
   EXPECT_FALSE(depth.take_latest(d));
   // Intrinsics of another image size.
   info.write(intrinsics(1280, 720));
@@ -436,7 +440,8 @@ TEST(StereoDepth, SkipsAndReportsBadInput) {
   msg::CameraInfo no_focal = intrinsics();
   no_focal.k()[0] = 0;
   info.write(no_focal);  // rejected: the previous (1280x720) intrinsics stay
-  EXPECT_NE(run(l, r).find("camera_info has no focal length"), std::string::npos);
+  EXPECT_NE(run(l, r).find("input 'camera_info': rejected a sample: no focal length"), std::string::npos);
+  EXPECT_EQ(h.rejected("camera_info"), 1u);
   EXPECT_FALSE(depth.take_latest(d));
   // Good input again: depth; a keyed image of another size gives no hand position.
   info.write(intrinsics());
@@ -445,7 +450,9 @@ TEST(StereoDepth, SkipsAndReportsBadInput) {
   small_keyed.data().assign(16, 255);
   small_keyed.header().stamp_ns(t + 40'000'000);
   keyed.write(small_keyed);
-  EXPECT_NE(run(l, r).find("keyed is 2x2 but the stereo pair is 640x480"), std::string::npos);
+  EXPECT_NE(run(l, r).find("input 'keyed': rejected a sample: size 2x2, expected 640x480 (the stereo pair's)"),
+            std::string::npos);
+  EXPECT_EQ(h.rejected("keyed"), 1u);
   EXPECT_TRUE(depth.take_latest(d));
   msg::PoseStamped p;
   EXPECT_FALSE(hand.take_latest(p));

@@ -15,17 +15,6 @@
 
 namespace wysiwyf::haptics {
 
-namespace {
-
-bool finite(const msg::WrenchStamped& m) {
-  const auto& f = m.wrench().force();
-  const auto& t = m.wrench().torque();
-  return std::isfinite(f.x()) && std::isfinite(f.y()) && std::isfinite(f.z()) && std::isfinite(t.x()) &&
-         std::isfinite(t.y()) && std::isfinite(t.z());
-}
-
-}  // namespace
-
 class AdmittanceSim final : public Component {
  public:
   void configure(Context& ctx) override {
@@ -47,8 +36,12 @@ class AdmittanceSim final : public Component {
     objects_ = ctx.output<msg::ObjectState>("objects", "pose, twist and contacts of every dynamic body",
                                             Qos::reliable(16));
     dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
-    scene_ = load_scene(find_config_file(scene_path_));  // throws with file:line: reported before anything starts
-    if (scene_.device.body < 0) throw std::invalid_argument("scene '" + scene_path_ + "' has no device: attachment");
+    try {
+      scene_ = load_scene(find_config_file(scene_path_));  // reported with the scene file's line before anything starts
+    } catch (const std::exception& e) {
+      return ctx.reject("scene", e.what());
+    }
+    if (scene_.device.body < 0) ctx.reject("scene", "'" + scene_path_ + "' has no device: attachment");
   }
 
   void activate() override {
@@ -62,21 +55,19 @@ class AdmittanceSim final : public Component {
   void tick(Time now) override {
     // STEP 1: the user's wrench, held until the next sample.
     while (wrench_.take(sample_)) {
-      if (!finite(sample_)) {  // a corrupt sample: ignore it, never move on it
-        ++rejected_;
-        if (rejected_ == 1) log("rejected a non-finite wrench sample (further ones are counted silently)");
+      if (!msgs::all_finite(sample_.wrench())) {  // a corrupt sample: ignore it, never move on it
+        reject(wrench_, "a non-finite force or torque");
         continue;
       }
-      const auto& f = sample_.wrench().force();
-      const auto& t = sample_.wrench().torque();
       have_reading_ = true;
-      reading_.force = Vec3(f.x(), f.y(), f.z());
-      reading_.torque = Vec3(t.x(), t.y(), t.z());
+      reading_.force = msgs::to_eigen(sample_.wrench().force());
+      reading_.torque = msgs::to_eigen(sample_.wrench().torque());
       if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
     }
     while (device_pose_.take(device_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
       if (T.matrix().allFinite()) measured_base_T_dev_ = T, have_device_pose_ = true;
+      else reject(device_pose_, "a non-finite pose");
     }
     const int body = scene_.device.body;
     const Eigen::Isometry3d base_T_obj = pose_of(body);
@@ -108,9 +99,7 @@ class AdmittanceSim final : public Component {
     const int body = scene_.device.body;
     const auto k = world_->kinematics(body);
     const Eigen::Isometry3d base_T_dev = pose_of(body) * scene_.device.obj_T_dev;
-    setpoint_msg_.header().stamp_ns(now.ns);
-    setpoint_msg_.header().seq(seq_);
-    setpoint_msg_.header().frame_id("base");
+    fill_header(setpoint_msg_.header(), now.ns, seq_, "base");
     setpoint_msg_.child_frame_id("dev");
     msgs::to_msg(base_T_dev, setpoint_msg_.pose());
     msgs::to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body).x), k.omega, setpoint_msg_.twist());
@@ -120,9 +109,7 @@ class AdmittanceSim final : public Component {
     for (int i = 0; i < world_->body_count(); ++i) {
       if (!world_->model(i).dynamic) continue;
       const auto ki = world_->kinematics(i);
-      object_msg_.header().stamp_ns(now.ns);
-      object_msg_.header().seq(seq_);
-      object_msg_.header().frame_id("v_env");
+      fill_header(object_msg_.header(), now.ns, seq_, "v_env");
       object_msg_.child_frame_id(world_->model(i).name);
       msgs::to_msg(pose_of(i), object_msg_.pose());
       msgs::to_msg(ki.v, ki.omega, object_msg_.twist());
@@ -130,8 +117,8 @@ class AdmittanceSim final : public Component {
       for (const auto& c : world_->resting_contacts()) {
         if ((c.feature.a != i && c.feature.b != i) || object_msg_.contacts().size() >= 32) continue;
         msg::Contact m;
-        m.position().x(c.point.p.x()), m.position().y(c.point.p.y()), m.position().z(c.point.p.z());
-        m.normal().x(c.point.n.x()), m.normal().y(c.point.n.y()), m.normal().z(c.point.n.z());
+        msgs::to_msg(c.point.p, m.position());
+        msgs::to_msg(c.point.n, m.normal());
         m.gap(c.point.gap);
         m.force(c.force);
         m.kind(msg::CONTACT_RESTING);
@@ -153,7 +140,7 @@ class AdmittanceSim final : public Component {
   msg::PoseStamped device_msg_;
   Input<msg::PoseStamped> device_pose_;
   bool have_reading_ = false;
-  std::uint64_t rejected_ = 0, seq_ = 0;
+  std::uint64_t seq_ = 0;
   msg::WrenchStamped sample_;
   msg::CartesianSetpoint setpoint_msg_;
   msg::ObjectState object_msg_;

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -53,15 +54,9 @@ class Camera final : public Component {
       lost_since_ns_ = now.ns;
       return;
     }
-    cv::cvtColor(bgr_, rgb_, cv::COLOR_BGR2RGB);
-    msg_.header().stamp_ns(now.ns);
-    msg_.header().seq(frames_++);
-    msg_.header().frame_id("eye");
-    msg_.width(static_cast<std::uint32_t>(rgb_.cols));
-    msg_.height(static_cast<std::uint32_t>(rgb_.rows));
-    msg_.encoding("rgb8");
-    msg_.step(static_cast<std::uint32_t>(rgb_.cols * 3));
-    msg_.data().assign(rgb_.data, rgb_.data + rgb_.total() * 3);
+    cv::Mat rgb = image::allocate(msg_, bgr_.cols, bgr_.rows, "rgb8");
+    cv::cvtColor(bgr_, rgb, cv::COLOR_BGR2RGB);  // straight into the message's buffer
+    fill_header(msg_.header(), now.ns, frames_++, "eye");
     image_.write(msg_);
     if (!calibration_.empty()) {
       info_msg_.header() = msg_.header();
@@ -104,7 +99,7 @@ class Camera final : public Component {
   double reopen_s_ = 1.0;
   bool is_file_ = false;
   cv::VideoCapture capture_;
-  cv::Mat bgr_, rgb_;
+  cv::Mat bgr_;
   std::uint64_t frames_ = 0;
   std::int64_t lost_since_ns_ = 0;
   msg::Image msg_;

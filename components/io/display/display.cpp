@@ -5,6 +5,7 @@
 #include <opencv2/highgui.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -36,12 +37,8 @@ class Display final : public Component {
 
   void tick(Time) override {
     if (!in_.take_latest(frame_) || headless_) return;
-    if (std::string(frame_.encoding().c_str()) != "rgb8" ||
-        frame_.data().size() < static_cast<std::size_t>(frame_.step()) * frame_.height())
-      return;
-    const cv::Mat rgb(static_cast<int>(frame_.height()), static_cast<int>(frame_.width()), CV_8UC3, frame_.data().data(),
-                      frame_.step());
-    cv::cvtColor(rgb, bgr_, cv::COLOR_RGB2BGR);
+    if (const std::string bad = image::problem(frame_, {"rgb8"}); !bad.empty()) return reject(in_, bad);
+    cv::cvtColor(image::view(frame_), bgr_, cv::COLOR_RGB2BGR);
     cv::imshow(title_, bgr_);
     cv::waitKey(1);
   }

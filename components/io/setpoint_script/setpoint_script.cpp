@@ -15,14 +15,20 @@ class SetpointScript final : public Component {
     ctx.summary("scripted base_T_dev setpoints through timed waypoints (minimum-jerk between them)");
     const auto waypoints = ctx.param<std::vector<double>>(
         "waypoints", {0, 0.6, 0.0, 0.4, 3.14159265358979, 0, 0},
-        "rows of [t s, x y z m, roll pitch yaw rad] (fixed-axis XYZ), times from 0 strictly increasing");
+        "rows of [t s, x y z m, roll pitch yaw rad] (fixed-axis XYZ), times from 0 strictly increasing", std::nullopt,
+        Length::rows_of(7, 1));
     loop_ = ctx.param<bool>("loop", false, "start again after the last waypoint");
     frame_id_ = ctx.param<std::string>("frame_id", "base", "parent frame of the setpoint pose");
     child_frame_id_ = ctx.param<std::string>("child_frame_id", "dev", "the frame being placed");
     source_ = ctx.param<std::string>("source", "script", "CartesianSetpoint.source");
     setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist at each tick");
     pose_ = ctx.output<msg::PoseStamped>("pose", "the same pose as a PoseStamped (e.g. a scripted hand target)");
-    table_ = std::make_unique<Keyframes>(waypoints, 6, "waypoints");
+    try {
+      table_ = std::make_unique<Keyframes>(waypoints, 6);
+    } catch (const std::invalid_argument& e) {
+      ctx.reject("waypoints", e.what());
+      return;
+    }
     for (int i = 0; i < table_->rows(); ++i) {
       const double* v = table_->values(i);
       positions_.emplace_back(v[0], v[1], v[2]);
@@ -44,9 +50,7 @@ class SetpointScript final : public Component {
     const Eigen::AngleAxisd step(rotations_[seg.to] * rotations_[seg.from].inverse());
     const Eigen::Vector3d w = ds * step.angle() * step.axis();
 
-    msg_.header().stamp_ns(now.ns);
-    msg_.header().seq(seq_++);
-    msg_.header().frame_id(frame_id_);
+    fill_header(msg_.header(), now.ns, seq_++, frame_id_.c_str());
     msg_.child_frame_id(child_frame_id_);
     msgs::to_msg(p, q, msg_.pose());
     msgs::to_msg(v, w, msg_.twist());

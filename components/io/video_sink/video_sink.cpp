@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -28,15 +29,12 @@ class VideoSink final : public Component {
 
   void tick(Time) override {
     while (in_.take(frame_)) {
-      const std::string enc = frame_.encoding().c_str();
-      if ((enc != "rgb8" && enc != "bgr8") || frame_.data().size() < static_cast<std::size_t>(frame_.step()) * frame_.height() ||
-          frame_.step() < frame_.width() * 3) {
-        if (rejected_++ == 0) log("skipped a frame that is not rgb8/bgr8 or is short (further ones are counted)");
+      if (const std::string bad = image::problem(frame_, {"rgb8", "bgr8"}); !bad.empty()) {
+        reject(in_, bad);
         continue;
       }
-      const cv::Mat view(static_cast<int>(frame_.height()), static_cast<int>(frame_.width()), CV_8UC3, frame_.data().data(),
-                         frame_.step());
-      if (enc == "rgb8") cv::cvtColor(view, bgr_, cv::COLOR_RGB2BGR);
+      const cv::Mat view = image::view(frame_);
+      if (std::string_view(frame_.encoding().c_str()) == "rgb8") cv::cvtColor(view, bgr_, cv::COLOR_RGB2BGR);
       else view.copyTo(bgr_);
       write(bgr_);
     }
@@ -61,7 +59,8 @@ class VideoSink final : public Component {
           throw std::runtime_error("cannot open " + path_ + " for writing with OpenCV's FFmpeg backend");
       }
       if (bgr.size() != size_) {  // a video has one frame size
-        if (rejected_++ == 0) log("skipped a frame of another size than the first");
+        reject(in_, "a frame of another size than the first (" + std::to_string(size_.width) + "x" +
+                        std::to_string(size_.height) + ")");
         return;
       }
       writer_.write(bgr);
@@ -74,7 +73,7 @@ class VideoSink final : public Component {
   cv::VideoWriter writer_;
   cv::Size size_;
   cv::Mat bgr_;
-  std::uint64_t written_ = 0, rejected_ = 0;
+  std::uint64_t written_ = 0;
   msg::Image frame_;
   Input<msg::Image> in_;
 };

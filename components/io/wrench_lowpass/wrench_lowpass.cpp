@@ -1,10 +1,9 @@
 // wrench_lowpass: a first-order low-pass filter on a force/torque stream (sensor noise off the
 // wrist F/T signal before the admittance loop). Frame and stamp pass through unchanged.
-#include <array>
 #include <cmath>
 
 #include "wysiwyf/component.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::io {
 
@@ -19,9 +18,11 @@ class WrenchLowpass final : public Component {
 
   void tick(Time) override {
     while (in_.take(sample_)) {
-      auto& w = sample_.wrench();
-      const std::array<double, 6> x{w.force().x(), w.force().y(), w.force().z(),
-                                    w.torque().x(), w.torque().y(), w.torque().z()};
+      const msgs::Vector6d x = msgs::to_vector6(sample_.wrench());
+      if (!x.allFinite()) {  // one NaN would stay in the filter's state for good
+        reject(in_, "a non-finite force or torque");
+        continue;
+      }
       const std::int64_t stamp = sample_.header().stamp_ns();
       if (last_stamp_ < 0) {
         y_ = x;  // start at the first sample, not at zero
@@ -30,22 +31,17 @@ class WrenchLowpass final : public Component {
         // as the input over the interval that ends at its stamp: no added delay.
         const double dt = static_cast<double>(std::max<std::int64_t>(stamp - last_stamp_, 0)) * 1e-9;
         const double a = 1.0 - std::exp(-2.0 * M_PI * cutoff_hz_ * dt);
-        for (int i = 0; i < 6; ++i) y_[i] += a * (x[i] - y_[i]);
+        y_ += a * (x - y_);
       }
       last_stamp_ = stamp;
-      w.force().x(y_[0]);
-      w.force().y(y_[1]);
-      w.force().z(y_[2]);
-      w.torque().x(y_[3]);
-      w.torque().y(y_[4]);
-      w.torque().z(y_[5]);
+      msgs::to_msg(y_, sample_.wrench());
       out_.write(sample_);
     }
   }
 
  private:
   double cutoff_hz_ = 0;
-  std::array<double, 6> y_{};
+  msgs::Vector6d y_ = msgs::Vector6d::Zero();
   std::int64_t last_stamp_ = -1;
   msg::WrenchStamped sample_;  // reused: no allocation per tick
   Input<msg::WrenchStamped> in_;

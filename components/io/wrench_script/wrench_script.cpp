@@ -4,7 +4,7 @@
 
 #include "keyframes/keyframes.hpp"
 #include "wysiwyf/component.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::io {
 
@@ -13,28 +13,26 @@ class WrenchScript final : public Component {
   void configure(Context& ctx) override {
     ctx.summary("scripted force/torque, linear between timed keyframes");
     const auto keyframes = ctx.param<std::vector<double>>(
-        "keyframes", {0, 0, 0, 0, 0, 0, 0}, "rows of [t s, fx fy fz N, tx ty tz N.m], times from 0 strictly increasing");
+        "keyframes", {0, 0, 0, 0, 0, 0, 0}, "rows of [t s, fx fy fz N, tx ty tz N.m], times from 0 strictly increasing",
+        std::nullopt, Length::rows_of(7, 1));
     loop_ = ctx.param<bool>("loop", false, "start again after the last keyframe");
     frame_id_ = ctx.param<std::string>("frame_id", "sensor", "frame the wrench is expressed in");
     wrench_ = ctx.output<msg::WrenchStamped>("wrench", "the scripted wrench at each tick");
-    table_ = std::make_unique<Keyframes>(keyframes, 6, "keyframes");
+    try {
+      table_ = std::make_unique<Keyframes>(keyframes, 6);
+    } catch (const std::invalid_argument& e) {
+      ctx.reject("keyframes", e.what());
+    }
   }
 
   void tick(Time now) override {
     const Keyframes::Segment seg = table_->at(time_.at(now.ns, table_->end_time(), loop_));
     const double* a = table_->values(seg.from);
     const double* b = table_->values(seg.to);
-    double v[6];
+    msgs::Vector6d v;
     for (int i = 0; i < 6; ++i) v[i] = a[i] + seg.tau * (b[i] - a[i]);
-    msg_.header().stamp_ns(now.ns);
-    msg_.header().seq(seq_++);
-    msg_.header().frame_id(frame_id_);
-    msg_.wrench().force().x(v[0]);
-    msg_.wrench().force().y(v[1]);
-    msg_.wrench().force().z(v[2]);
-    msg_.wrench().torque().x(v[3]);
-    msg_.wrench().torque().y(v[4]);
-    msg_.wrench().torque().z(v[5]);
+    fill_header(msg_.header(), now.ns, seq_++, frame_id_.c_str());
+    msgs::to_msg(v, msg_.wrench());
     wrench_.write(msg_);
   }
 

@@ -4,6 +4,7 @@
 // (skin, at the true hand pose); with lighting variation, sensor noise, optical blur and blue
 // spill on the hand's edges. Beside the image it publishes ground truth for tests and metrics:
 // eye_T_base, eye_T_dev, the hand mask and the metric depth; optionally a stereo right image.
+#include <array>
 #include <deque>
 #include <utility>
 
@@ -14,6 +15,7 @@
 #include "offscreen_gl/gl_context.hpp"
 #include "offscreen_gl/offscreen_renderer.hpp"
 #include "frames/look_at.hpp"
+#include "image/image_view.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -45,10 +47,12 @@ class CameraSim final : public Component {
     urdf_ = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description (cwd, then config/)");
     camera_.width = ctx.param<int>("width", 640, "image width, px", Range{16, 1280});
     camera_.height = ctx.param<int>("height", 480, "image height, px", Range{16, 720});
-    const auto K = ctx.param<std::vector<double>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px");
-    const auto eye = ctx.param<std::vector<double>>("eye", {1.3, -0.5, 0.75}, "camera position in the base frame, m");
-    const auto target = ctx.param<std::vector<double>>("look_at", {0.55, 0.0, 0.35}, "where the camera looks, base frame, m");
-    path_ = ctx.param<std::vector<double>>("path", {}, "moving camera: rows [t s, eye x y z, look_at x y z], times from 0");
+    const auto K = ctx.param<std::array<double, 4>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px",
+                                                    Range{0, 1e5});
+    const auto eye = ctx.param<std::array<double, 3>>("eye", {1.3, -0.5, 0.75}, "camera position in the base frame, m");
+    const auto target = ctx.param<std::array<double, 3>>("look_at", {0.55, 0.0, 0.35}, "where the camera looks, base frame, m");
+    path_ = ctx.param<std::vector<double>>("path", {}, "moving camera: rows [t s, eye x y z, look_at x y z], times from 0",
+                                           std::nullopt, Length::rows_of(7));
     noise_ = ctx.param<double>("noise", 2.0, "sensor noise, grey levels (sigma)", Range{0, 50});
     blur_ = ctx.param<double>("blur", 0.7, "optical blur, px (sigma; 0: none)", Range{0, 5});
     flicker_ = ctx.param<double>("light_variation", 0.04, "relative amplitude of slow lighting changes", Range{0, 0.5});
@@ -57,7 +61,8 @@ class CameraSim final : public Component {
                                   Range{0, 1});
     seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
     hidden_ = ctx.param<std::vector<double>>("hidden_markers", {},
-                                             "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]");
+                                             "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]",
+                                             std::nullopt, Length::rows_of(3));
     exposure_ = ctx.param<double>("exposure", 0.0,
                                   "s the shutter stays open (0: instantaneous); moving things smear over it: the image "
                                   "is the mean of exposure_samples renders at the joint and hand states of their "
@@ -75,12 +80,9 @@ class CameraSim final : public Component {
     true_eye_T_dev_ = ctx.output<msg::PoseStamped>("true_eye_T_dev", "ground truth", Qos::sensor(4));
     true_mask_ = ctx.output<msg::Image>("true_hand_mask", "ground truth: 255 where the hand is seen, mono8", Qos::sensor(2));
     true_depth_ = ctx.output<msg::Image>("true_depth", "ground truth metric depth, 32FC1", Qos::sensor(2));
-    if (K.size() != 4 || eye.size() != 3 || target.size() != 3)
-      throw std::invalid_argument("intrinsics needs 4 numbers, eye and look_at 3 each");
-    if (!path_.empty() && path_.size() % 7 != 0) throw std::invalid_argument("path: expected rows of 7 numbers");
-    if (hidden_.size() % 3 != 0) throw std::invalid_argument("hidden_markers: expected rows of 3 numbers [t_start, t_end, marker]");
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
+    if (eye == target) ctx.reject("look_at", "must differ from eye");
     base_T_eye_ = frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
     model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "flange");
   }
@@ -112,13 +114,19 @@ class CameraSim final : public Component {
     while (joints_in_.take(joints_msg_)) {
       robot::Vector6d q;
       for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
-      if (!q.allFinite()) continue;
+      if (!q.allFinite()) {
+        reject(joints_in_, "a non-finite joint angle");
+        continue;
+      }
       q_ = q, have_joints_ = true;
       if (exposure_ > 0) joint_history_.emplace_back(stamp(joints_msg_.header()), q);
     }
     while (hand_in_.take(hand_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(hand_msg_.pose());
-      if (!T.matrix().allFinite()) continue;
+      if (!T.matrix().allFinite()) {
+        reject(hand_in_, "a non-finite pose");
+        continue;
+      }
       base_T_hand_ = T, have_hand_ = true;
       if (exposure_ > 0) hand_history_.emplace_back(stamp(hand_msg_.header()), T);
     }
@@ -165,9 +173,7 @@ class CameraSim final : public Component {
       publish_image(right_, right, "rgb8", now);
     }
     // Ground truth and intrinsics.
-    pose_msg_.header().stamp_ns(now.ns);
-    pose_msg_.header().seq(seq_);
-    pose_msg_.header().frame_id("eye");
+    fill_header(pose_msg_.header(), now.ns, seq_, "eye");
     pose_msg_.child_frame_id("base");
     msgs::to_msg(eye_T_base, pose_msg_.pose());
     true_eye_T_base_.write(pose_msg_);
@@ -310,15 +316,9 @@ class CameraSim final : public Component {
   }
 
   void publish_image(Output<msg::Image>& out, const cv::Mat& m, const char* encoding, Time now) {
-    out_msg_.header().stamp_ns(now.ns);
-    out_msg_.header().seq(seq_);
-    out_msg_.header().frame_id("eye");
-    out_msg_.width(static_cast<std::uint32_t>(m.cols)), out_msg_.height(static_cast<std::uint32_t>(m.rows));
-    out_msg_.encoding(encoding);
-    out_msg_.is_bigendian(0);
-    out_msg_.step(static_cast<std::uint32_t>(m.cols * m.elemSize()));
-    const cv::Mat c = m.isContinuous() ? m : m.clone();
-    out_msg_.data().assign(c.data, c.data + c.total() * c.elemSize());
+    cv::Mat pixels = image::allocate(out_msg_, m.cols, m.rows, encoding);
+    m.copyTo(pixels);  // (same size and type: into the message's buffer)
+    fill_header(out_msg_.header(), now.ns, seq_, "eye");
     out.write(out_msg_);
   }
 

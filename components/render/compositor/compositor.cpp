@@ -7,6 +7,7 @@
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -14,9 +15,6 @@ namespace wysiwyf::render {
 
 namespace {
 
-cv::Mat view(msg::Image& m, int type) {
-  return cv::Mat(static_cast<int>(m.height()), static_cast<int>(m.width()), type, m.data().data(), m.step());
-}
 // out = hand + scene (255 - alpha) / 255 per channel, exactly rounded, in one pass over the
 // rows with OpenCV's universal intrinsics (16 pixels at a time; OpenCV's multiply/merge/add
 // chain made five passes and a float conversion). With both depths, the hand counts only where
@@ -84,11 +82,6 @@ void blend(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth,
     blend_rows<true>(scene, hand, real_depth, virtual_depth, margin, composite);
 }
 
-bool valid(const msg::Image& m, const char* encoding, std::size_t bytes_per_pixel) {
-  return std::string(m.encoding().c_str()) == encoding && m.width() > 0 && m.height() > 0 &&
-         m.step() >= m.width() * bytes_per_pixel && m.data().size() >= static_cast<std::size_t>(m.step()) * m.height();
-}
-
 }  // namespace
 
 class Compositor final : public Component {
@@ -113,57 +106,74 @@ class Compositor final : public Component {
   }
 
   void tick(Time now) override {
-    bool fresh = scene_in_.take_latest(scene_);
-    fresh |= hand_in_.take_latest(hand_);
-    if (camera_in_.take_latest(camera_) | mask_in_.take_latest(mask_)) fresh |= hand_from_mask();
-    scene_depth_in_.take_latest(scene_depth_);
-    real_depth_in_.take_latest(real_depth_);
-    if (!fresh || !valid(scene_, "rgb8", 3)) return;
+    bool fresh = take(scene_in_, scene_, {"rgb8"});
+    fresh |= take(hand_in_, hand_, {"rgba8"});
+    if (take(camera_in_, camera_, {"rgb8"}) | take(mask_in_, mask_, {"mono8"})) fresh |= hand_from_mask();
+    take(scene_depth_in_, scene_depth_, {"32FC1"});
+    take(real_depth_in_, real_depth_, {"32FC1"});
+    if (!fresh || !scene_.usable) return;
+    const std::uint32_t w = scene_.image.width(), h = scene_.image.height();
     // The composite is written straight into the outgoing message (sized once).
-    out_msg_.header() = scene_.header();
-    out_msg_.header().stamp_ns(now.ns);
-    out_msg_.header().seq(seq_++);
-    out_msg_.width(scene_.width()), out_msg_.height(scene_.height()), out_msg_.encoding("rgb8");
-    out_msg_.step(scene_.width() * 3);
-    out_msg_.data().resize(static_cast<std::size_t>(out_msg_.step()) * scene_.height());
-    cv::Mat out = view(out_msg_, CV_8UC3);
-    const cv::Mat scene = view(scene_, CV_8UC3);
-    bool blended = false;
-    if (valid(hand_, "rgba8", 4) && hand_.width() == scene_.width() && hand_.height() == scene_.height()) {
-      const bool z_key = use_depth_ && valid(real_depth_, "32FC1", 4) && valid(scene_depth_, "32FC1", 4) &&
-                         real_depth_.width() == scene_.width() && scene_depth_.width() == scene_.width() &&
-                         real_depth_.height() == scene_.height() && scene_depth_.height() == scene_.height();
-      blend(scene, view(hand_, CV_8UC4), z_key ? view(real_depth_, CV_32FC1) : cv::Mat(),
-            z_key ? view(scene_depth_, CV_32FC1) : cv::Mat(), margin_, out);
-      blended = true;
+    cv::Mat out = image::allocate(out_msg_, static_cast<int>(w), static_cast<int>(h), "rgb8");
+    fill_header(out_msg_.header(), now.ns, seq_++, scene_.image.header().frame_id().c_str());
+    const cv::Mat scene = image::view(scene_.image);
+    if (same_size(hand_in_, hand_, w, h)) {
+      const bool z_key = use_depth_ && same_size(real_depth_in_, real_depth_, w, h) &&
+                         same_size(scene_depth_in_, scene_depth_, w, h);
+      blend(scene, image::view(hand_.image), z_key ? image::view(real_depth_.image) : cv::Mat(),
+            z_key ? image::view(scene_depth_.image) : cv::Mat(), margin_, out);
+    } else {
+      scene.copyTo(out);
     }
-    if (!blended) scene.copyTo(out);
     out_.write(out_msg_);
   }
 
  private:
+  // An input image and whether it can be used (a rejected one is not, until the next arrives).
+  struct Stream {
+    msg::Image image;
+    bool usable = false;
+  };
+
+  // The newest sample of `in` into `s`; a wrong one is rejected. True when a usable one came.
+  bool take(Input<msg::Image>& in, Stream& s, std::initializer_list<std::string_view> encodings) {
+    if (!in.take_latest(s.image)) return false;
+    const std::string bad = image::problem(s.image, encodings);
+    s.usable = bad.empty();
+    if (!s.usable) reject(in, bad);
+    return s.usable;
+  }
+  // Whether `s` is usable with a w x h scene; one of another size is rejected (once).
+  bool same_size(const Input<msg::Image>& in, Stream& s, std::uint32_t w, std::uint32_t h) {
+    if (!s.usable) return false;
+    if (s.image.width() == w && s.image.height() == h) return true;
+    reject(in, "size " + std::to_string(s.image.width()) + "x" + std::to_string(s.image.height()) +
+                   ", not the scene's " + std::to_string(w) + "x" + std::to_string(h));
+    s.usable = false;
+    return false;
+  }
+
   // A premultiplied RGBA hand layer from a camera image and a 0/255 mask of the same size.
   bool hand_from_mask() {
-    if (!valid(camera_, "rgb8", 3) || !valid(mask_, "mono8", 1) || camera_.width() != mask_.width() ||
-        camera_.height() != mask_.height())
-      return false;
-    hand_.width(camera_.width()), hand_.height(camera_.height()), hand_.encoding("rgba8"), hand_.step(camera_.width() * 4);
-    hand_.data().resize(static_cast<std::size_t>(hand_.step()) * hand_.height());
-    const cv::Mat cam = view(camera_, CV_8UC3), mask = view(mask_, CV_8UC1);
-    cv::Mat rgba = view(hand_, CV_8UC4);
+    if (!camera_.usable || !same_size(mask_in_, mask_, camera_.image.width(), camera_.image.height())) return false;
+    cv::Mat rgba = image::allocate(hand_.image, static_cast<int>(camera_.image.width()),
+                                   static_cast<int>(camera_.image.height()), "rgba8");
+    const cv::Mat cam = image::view(camera_.image), mask = image::view(mask_.image);
     cv::Mat premultiplied;
     cam.copyTo(premultiplied);
     premultiplied.setTo(0, ~mask);
     const cv::Mat channels[] = {premultiplied, mask};
     int from_to[] = {0, 0, 1, 1, 2, 2, 3, 3};
     cv::mixChannels(channels, 2, &rgba, 1, from_to, 4);
+    hand_.usable = true;
     return true;
   }
 
   bool use_depth_ = true;
   float margin_ = 0.0f;
   std::uint64_t seq_ = 0;
-  msg::Image scene_, scene_depth_, hand_, real_depth_, camera_, mask_, out_msg_;
+  Stream scene_, scene_depth_, hand_, real_depth_, camera_, mask_;
+  msg::Image out_msg_;
   Input<msg::Image> scene_in_, scene_depth_in_, hand_in_, real_depth_in_, camera_in_, mask_in_;
   Output<msg::Image> out_;
 };

@@ -2,8 +2,11 @@
 // scene's static bodies and the dynamic bodies at the poses the simulation publishes, drawn from
 // the tracked camera pose eye_T_base with the calibrated intrinsics, so that eye_T_v_obj =
 // eye_T_dev (eq. 4) and eye_T_v_env = eye_T_base (eq. 6). Publishes colour and metric depth.
+#include <array>
+#include <cstring>
 #include <map>
 
+#include "image/image_view.hpp"
 #include "offscreen_gl/gl_context.hpp"
 #include "offscreen_gl/offscreen_renderer.hpp"
 #include "scene/scene.hpp"
@@ -27,20 +30,24 @@ class Renderer final : public Component {
     scene_path_ = ctx.param<std::string>("scene", "scenes/cube_on_table.yaml", "scene file (cwd, then config/)");
     camera_.width = ctx.param<int>("width", 640, "image width, px", Range{16, 1280});
     camera_.height = ctx.param<int>("height", 480, "image height, px", Range{16, 720});
-    const auto K = ctx.param<std::vector<double>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px (OpenCV)");
+    const auto K = ctx.param<std::array<double, 4>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px (OpenCV)",
+                                                    Range{0, 1e5});
     camera_.near_m = ctx.param<double>("near", 0.02, "near clipping distance, m", Range{1e-4, 10});
     camera_.far_m = ctx.param<double>("far", 20.0, "far clipping distance, m", Range{0.1, 1000});
     samples_ = ctx.param<int>("samples", 1, "multisampling (anti-aliasing) samples; 4 costs 3.5x on llvmpipe", Range{1, 16});
-    background_ = ctx.param<std::vector<double>>("background", {0.08, 0.09, 0.12}, "background colour, RGB 0..1", Range{0, 1});
+    background_ = ctx.param<std::array<double, 3>>("background", {0.08, 0.09, 0.12}, "background colour, RGB 0..1",
+                                                   Range{0, 1});
     eye_T_base_in_ = ctx.input<msg::PoseStamped>("eye_T_base", "where the camera is (the tracker)", Qos::sensor(4));
     objects_in_ = ctx.input<msg::ObjectState>("objects", "dynamic bodies of the virtual environment", Qos::reliable(64));
     color_out_ = ctx.output<msg::Image>("color", "the rendered scene, rgb8", Qos::sensor(2));
     depth_out_ = ctx.output<msg::Image>("depth", "metric depth along the optical axis, 32FC1 (0: nothing)", Qos::sensor(2));
-    if (K.size() != 4) throw std::invalid_argument("intrinsics: expected four numbers fx fy cx cy");
-    if (background_.size() != 3) throw std::invalid_argument("background: expected three numbers r g b");
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
-    if (camera_.near_m >= camera_.far_m) throw std::invalid_argument("near must be less than far");
-    scene_ = haptics::load_scene(find_config_file(scene_path_));
+    if (camera_.near_m >= camera_.far_m) ctx.reject("far", "must be larger than near (" + std::to_string(camera_.near_m) + " m)");
+    try {
+      scene_ = haptics::load_scene(find_config_file(scene_path_));
+    } catch (const std::exception& e) {
+      ctx.reject("scene", e.what());
+    }
   }
 
   void activate() override {
@@ -60,11 +67,13 @@ class Renderer final : public Component {
   void tick(Time now) override {
     while (eye_T_base_in_.take(pose_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
-      if (finite(T)) eye_T_base_ = T, have_pose_ = true;  // a corrupt pose is ignored
+      if (finite(T)) eye_T_base_ = T, have_pose_ = true;
+      else reject(eye_T_base_in_, "a non-finite pose");
     }
     while (objects_in_.take(object_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(object_msg_.pose());
       if (finite(T)) base_T_body_[object_msg_.child_frame_id().c_str()] = T;
+      else reject(objects_in_, "a non-finite pose");
     }
     if (!have_pose_) return;  // nothing to draw from yet
     renderer_->begin(Eigen::Vector4f(static_cast<float>(background_[0]), static_cast<float>(background_[1]),
@@ -76,9 +85,12 @@ class Renderer final : public Component {
     }
     renderer_->read_rgb(rgb_);
     renderer_->read_depth(depth_);
-    fill(color_msg_, "rgb8", 3, now, rgb_.data(), rgb_.size());
+    std::memcpy(image::allocate(color_msg_, camera_.width, camera_.height, "rgb8").data, rgb_.data(), rgb_.size());
+    std::memcpy(image::allocate(depth_msg_, camera_.width, camera_.height, "32FC1").data, depth_.data(),
+                depth_.size() * sizeof(float));
+    fill_header(color_msg_.header(), now.ns, seq_, "eye");
+    fill_header(depth_msg_.header(), now.ns, seq_++, "eye");
     color_out_.write(color_msg_);
-    fill(depth_msg_, "32FC1", 4, now, reinterpret_cast<const std::uint8_t*>(depth_.data()), depth_.size() * sizeof(float));
     depth_out_.write(depth_msg_);
   }
 
@@ -88,23 +100,10 @@ class Renderer final : public Component {
   }
 
  private:
-  void fill(msg::Image& m, const char* encoding, int bytes_per_pixel, Time now, const std::uint8_t* data, std::size_t size) {
-    m.header().stamp_ns(now.ns);
-    m.header().seq(seq_);
-    m.header().frame_id("eye");
-    m.width(static_cast<std::uint32_t>(camera_.width));
-    m.height(static_cast<std::uint32_t>(camera_.height));
-    m.encoding(encoding);
-    m.is_bigendian(0);
-    m.step(static_cast<std::uint32_t>(camera_.width * bytes_per_pixel));
-    m.data().assign(data, data + size);  // reuses the buffer after the first frame
-    if (std::string(encoding) == "32FC1") ++seq_;
-  }
-
   std::string scene_path_;
   Pinhole camera_;
   int samples_ = 4;
-  std::vector<double> background_;
+  std::array<double, 3> background_{};
   haptics::Scene scene_;
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;

@@ -13,7 +13,7 @@
 
 #include "netft_rdt/rdt_protocol.hpp"
 #include "wysiwyf/component.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::robot {
 
@@ -34,7 +34,7 @@ class FtNetFt final : public Component {
     wrench_ = ctx.output<msg::WrenchStamped>("wrench", "every record, in the sensor frame, bias removed", Qos::sensor(16));
     sockaddr_in probe{};
     if (::inet_pton(AF_INET, host_.c_str(), &probe.sin_addr) != 1)
-      throw std::invalid_argument("host: found '" + host_ + "'; expected an IPv4 address like 192.168.1.1");
+      ctx.reject("host", "found '" + host_ + "'; expected an IPv4 address like 192.168.1.1");
   }
 
   void activate() override {
@@ -60,7 +60,8 @@ class FtNetFt final : public Component {
       got = true;
       const rdt::RecordResult r = rdt::parse_record(buffer, static_cast<std::size_t>(n), max_counts_);
       if (r.error != rdt::ParseError::kNone) {
-        if (rejected_++ == 0) log("rejected a record: " + rdt::to_string(r.error) + " (further ones are counted)");
+        ++rejected_;
+        warn_once("rejected a record: " + rdt::to_string(r.error) + " (further ones are counted in the diagnostics)");
         continue;
       }
       if (received_ > 0) {
@@ -102,7 +103,7 @@ class FtNetFt final : public Component {
   }
 
   void publish(const rdt::Record& rec, Time now) {
-    std::array<double, 6> w{};
+    msgs::Vector6d w;
     for (int i = 0; i < 6; ++i) w[i] = rec.counts[i] / (i < 3 ? counts_per_force_ : counts_per_torque_);
     if (tared_ < tare_samples_) {  // still measuring the bias
       for (int i = 0; i < 6; ++i) bias_[i] += w[i] / tare_samples_;
@@ -110,11 +111,8 @@ class FtNetFt final : public Component {
       return;
     }
     for (int i = 0; i < 6; ++i) w[i] -= bias_[i];
-    msg_.header().stamp_ns(now.ns);
-    msg_.header().seq(rec.rdt_sequence);
-    msg_.header().frame_id(frame_id_);
-    msg_.wrench().force().x(w[0]), msg_.wrench().force().y(w[1]), msg_.wrench().force().z(w[2]);
-    msg_.wrench().torque().x(w[3]), msg_.wrench().torque().y(w[4]), msg_.wrench().torque().z(w[5]);
+    fill_header(msg_.header(), now.ns, rec.rdt_sequence, frame_id_.c_str());
+    msgs::to_msg(w, msg_.wrench());
     wrench_.write(msg_);
   }
 
@@ -126,7 +124,7 @@ class FtNetFt final : public Component {
   bool silent_ = false;
   std::uint32_t last_sequence_ = 0;
   std::uint64_t received_ = 0, dropped_ = 0, rejected_ = 0;
-  std::array<double, 6> bias_{};
+  msgs::Vector6d bias_ = msgs::Vector6d::Zero();
   msg::WrenchStamped msg_;
   Output<msg::WrenchStamped> wrench_;
 };

@@ -18,13 +18,12 @@
 #include "link_client.hpp"
 #include "puma_model/puma_model.hpp"
 #include "safety_gate/safety_gate.hpp"
-#include "arm_interface/arm_messages.hpp"
-#include "arm_interface/gate_params.hpp"
-#include "arm_interface/gate_status.hpp"
+#include "arm_interface/arm_params.hpp"
+#include "arm_interface/arm_ports.hpp"
 #include "setpoint_following/setpoint_follower.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
-#include "wysiwyf/msgs.hpp"
+#include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::robot {
 namespace {
@@ -59,32 +58,16 @@ class PumaDriver final : public Component {
     link_timeout_ = ctx.param<int>("link_timeout_periods", 3,
                                    "ticks without a valid state before the link counts as lost (the arm holds)",
                                    Range{1, 1000});
-    urdf_path_ = ctx.param<std::string>("urdf", "robots/puma560.urdf",
-                                        "robot URDF; relative paths are tried from the working directory, then config/");
-    tip_frame_ = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
-    gate_config_ = declare_gate_params(ctx);
-    tracker_hz_ = ctx.param<double>("tracker_bandwidth_hz", 10.0,
-                                    "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
-                                    Range{0.1, 200});
+    // ---- the robot, the setpoint tracker and the safety gate (as puma_sim)
+    arm_ = declare_arm_params(ctx);
 
-    setpoint_in_ = ctx.input<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist, at any period of 1-20 ms",
-                                                     Qos::reliable(32));
+    ports_.declare(ctx);
     wrench_in_ = ctx.input<msg::WrenchStamped>(
         "wrench", "the wrist F/T sensor (ft_netft), for the force limit; leave unconnected to go without",
         Qos::sensor(16));
-    joint_out_ = ctx.output<msg::JointState>("joint_state", "encoder angles, velocities, motor torques from the controller");
-    pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
-    status_out_ = ctx.output<msg::RobotStatus>(
-        "status", "safety state (RobotStatus): ok following a source, holding, or fault, with the reason",
-        Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
 
-    dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
-    gate_config_.dt = dt_;
-    model_ = std::make_unique<PumaModel>(find_config_file(urdf_path_), tip_frame_);
-    if (model_->frame_body(model_->tip()) != kDof)
-      throw std::invalid_argument("tip_frame '" + tip_frame_ + "' is not on link 6");
-    gate_config_.limits = model_->limits();
-    gate_config_.validate();
+    dt_ = arm_.gate.dt;
+    model_ = load_arm_model(ctx, arm_);
   }
 
   void activate() override {
@@ -102,9 +85,9 @@ class PumaDriver final : public Component {
     if (!answered)
       throw std::runtime_error("puma-link: no answer from the controller at " + link_->address() + " within " +
                                std::to_string(connect_timeout_) + " s (is it on, or apps/puma-link-emulator running?)");
-    gate_ = std::make_unique<SafetyGate>(gate_config_);
-    follower_ = std::make_unique<SetpointFollower>(*model_, tip_frame_, *gate_, tracker_hz_, dt_);
-    status_ = GateStatus();
+    gate_ = std::make_unique<SafetyGate>(arm_.gate);
+    follower_ = std::make_unique<SetpointFollower>(*model_, arm_.tip_frame, *gate_, arm_.tracker_hz, dt_);
+    ports_.reset_status();
     started_ = false;
     link_lost_ = link_faulted_ = false;
     missed_ = 0;
@@ -153,14 +136,11 @@ class PumaDriver final : public Component {
         gate_->fault(std::string("the controller reports a fault: ") + to_string(state_.fault));
       gate_->check_measured(q, qd);
     }
-    while (wrench_in_.take(wrench_msg_)) {
-      const auto& w = wrench_msg_.wrench();
-      gate_->check_wrench(Eigen::Vector3d(w.force().x(), w.force().y(), w.force().z()),
-                          Eigen::Vector3d(w.torque().x(), w.torque().y(), w.torque().z()));
-    }
+    while (wrench_in_.take(wrench_msg_))
+      gate_->check_wrench(msgs::to_eigen(wrench_msg_.wrench().force()), msgs::to_eigen(wrench_msg_.wrench().torque()));
 
     // ---- 3. setpoints, trajectory generator, 4. the reference
-    while (setpoint_in_.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
+    while (ports_.setpoint.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
     follower_->update(now.ns);
     const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
     const JointReference& ref = gate_->step(now.ns);
@@ -181,7 +161,7 @@ class PumaDriver final : public Component {
         ++missed_;
       }
     }
-    if (status_.publish(now.ns, *gate_, follower_->source(), status_out_)) log("fault: " + gate_->reason());
+    if (ports_.publish_status(now.ns, *gate_, follower_->source())) log("fault: " + gate_->reason());
   }
 
   void deactivate() override {
@@ -214,26 +194,22 @@ class PumaDriver final : public Component {
   }
 
   void publish(Time now, const Vector6d& q, const Vector6d& qd) {
-    fill_joint_state(joint_msg_, now.ns, seq_, q, qd, Eigen::Map<const Vector6d>(state_.tau.data()));
-    joint_out_.write(joint_msg_);
-    fill_device_pose(pose_msg_, now.ns, seq_, tip_frame_, model_->fk(q));
-    pose_out_.write(pose_msg_);
-    ++seq_;
+    ports_.publish_measurement(now.ns, seq_++, q, qd, Eigen::Map<const Vector6d>(state_.tau.data()), arm_.tip_frame,
+                               model_->fk(q));
   }
 
   // parameters
-  std::string host_, urdf_path_, tip_frame_;
+  ArmParams arm_;
+  std::string host_;
   int port_ = link::kDefaultPort, link_timeout_ = 3;
   bool lockstep_ = false;
-  double connect_timeout_ = 2, reply_timeout_ = 0.5, tracker_hz_ = 10, dt_ = 1e-3;
-  SafetyConfig gate_config_;
+  double connect_timeout_ = 2, reply_timeout_ = 0.5, dt_ = 1e-3;
 
   // state
   std::unique_ptr<PumaModel> model_;
   std::unique_ptr<link::LinkClient> link_;
   std::unique_ptr<SafetyGate> gate_;
   std::unique_ptr<SetpointFollower> follower_;
-  GateStatus status_;
   link::State state_;
   bool started_ = false, link_lost_ = false, link_faulted_ = false;
   int missed_ = 0;
@@ -242,13 +218,8 @@ class PumaDriver final : public Component {
   // messages and ports (reused: no allocation per tick)
   msg::CartesianSetpoint setpoint_msg_;
   msg::WrenchStamped wrench_msg_;
-  msg::JointState joint_msg_;
-  msg::PoseStamped pose_msg_;
-  Input<msg::CartesianSetpoint> setpoint_in_;
+  ArmPorts ports_;
   Input<msg::WrenchStamped> wrench_in_;
-  Output<msg::JointState> joint_out_;
-  Output<msg::PoseStamped> pose_out_;
-  Output<msg::RobotStatus> status_out_;
 };
 
 }  // namespace wysiwyf::robot

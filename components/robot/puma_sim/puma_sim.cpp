@@ -15,6 +15,7 @@
 //      friction) and the user's fingertip (a sphere on an impedance towards `hand_target`, in
 //      penalty contact with the plate, the knob and the sensor housing, the reaction applied to
 //      link 6 through the Jacobian transpose) advance by semi-implicit Euler substeps.
+#include <array>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -25,9 +26,8 @@
 #include "puma_model/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
 #include "safety_gate/safety_gate.hpp"
-#include "arm_interface/arm_messages.hpp"
-#include "arm_interface/gate_params.hpp"
-#include "arm_interface/gate_status.hpp"
+#include "arm_interface/arm_params.hpp"
+#include "arm_interface/arm_ports.hpp"
 #include "setpoint_following/setpoint_follower.hpp"
 #include "tool_geometry.hpp"
 #include "wysiwyf/component.hpp"
@@ -41,13 +41,10 @@ namespace {
 // The ready pose: the plate's centre 0.7 m in front of the base, 0.2 m above the mounting plane
 // (the table top of config/scenes), facing +x (away from the robot, towards the user), dev x
 // pointing down: base_T_dev = (0.7, 0, 0.2), Ry(pi/2). The one IK solution within limits.
-const std::vector<double> kReadyPose = {0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403};
+const std::array<double, kDof> kReadyPose = {0.255486131, -0.152351627, -2.593612368,
+                                             0.275843098, 1.188686600,  -0.105157403};
 
-Vector6d to_vector6(const std::vector<double>& v) {
-  Vector6d out;
-  for (int j = 0; j < kDof; ++j) out[j] = v[static_cast<std::size_t>(j)];
-  return out;
-}
+Vector6d to_vector6(const std::array<double, kDof>& v) { return Eigen::Map<const Vector6d>(v.data()); }
 
 }  // namespace
 
@@ -56,31 +53,24 @@ class PumaSim final : public Component {
   void configure(Context& ctx) override {
     ctx.summary("simulated PUMA 560: arm dynamics, 1 kHz joint servo behind the safety gate, Cartesian setpoint "
                 "tracking, wrist F/T sensor and the user's fingertip in contact with the plate");
-    // ---- the robot
-    urdf_path_ = ctx.param<std::string>("urdf", "robots/puma560.urdf",
-                                        "robot URDF; relative paths are tried from the working directory, then config/");
+    // ---- the robot, the setpoint tracker and the safety gate (as puma_driver)
+    arm_ = declare_arm_params(ctx);
     drive_path_ = ctx.param<std::string>("drive", "robots/puma560_drive.yaml",
                                          "drive-train file (gears, rotor inertia, friction); same search as urdf");
-    tip_frame_ = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
     sensor_frame_ = ctx.param<std::string>("sensor_frame", "ft_sensor", "the F/T sensor's measurement frame");
-    const auto q0 = ctx.param<std::vector<double>>(
+    const auto q0 = ctx.param<std::array<double, kDof>>(
         "initial_q", kReadyPose,
         "joint angles at activation, rad (default: the ready pose, plate centre at (0.7, 0, 0.2) m facing +x)",
         Range{-10, 10});
-    // ---- safety gate
-    gate_config_ = declare_gate_params(ctx);
-    // ---- trajectory generator and servo
-    tracker_hz_ = ctx.param<double>("tracker_bandwidth_hz", 10.0,
-                                    "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
-                                    Range{0.1, 200});
+    // ---- the servo
     servo_config_.bandwidth_hz = ctx.param<double>("servo_bandwidth_hz", 10.0,
                                   "PD gains from M(q0): kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this, Hz",
                                   Range{0.1, 100});
     servo_config_.damping = ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
     servo_config_.kp = ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
-                                               Range{0, 1e7});
+                                                      Range{0, 1e7}, Length::exactly_or_empty(kDof));
     servo_config_.kd = ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
-                                               Range{0, 1e6});
+                                                      Range{0, 1e6}, Length::exactly_or_empty(kDof));
     servo_config_.accel_feedforward = ctx.param<double>("accel_feedforward", 1.0,
                                   "share of the inverse-dynamics feedforward M(q) qdd_ref + C(q, qd) qd added to the "
                                   "torque (0 with friction_feedforward 0: PD + gravity only, the Unimation servo)",
@@ -100,7 +90,7 @@ class PumaSim final : public Component {
     noise_force_ = ctx.param<double>("ft_noise_force", 0.05, "N, sigma of the Gaussian noise per force axis", Range{0, 100});
     noise_torque_ = ctx.param<double>("ft_noise_torque", 0.002, "N m, sigma of the Gaussian noise per torque axis",
                                       Range{0, 10});
-    const auto bias = ctx.param<std::vector<double>>("ft_bias", {0, 0, 0, 0, 0, 0},
+    const auto bias = ctx.param<std::array<double, 6>>("ft_bias", {0, 0, 0, 0, 0, 0},
                                                      "constant offset of the F/T reading: fx fy fz (N) tx ty tz (N m)",
                                                      Range{-1000, 1000});
     seed_ = ctx.param<std::int64_t>("seed", 1, "seed of the sensor noise (runs are repeatable)");
@@ -110,7 +100,7 @@ class PumaSim final : public Component {
     hand_k_ = ctx.param<double>("hand_stiffness", 500.0, "N/m, impedance pulling the fingertip to hand_target",
                                 Range{0, 1e5});
     hand_d_ = ctx.param<double>("hand_damping", 30.0, "N s/m, damping of the fingertip's impedance", Range{0, 1e4});
-    const auto park = ctx.param<std::vector<double>>(
+    const auto park = ctx.param<std::array<double, 3>>(
         "hand_park", {1.1, 0.0, 0.2}, "where the fingertip waits until a hand_target arrives, base frame, m",
         Range{-10, 10});
     contact_k_ = ctx.param<double>("contact_stiffness", 20000.0, "N/m, penalty stiffness of fingertip contact",
@@ -118,69 +108,57 @@ class PumaSim final : public Component {
     contact_d_ = ctx.param<double>("contact_damping", 100.0, "N s/m, penalty damping of fingertip contact (pushes only)",
                                    Range{0, 1e5});
 
-    setpoint_in_ = ctx.input<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist, at any period of 1-20 ms",
-                                                     Qos::reliable(32));
+    ports_.declare(ctx);
     hand_in_ = ctx.input<msg::PoseStamped>("hand_target", "where the user's fingertip is driven (base frame)",
                                            Qos::reliable(4));
-    joint_out_ = ctx.output<msg::JointState>("joint_state", "encoder-quantised angles, velocities, motor torques");
-    pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
     wrench_out_ = ctx.output<msg::WrenchStamped>("wrench", "wrist F/T sensor, frame ft_sensor, about its origin",
                                                  Qos::sensor(8));
     hand_out_ = ctx.output<msg::PoseStamped>("hand_pose", "the fingertip's true position (base frame)");
-    status_out_ = ctx.output<msg::RobotStatus>(
-        "status", "safety state (RobotStatus): ok following a source, holding, or fault, with the reason",
-        Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
 
-    auto six = [](const std::vector<double>& v, const char* name) {
-      if (v.size() != static_cast<std::size_t>(kDof))
-        throw std::invalid_argument(std::string(name) + " needs 6 values, one per joint (got " +
-                                    std::to_string(v.size()) + ")");
-    };
-    six(q0, "initial_q");
-    six(bias, "ft_bias");
-    servo_config_.validate();
-    if (park.size() != 3) throw std::invalid_argument("hand_park needs 3 values (x y z, m)");
     q0_ = to_vector6(q0);
     bias_ = to_vector6(bias);
     park_ = Eigen::Vector3d(park[0], park[1], park[2]);
-    dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
-    gate_config_.dt = dt_;
+    dt_ = arm_.gate.dt;
 
     // Load now so that a wrong file or frame is reported before anything starts.
-    model_ = std::make_unique<PumaModel>(find_config_file(urdf_path_), tip_frame_);
-    drive_ = load_drive_params(find_config_file(drive_path_), *model_);
-    model_->set_rotor_inertia(drive_.reflected_inertia());
+    model_ = load_arm_model(ctx, arm_);
+    if (!model_) return;
     tip_ = model_->tip();
-    if (model_->frame_body(tip_) != kDof) throw std::invalid_argument("tip_frame '" + tip_frame_ + "' is not on link 6");
-    sensor_ = model_->frame(sensor_frame_);
-    tool_ = load_tool_geometry(find_config_file(urdf_path_), *model_, sensor_frame_);
-    gate_config_.limits = model_->limits();
-    gate_config_.validate();
-    if (!model_->limits().within(q0_))
-      throw std::invalid_argument("initial_q is outside the joint limits of " + urdf_path_);
+    try {
+      drive_ = load_drive_params(find_config_file(drive_path_), *model_);
+    } catch (const std::exception& e) {
+      return ctx.reject("drive", e.what());
+    }
+    model_->set_rotor_inertia(drive_.reflected_inertia());
+    try {
+      sensor_ = model_->frame(sensor_frame_);
+      tool_ = load_tool_geometry(find_config_file(arm_.urdf_path), *model_, sensor_frame_);
+    } catch (const std::exception& e) {
+      return ctx.reject("sensor_frame", e.what());
+    }
+    if (!model_->limits().within(q0_)) return ctx.reject("initial_q", "outside the joint limits of " + arm_.urdf_path);
     servo_ = std::make_unique<JointServo>(*model_, drive_, servo_config_, q0_);
-    arm_ = std::make_unique<ArmDynamics>(*model_, drive_, encoder_counts_, servo_config_.coulomb_smoothing);
+    arm_dynamics_ = std::make_unique<ArmDynamics>(*model_, drive_, encoder_counts_, servo_config_.coulomb_smoothing);
   }
 
   void activate() override {
-    arm_->reset(q0_);
+    arm_dynamics_->reset(q0_);
     tau_ = model_->gravity_torques(q0_);
     hand_x_ = hand_target_ = park_;
     hand_v_ = Eigen::Vector3d::Zero();
     rng_.seed(static_cast<std::uint64_t>(seed_));
-    gate_ = std::make_unique<SafetyGate>(gate_config_);
-    follower_ = std::make_unique<SetpointFollower>(*model_, tip_frame_, *gate_, tracker_hz_, dt_);
-    status_ = GateStatus();
+    gate_ = std::make_unique<SafetyGate>(arm_.gate);
+    follower_ = std::make_unique<SetpointFollower>(*model_, arm_.tip_frame, *gate_, arm_.tracker_hz, dt_);
+    ports_.reset_status();
     started_ = false;
     seq_ = 0;
-    rejected_hand_ = 0;
   }
 
   void tick(Time now) override {
     // ---- 1. sample and publish
-    const Vector6d q_meas = arm_->measured_q();
-    const Vector6d qd_meas = arm_->qd();
-    const Contacts contacts = contact_forces(arm_->q(), arm_->qd());
+    const Vector6d q_meas = arm_dynamics_->measured_q();
+    const Vector6d qd_meas = arm_dynamics_->qd();
+    const Contacts contacts = contact_forces(arm_dynamics_->q(), arm_dynamics_->qd());
     Eigen::Vector3d f_sensor, t_sensor;
     sensor_reading(contacts, f_sensor, t_sensor);
     publish(now, q_meas, qd_meas, f_sensor, t_sensor);
@@ -194,15 +172,11 @@ class PumaSim final : public Component {
     gate_->check_wrench(f_sensor, t_sensor);
 
     // ---- 3. setpoints, hand target, trajectory generator
-    while (setpoint_in_.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
+    while (ports_.setpoint.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
     while (hand_in_.take(hand_msg_)) {
-      const auto& p = hand_msg_.pose().position();
-      const Eigen::Vector3d x(p.x(), p.y(), p.z());
-      if (x.allFinite()) {
-        hand_target_ = x;
-      } else if (++rejected_hand_ == 1) {
-        log("ignored a non-finite hand_target (further ones are counted silently)");
-      }
+      const Eigen::Vector3d x = msgs::to_eigen(hand_msg_.pose().position());
+      if (x.allFinite()) hand_target_ = x;
+      else reject(hand_in_, "a non-finite position");
     }
     follower_->update(now.ns);
 
@@ -216,14 +190,14 @@ class PumaSim final : public Component {
     // ---- 6. the arm and the hand over one period
     const double h = dt_ / substeps_;
     for (int s = 0; s < substeps_; ++s) {
-      const Contacts c = s == 0 ? contacts : contact_forces(arm_->q(), arm_->qd());
+      const Contacts c = s == 0 ? contacts : contact_forces(arm_dynamics_->q(), arm_dynamics_->qd());
       const Eigen::Vector3d f_hand =
           hand_k_ * (hand_target_ - hand_x_) - hand_d_ * hand_v_ + c.on_hand;  // no gravity: the user carries it
-      arm_->step(h, tau_, c.joint_torque);
+      arm_dynamics_->step(h, tau_, c.joint_torque);
       hand_v_ += f_hand / hand_mass_ * h;
       hand_x_ += hand_v_ * h;
     }
-    if (status_.publish(now.ns, *gate_, follower_->source(), status_out_)) log("fault: " + gate_->reason());
+    if (ports_.publish_status(now.ns, *gate_, follower_->source())) log("fault: " + gate_->reason());
   }
 
   void hold() noexcept override {
@@ -293,22 +267,13 @@ class PumaSim final : public Component {
   }
 
   void publish(Time now, const Vector6d& q, const Vector6d& qd, const Eigen::Vector3d& f, const Eigen::Vector3d& t) {
-    fill_joint_state(joint_msg_, now.ns, seq_, q, qd, tau_);
-    joint_out_.write(joint_msg_);
-    fill_device_pose(pose_msg_, now.ns, seq_, tip_frame_, model_->fk(q, tip_));
-    pose_out_.write(pose_msg_);
+    ports_.publish_measurement(now.ns, seq_, q, qd, tau_, arm_.tip_frame, model_->fk(q, tip_));
 
-    wrench_msg_.header().stamp_ns(now.ns);
-    wrench_msg_.header().seq(seq_);
-    wrench_msg_.header().frame_id(sensor_frame_);
-    auto& w = wrench_msg_.wrench();
-    w.force().x(f.x()), w.force().y(f.y()), w.force().z(f.z());
-    w.torque().x(t.x()), w.torque().y(t.y()), w.torque().z(t.z());
+    fill_header(wrench_msg_.header(), now.ns, seq_, sensor_frame_.c_str());
+    msgs::to_msg(f, t, wrench_msg_.wrench());
     wrench_out_.write(wrench_msg_);
 
-    hand_msg_out_.header().stamp_ns(now.ns);
-    hand_msg_out_.header().seq(seq_);
-    hand_msg_out_.header().frame_id("base");
+    fill_header(hand_msg_out_.header(), now.ns, seq_, "base");
     hand_msg_out_.child_frame_id("hand");
     Eigen::Isometry3d hand = Eigen::Isometry3d::Identity();
     hand.translation() = hand_x_;
@@ -318,11 +283,10 @@ class PumaSim final : public Component {
   }
 
   // parameters
-  std::string urdf_path_, drive_path_, tip_frame_, sensor_frame_;
+  ArmParams arm_;
+  std::string drive_path_, sensor_frame_;
   Vector6d q0_ = Vector6d::Zero(), bias_ = Vector6d::Zero();
-  SafetyConfig gate_config_;
   JointServoConfig servo_config_;
-  double tracker_hz_ = 10;
   int substeps_ = 4, encoder_counts_ = 1000;
   double noise_force_ = 0.05, noise_torque_ = 0.002;
   std::int64_t seed_ = 1;
@@ -338,30 +302,25 @@ class PumaSim final : public Component {
   std::unique_ptr<JointServo> servo_;
 
   // state
-  std::unique_ptr<ArmDynamics> arm_;
+  std::unique_ptr<ArmDynamics> arm_dynamics_;
   Vector6d tau_ = Vector6d::Zero();
   Eigen::Vector3d hand_x_ = Eigen::Vector3d::Zero(), hand_v_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hand_target_ = Eigen::Vector3d::Zero();
   std::unique_ptr<SafetyGate> gate_;
   std::unique_ptr<SetpointFollower> follower_;
-  GateStatus status_;
   bool started_ = false;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
-  std::uint64_t seq_ = 0, rejected_hand_ = 0;
+  std::uint64_t seq_ = 0;
 
   // messages and ports (reused: no allocation per tick)
   msg::CartesianSetpoint setpoint_msg_;
-  msg::PoseStamped hand_msg_, pose_msg_, hand_msg_out_;
-  msg::JointState joint_msg_;
+  msg::PoseStamped hand_msg_, hand_msg_out_;
   msg::WrenchStamped wrench_msg_;
-  Input<msg::CartesianSetpoint> setpoint_in_;
+  ArmPorts ports_;
   Input<msg::PoseStamped> hand_in_;
-  Output<msg::JointState> joint_out_;
-  Output<msg::PoseStamped> pose_out_;
   Output<msg::WrenchStamped> wrench_out_;
   Output<msg::PoseStamped> hand_out_;
-  Output<msg::RobotStatus> status_out_;
 };
 
 }  // namespace wysiwyf::robot::sim

@@ -5,11 +5,13 @@
 // optional small opening of the matte. Out: the despilled hand as premultiplied RGBA.
 // Vectorised with OpenCV's universal intrinsics: no per-pixel calls.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -19,7 +21,7 @@ class ChromaKeyer final : public Component {
  public:
   void configure(Context& ctx) override {
     ctx.summary("soft chroma key against the blue cloth: premultiplied RGBA hand, spill suppressed");
-    key_ = ctx.param<std::vector<double>>("key_color", {26, 41, 158}, "the cloth's colour, RGB 0..255", Range{0, 255});
+    key_ = ctx.param<std::array<double, 3>>("key_color", {26, 41, 158}, "the cloth's colour, RGB 0..255", Range{0, 255});
     inner_ = ctx.param<double>("inner", 22, "chroma distance (YCrCb, 0..255) up to which a pixel is cloth", Range{0, 255});
     outer_ = ctx.param<double>("outer", 40, "chroma distance from which a pixel is fully kept", Range{0, 255});
     min_luma_ = ctx.param<double>("min_luma", 12, "darker pixels count as cloth in shadow (Y, 0..255)", Range{0, 255});
@@ -28,8 +30,7 @@ class ChromaKeyer final : public Component {
     in_ = ctx.input<msg::Image>("image", "camera image, rgb8", Qos::sensor(2));
     hand_ = ctx.output<msg::Image>("hand", "the keyed hand, rgba8, premultiplied", Qos::sensor(2));
     matte_ = ctx.output<msg::Image>("matte", "the alpha matte, mono8", Qos::sensor(2));
-    if (key_.size() != 3) throw std::invalid_argument("key_color: expected three numbers r g b");
-    if (!(outer_ > inner_)) throw std::invalid_argument("outer must be larger than inner");
+    if (!(outer_ > inner_)) ctx.reject("outer", "must be larger than inner (" + std::to_string(inner_) + ")");
     const cv::Mat key(1, 1, CV_8UC3, cv::Scalar(key_[0], key_[1], key_[2]));
     cv::Mat ycc;
     cv::cvtColor(key, ycc, cv::COLOR_RGB2YCrCb);
@@ -39,12 +40,8 @@ class ChromaKeyer final : public Component {
 
   void tick(Time now) override {
     if (!in_.take_latest(frame_)) return;
-    if (std::string(frame_.encoding().c_str()) != "rgb8" || frame_.step() < frame_.width() * 3 ||
-        frame_.data().size() < static_cast<std::size_t>(frame_.step()) * frame_.height())
-      return;  // not an rgb8 frame: nothing to key
-    const cv::Mat rgb(static_cast<int>(frame_.height()), static_cast<int>(frame_.width()), CV_8UC3, frame_.data().data(),
-                      frame_.step());
-    key(rgb);
+    if (const std::string bad = image::problem(frame_, {"rgb8"}); !bad.empty()) return reject(in_, bad);
+    key(image::view(frame_));
     publish(now);
   }
 
@@ -55,9 +52,8 @@ class ChromaKeyer final : public Component {
   // Y = .299 R + .587 G + .114 B, Cr = .713 (R - Y) + 128, Cb = .564 (B - Y) + 128.
   void key(const cv::Mat& rgb) {
     const int w = rgb.cols, h = rgb.rows;
-    image_message(matte_msg_, w, h, 1, "mono8");
-    image_message(hand_msg_, w, h, 4, "rgba8");
-    alpha_ = cv::Mat(h, w, CV_8UC1, matte_msg_.data().data());
+    alpha_ = image::allocate(matte_msg_, w, h, "mono8");
+    image::allocate(hand_msg_, w, h, "rgba8");
     const float gain = static_cast<float>(255.0 / (outer_ - inner_)), inner = static_cast<float>(inner_);
     const float dcr0 = static_cast<float>(128.0 - key_cr_), dcb0 = static_cast<float>(128.0 - key_cb_);
     const float min_luma = static_cast<float>(min_luma_);
@@ -149,14 +145,6 @@ class ChromaKeyer final : public Component {
     }
   }
 
-  // Sizes a message's buffer for the frame (no reallocation once it has that size).
-  void image_message(msg::Image& m, int w, int h, int channels, const char* encoding) {
-    m.width(static_cast<std::uint32_t>(w)), m.height(static_cast<std::uint32_t>(h));
-    m.encoding(encoding);
-    m.step(static_cast<std::uint32_t>(w * channels));
-    m.data().resize(static_cast<std::size_t>(w) * h * channels);
-  }
-
   void publish(Time now) {
     for (msg::Image* m : {&hand_msg_, &matte_msg_}) {
       m->header() = frame_.header();
@@ -166,7 +154,7 @@ class ChromaKeyer final : public Component {
     matte_.write(matte_msg_);
   }
 
-  std::vector<double> key_;
+  std::array<double, 3> key_{};
   double inner_ = 22, outer_ = 40, min_luma_ = 12, key_cr_ = 0, key_cb_ = 0;
   bool despill_ = true;
   int morph_ = 0;

@@ -5,13 +5,16 @@
 // drawn), eye_T_dev (eq. 4: where the virtual object is drawn), their covariances, and what it
 // saw. `device_motion: state` is the paper's first prototype for comparison: the filter tracks
 // eye_T_dev and the robot's motion disturbs the background.
+#include <array>
 #include <memory>
+#include <string_view>
 #include <optional>
 
 #include "camera_model.hpp"
 #include "joint_history.hpp"
 #include "plate_tracker.hpp"
 #include "frames/look_at.hpp"
+#include "image/image_view.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -20,16 +23,13 @@
 
 namespace wysiwyf::vision {
 
-namespace {
-
-}  // namespace
-
 class MarkerTracker final : public Component {
  public:
   void configure(Context& ctx) override {
     ctx.summary("camera pose from the plate's four lamps: EKF on eye_T_base with the robot's motion as a known input");
     const auto urdf = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description with frames dev and marker_0..3");
-    intrinsics_ = ctx.param<std::vector<double>>("intrinsics", {}, "fx fy cx cy, px (no distortion); empty: from camera_info");
+    intrinsics_ = ctx.param<std::vector<double>>("intrinsics", {}, "fx fy cx cy, px (no distortion); empty: from camera_info",
+                                                 Range{0, 1e5}, Length::exactly_or_empty(4));
     const auto motion = ctx.param_choice("device_motion", "input",
                                          "input: the filter's state is eye_T_base, the device's motion a known input; "
                                          "state: the state is eye_T_dev (the paper's first prototype, for comparison)",
@@ -60,11 +60,13 @@ class MarkerTracker final : public Component {
     s.lost_after = ctx.param<int>("lost_after", 5, "images with too few lamps before the plate is lost", Range{1, 10000});
     s.min_window = ctx.param<int>("min_window", 10, "search window half size at least, px", Range{2, 1000});
     s.max_window = ctx.param<int>("max_window", 80, "search window half size at most, px", Range{2, 1000});
-    const auto up = ctx.param<std::vector<double>>("up", {0, 0, 1}, "the base axis that points up in the image at the first fix");
+    const auto up = ctx.param<std::array<double, 3>>("up", {0, 0, 1}, "the base axis that points up in the image at the first fix");
     const auto prior_eye = ctx.param<std::vector<double>>(
-        "prior_eye", {}, "where the camera roughly is (base frame, m), to start from fewer than four lamps; empty: none");
-    const auto prior_look_at = ctx.param<std::vector<double>>("prior_look_at", {}, "where it looks (base frame, m), with prior_eye");
-    const auto prior_sigma = ctx.param<std::vector<double>>("prior_sigma", {0.02, 0.02}, "how well: m, rad", Range{1e-6, 10});
+        "prior_eye", {}, "where the camera roughly is (base frame, m), to start from fewer than four lamps; empty: none",
+        std::nullopt, Length::exactly_or_empty(3));
+    const auto prior_look_at = ctx.param<std::vector<double>>("prior_look_at", {}, "where it looks (base frame, m), with prior_eye",
+                                                              std::nullopt, Length::exactly_or_empty(3));
+    const auto prior_sigma = ctx.param<std::array<double, 2>>("prior_sigma", {0.02, 0.02}, "how well: m, rad", Range{1e-6, 10});
     s.acquisition.max_rms_px = ctx.param<double>("max_fix_rms", 2.0, "a PnP fix must reproject within this, px", Range{0.01, 100});
     image_in_ = ctx.input<msg::Image>("image", "camera image: rgb8, bgr8 or mono8", Qos::sensor(2));
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "intrinsics and distortion (unless `intrinsics` is set)", Qos::sensor(2));
@@ -74,19 +76,14 @@ class MarkerTracker final : public Component {
     base_cov_out_ = ctx.output<msg::PoseWithCovariance>("eye_T_base_covariance", "eye_T_base with its covariance (eye axes)", Qos::sensor(4));
     dev_cov_out_ = ctx.output<msg::PoseWithCovariance>("eye_T_dev_covariance", "eye_T_dev with its covariance (eye axes)", Qos::sensor(4));
     markers_out_ = ctx.output<msg::MarkerObservation>("markers", "matched lamps and tracking status, every image", Qos::sensor(4));
-    if (!intrinsics_.empty() && intrinsics_.size() != 4)
-      throw std::invalid_argument("intrinsics: expected 4 numbers fx fy cx cy, or none to use camera_info; got " +
-                                  std::to_string(intrinsics_.size()));
-    if (up.size() != 3 || Eigen::Vector3d(up[0], up[1], up[2]).norm() < 1e-9)
-      throw std::invalid_argument("up: expected a non-zero vector of 3 numbers");
-    if (s.min_window > s.max_window) throw std::invalid_argument("min_window must not exceed max_window");
-    if (s.detector.min_area > s.detector.max_area) throw std::invalid_argument("min_area must not exceed max_area");
     s.up_in_base = Eigen::Vector3d(up[0], up[1], up[2]);
-    if (!prior_eye.empty() || !prior_look_at.empty()) {
-      if (prior_eye.size() != 3 || prior_look_at.size() != 3 || prior_sigma.size() != 2)
-        throw std::invalid_argument("prior_eye and prior_look_at: expected 3 numbers each (and prior_sigma 2: m, rad)");
+    if (s.up_in_base.norm() < 1e-9) ctx.reject("up", "expected a non-zero vector");
+    if (s.min_window > s.max_window) ctx.reject("max_window", "must not be below min_window");
+    if (s.detector.min_area > s.detector.max_area) ctx.reject("max_area", "must not be below min_area");
+    if (prior_eye.size() != prior_look_at.size()) ctx.reject("prior_look_at", "give prior_eye and prior_look_at together");
+    if (prior_eye.size() == 3 && prior_look_at.size() == 3) {
       const Eigen::Vector3d eye(prior_eye[0], prior_eye[1], prior_eye[2]), at(prior_look_at[0], prior_look_at[1], prior_look_at[2]);
-      if ((at - eye).norm() < 1e-6) throw std::invalid_argument("prior_look_at must differ from prior_eye");
+      if ((at - eye).norm() < 1e-6) ctx.reject("prior_look_at", "must differ from prior_eye");
       s.has_prior = true;
       s.prior_eye_T_base = frames::look_at(eye, at, s.up_in_base).inverse();
       s.prior_sigma_m = prior_sigma[0], s.prior_sigma_rad = prior_sigma[1];
@@ -102,33 +99,26 @@ class MarkerTracker final : public Component {
     read_joints(now);
     read_camera_info();
     if (!image_in_.take_latest(frame_)) return;
-    PixelLayout layout;
-    cv::Mat image;
-    if (!view(frame_, layout, image)) return;
-    if (!camera_) return warn_once(kNoIntrinsics, "no intrinsics yet: set `intrinsics` or connect camera_info; image skipped");
+    if (const std::string bad = image::problem(frame_, {"rgb8", "bgr8", "mono8"}); !bad.empty()) return reject(image_in_, bad);
+    const std::string_view encoding = frame_.encoding().c_str();
+    const PixelLayout layout = encoding == "rgb8" ? PixelLayout::kRgb8 : encoding == "bgr8" ? PixelLayout::kBgr8 : PixelLayout::kMono8;
+    const cv::Mat image = image::view(frame_);
+    if (!camera_) return warn_once("no intrinsics yet: set `intrinsics` or connect camera_info; images are skipped until then");
     const std::int64_t stamp = frame_.header().stamp_ns() ? frame_.header().stamp_ns() : now.ns;
     robot::Vector6d q;
-    if (!joints_.at(stamp, q)) return warn_once(kNoJoints, "no joint state yet: the device's pose is unknown; image skipped");
+    if (!joints_.at(stamp, q)) return warn_once("no joint state yet: the device's pose is unknown; images are skipped until then");
     const Eigen::Isometry3d base_T_dev = model_->fk(q, dev_);
     const FrameResult& r = tracker_->process(image, layout, stamp, base_T_dev, *camera_);
     publish(r, stamp);
   }
 
  private:
-  enum Warning { kNoIntrinsics, kNoJoints, kBadJoints, kBadInfo, kBadImage, kWarnings };
-
-  void warn_once(Warning w, const std::string& message) {
-    if (warned_[w]) return;
-    warned_[w] = true;
-    log(message);
-  }
-
   void read_joints(Time now) {
     while (joints_in_.take(joints_msg_)) {
       robot::Vector6d q;
       for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
       if (!q.allFinite()) {
-        warn_once(kBadJoints, "joint state with a non-finite position: sample skipped (warned once)");
+        reject(joints_in_, "a non-finite joint position");
         continue;
       }
       joints_.add(joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, q);
@@ -141,33 +131,13 @@ class MarkerTracker final : public Component {
     try {
       camera_.emplace(k[0], k[4], k[2], k[5], std::vector<double>(info_msg_.d().begin(), info_msg_.d().end()));
     } catch (const std::invalid_argument& e) {
-      warn_once(kBadInfo, std::string("camera_info refused, the previous intrinsics stay: ") + e.what());
+      reject(info_in_, std::string(e.what()) + " (the previous intrinsics stay)");
     }
-  }
-
-  // A cv::Mat over the message's pixels (no copy), or false for a frame the tracker cannot read.
-  bool view(msg::Image& m, PixelLayout& layout, cv::Mat& image) {
-    const std::string encoding = m.encoding().c_str();
-    int channels = 0;
-    if (encoding == "rgb8") layout = PixelLayout::kRgb8, channels = 3;
-    else if (encoding == "bgr8") layout = PixelLayout::kBgr8, channels = 3;
-    else if (encoding == "mono8") layout = PixelLayout::kMono8, channels = 1;
-    const std::size_t w = m.width(), h = m.height(), step = m.step();
-    if (!channels || w == 0 || h == 0 || step < w * channels || m.data().size() < step * h) {
-      warn_once(kBadImage, "image skipped: expected rgb8, bgr8 or mono8 with step >= width * channels and height * step "
-                           "bytes; got '" + encoding + "' " + std::to_string(w) + "x" + std::to_string(h) + ", step " +
-                               std::to_string(step) + ", " + std::to_string(m.data().size()) + " bytes (warned once)");
-      return false;
-    }
-    image = cv::Mat(static_cast<int>(h), static_cast<int>(w), channels == 3 ? CV_8UC3 : CV_8UC1, m.data().data(), step);
-    return true;
   }
 
   void publish(const FrameResult& r, std::int64_t stamp) {
     auto& obs = markers_msg_;
-    obs.header().stamp_ns(stamp);
-    obs.header().seq(seq_);
-    obs.header().frame_id("eye");
+    fill_header(obs.header(), stamp, seq_, "eye");
     obs.status(r.state == TrackState::kTracking ? msg::TRACKING_OK
                : r.state == TrackState::kCoasting ? msg::TRACKING_COASTING
                                                   : msg::TRACKING_LOST);
@@ -192,9 +162,7 @@ class MarkerTracker final : public Component {
 
   void write_pose(Output<msg::PoseStamped>& pose_out, Output<msg::PoseWithCovariance>& cov_out, const char* child,
                   const Eigen::Isometry3d& eye_T_x, const PoseEkf::Matrix6d& cov, std::int64_t stamp) {
-    pose_msg_.header().stamp_ns(stamp);
-    pose_msg_.header().seq(seq_);
-    pose_msg_.header().frame_id("eye");
+    fill_header(pose_msg_.header(), stamp, seq_, "eye");
     pose_msg_.child_frame_id(child);
     msgs::to_msg(eye_T_x, pose_msg_.pose());
     pose_out.write(pose_msg_);
@@ -212,7 +180,6 @@ class MarkerTracker final : public Component {
   std::unique_ptr<PlateTracker> tracker_;
   std::optional<CameraModel> camera_;
   JointHistory joints_;
-  bool warned_[kWarnings] = {};
   std::uint64_t seq_ = 0;
   msg::Image frame_;
   msg::CameraInfo info_msg_;

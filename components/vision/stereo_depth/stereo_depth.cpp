@@ -6,33 +6,17 @@
 // once eye_T_base arrives; with eye_T_dev the keyed plate and knob are left out of the hand.
 #include <opencv2/imgproc.hpp>
 
+#include <array>
+#include <string_view>
+
 #include "disparity_depth.hpp"
 #include "hand_point.hpp"
+#include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::vision {
-
-namespace {
-
-std::string encoding(const msg::Image& m) { return m.encoding().c_str(); }
-
-// Why an image cannot be used as `expected`, or "" when it can.
-std::string image_problem(const msg::Image& m, const char* port, const std::string& expected, std::size_t channels) {
-  if (encoding(m) != expected) return std::string(port) + " has encoding '" + encoding(m) + "', expected " + expected;
-  if (m.width() == 0 || m.height() == 0 || m.step() < m.width() * channels ||
-      m.data().size() < static_cast<std::size_t>(m.step()) * m.height())
-    return std::string(port) + " is " + std::to_string(m.width()) + "x" + std::to_string(m.height()) + " with step " +
-           std::to_string(m.step()) + " and " + std::to_string(m.data().size()) + " bytes: too short for its size";
-  return "";
-}
-
-cv::Mat view(msg::Image& m, int type) {
-  return cv::Mat(static_cast<int>(m.height()), static_cast<int>(m.width()), type, m.data().data(), m.step());
-}
-
-}  // namespace
 
 class StereoDepth final : public Component {
  public:
@@ -64,8 +48,8 @@ class StereoDepth final : public Component {
     hand_.min_pixels = ctx.param<int>("min_hand_pixels", 300, "fewer hand pixels with depth: no hand position", Range{1, 1e6});
     // The plate (0.2 x 0.2 x 0.01 m behind dev's z = 0), its lamps and its 0.04 m knob (config/robots/puma560.urdf),
     // 1 cm around, 2 cm in front of the knob: the small knob top's stereo depth comes up to 1.5 cm too near at 0.6 m.
-    const auto box = ctx.param<std::vector<double>>("device_box", {-0.11, 0.11, -0.11, 0.11, -0.02, 0.06},
-                                                    "with eye_T_dev: keyed points in this box (dev frame, xmin xmax ymin ymax zmin zmax, m) are device, not hand");
+    const auto box = ctx.param<std::array<double, 6>>("device_box", {-0.11, 0.11, -0.11, 0.11, -0.02, 0.06},
+                                                      "with eye_T_dev: keyed points in this box (dev frame, xmin xmax ymin ymax zmin zmax, m) are device, not hand");
     max_skew_ns_ = static_cast<std::int64_t>(
         ctx.param<double>("max_skew_ms", 5.0, "left and right frames further apart in time are not paired, ms", Range{0, 1000}) * 1e6);
     left_in_ = ctx.input<msg::Image>("left", "left (reference) image, rectified, rgb8 or mono8", Qos::sensor(2));
@@ -79,10 +63,13 @@ class StereoDepth final : public Component {
     depth_out_ = ctx.output<msg::Image>("depth", "metric depth of the left image, 32FC1, 0 where unknown", Qos::sensor(2));
     hand_out_ = ctx.output<msg::PoseStamped>("hand_position", "the hand's 3D point (eye or base frame; orientation identity)",
                                              Qos::sensor(4));
-    if (box.size() != 6 || !(box[0] < box[1] && box[2] < box[3] && box[4] < box[5]))
-      throw std::invalid_argument("device_box: expected six numbers xmin xmax ymin ymax zmin zmax, each min below its max");
+    if (!(box[0] < box[1] && box[2] < box[3] && box[4] < box[5])) ctx.reject("device_box", "each min must be below its max");
+    if (!(s.min_depth < s.max_depth)) ctx.reject("max_depth", "must be larger than min_depth");
+    if (s.block_size % 2 == 0 || (s.algorithm == "bm" && s.block_size < 5))
+      ctx.reject("block_size", "expected an odd number (at least 5 with algorithm bm)");
+    if (s.num_disparities % 16 != 0) ctx.reject("num_disparities", "expected 0 (from the depth range) or a multiple of 16");
     hand_.device_box = Eigen::AlignedBox3d(Eigen::Vector3d(box[0], box[2], box[4]), Eigen::Vector3d(box[1], box[3], box[5]));
-    matcher_.emplace(s);  // checks the settings: a bad combination fails validation
+    if (ctx.issues().empty()) matcher_.emplace(s);
   }
 
   void tick(Time now) override {
@@ -105,20 +92,22 @@ class StereoDepth final : public Component {
       if (k[0] > 0 && k[4] > 0 && std::isfinite(k[2]) && std::isfinite(k[5]))
         K_ = Intrinsics{k[0], k[4], k[2], k[5]}, K_size_ = cv::Size(static_cast<int>(info_.width()), static_cast<int>(info_.height()));
       else
-        reject("camera_info has no focal length (K[0], K[4] must be > 0)");
+        reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
     }
     while (right_info_in_.take(right_info_)) {
       const double fx = right_info_.p()[0], tx = right_info_.p()[3];
       if (fx > 0 && tx < 0) info_baseline_ = -tx / fx;
-      else reject("right_camera_info carries no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
+      else reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
     }
     while (eye_T_base_in_.take(pose_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_.pose());
       if (T.matrix().allFinite()) base_T_eye_ = T.inverse(), have_pose_ = true;
+      else reject(eye_T_base_in_, "a non-finite pose");
     }
     while (eye_T_dev_in_.take(pose_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_.pose());
       if (T.matrix().allFinite()) dev_T_eye_ = T.inverse(), have_dev_ = true;
+      else reject(eye_T_dev_in_, "a non-finite pose");
     }
   }
 
@@ -131,28 +120,32 @@ class StereoDepth final : public Component {
       return false;
     }
     left_fresh_ = right_fresh_ = false;
-    const std::string enc = encoding(left_);
-    const std::size_t channels = enc == "mono8" ? 1 : 3;
-    std::string problem = enc == "rgb8" || enc == "mono8" ? image_problem(left_, "left", enc, channels)
-                                                          : "left has encoding '" + enc + "', expected rgb8 or mono8";
-    if (problem.empty()) problem = image_problem(right_, "right", enc, channels);
-    if (problem.empty() && (left_.width() != right_.width() || left_.height() != right_.height()))
-      problem = "left is " + size_text(left_) + " but right is " + size_text(right_) + ": a rectified pair has one size";
-    if (problem.empty() && K_.fx <= 0) problem = "no intrinsics yet (camera_info)";
-    if (problem.empty() && (K_size_.width != static_cast<int>(left_.width()) || K_size_.height != static_cast<int>(left_.height())))
-      problem = "camera_info is for " + std::to_string(K_size_.width) + "x" + std::to_string(K_size_.height) +
+    if (const std::string bad = image::problem(left_, {"rgb8", "mono8"}); !bad.empty()) {
+      reject(left_in_, bad);
+      return false;
+    }
+    if (const std::string bad = image::problem(right_, {left_.encoding().c_str()}, left_.width(), left_.height());
+        !bad.empty()) {
+      reject(right_in_, bad + " (a rectified pair has one encoding and size)");
+      return false;
+    }
+    std::string missing;
+    if (K_.fx <= 0) missing = "no intrinsics yet (camera_info)";
+    else if (K_size_.width != static_cast<int>(left_.width()) || K_size_.height != static_cast<int>(left_.height()))
+      missing = "camera_info is for " + std::to_string(K_size_.width) + "x" + std::to_string(K_size_.height) +
                 " but the images are " + size_text(left_);
-    if (problem.empty() && baseline() <= 0) problem = "no baseline: set the baseline parameter or connect right_camera_info";
-    if (!problem.empty()) {
-      reject(problem + "; frame skipped");
+    else if (baseline() <= 0)
+      missing = "no baseline: set the baseline parameter or connect right_camera_info";
+    if (!missing.empty()) {
+      warn_once(missing + "; stereo pairs are skipped until it comes");
       return false;
     }
     return true;
   }
 
   void compute_depth(Time now) {
-    const bool mono = encoding(left_) == "mono8";
-    const cv::Mat left = view(left_, mono ? CV_8UC1 : CV_8UC3), right = view(right_, mono ? CV_8UC1 : CV_8UC3);
+    const bool mono = std::string_view(left_.encoding().c_str()) == "mono8";
+    const cv::Mat left = image::view(left_), right = image::view(right_);
     if (mono) {
       left_grey_ = left, right_grey_ = right;
     } else {
@@ -161,31 +154,23 @@ class StereoDepth final : public Component {
     }
     matcher_->compute(left_grey_, right_grey_, K_.fx, baseline(), depth_);
     depth_stamp_ = left_.header().stamp_ns();
-    depth_msg_.header() = left_.header();
-    depth_msg_.header().stamp_ns(depth_stamp_ ? depth_stamp_ : now.ns);
-    depth_msg_.header().frame_id("eye");
-    depth_msg_.width(left_.width()), depth_msg_.height(left_.height());
-    depth_msg_.encoding("32FC1");
-    depth_msg_.is_bigendian(0);
-    depth_msg_.step(left_.width() * 4);
-    depth_msg_.data().assign(depth_.data, depth_.data + depth_.total() * depth_.elemSize());
+    cv::Mat pixels = image::allocate(depth_msg_, depth_.cols, depth_.rows, "32FC1");
+    depth_.copyTo(pixels);
+    fill_header(depth_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, left_.header().seq(), "eye");
     depth_out_.write(depth_msg_);
   }
 
   void locate_hand(Time now) {
-    const std::string problem = image_problem(keyed_, "keyed", "rgba8", 4);
-    if (!problem.empty() || keyed_.width() != static_cast<std::uint32_t>(depth_.cols) ||
-        keyed_.height() != static_cast<std::uint32_t>(depth_.rows)) {
-      reject((problem.empty() ? "keyed is " + size_text(keyed_) + " but the stereo pair is " + size_text(left_) : problem) +
-             "; no hand position for this frame");
+    if (const std::string bad = image::problem(keyed_, {"rgba8"}, static_cast<std::uint32_t>(depth_.cols),
+                                               static_cast<std::uint32_t>(depth_.rows));
+        !bad.empty()) {
+      reject(keyed_in_, bad + " (the stereo pair's); no hand position for this frame");
       return;
     }
-    cv::extractChannel(view(keyed_, CV_8UC4), alpha_, 3);
+    cv::extractChannel(image::view(keyed_), alpha_, 3);
     const auto hand = estimate_hand_point(depth_, alpha_, K_, hand_, have_dev_ ? &dev_T_eye_ : nullptr, points_);
     if (!hand) return;  // no hand in view (or too little of it with depth)
-    hand_msg_.header().stamp_ns(depth_stamp_ ? depth_stamp_ : now.ns);
-    hand_msg_.header().seq(keyed_.header().seq());
-    hand_msg_.header().frame_id(have_pose_ ? "base" : "eye");
+    fill_header(hand_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, keyed_.header().seq(), have_pose_ ? "base" : "eye");
     hand_msg_.child_frame_id("hand");
     const Eigen::Vector3d p = have_pose_ ? Eigen::Vector3d(base_T_eye_ * hand->eye_p_hand) : hand->eye_p_hand;
     msgs::to_msg(p, Eigen::Quaterniond::Identity(), hand_msg_.pose());
@@ -196,13 +181,6 @@ class StereoDepth final : public Component {
 
   static std::string size_text(const msg::Image& m) { return std::to_string(m.width()) + "x" + std::to_string(m.height()); }
 
-  // Bad input is skipped; each new kind of problem is logged once, repeats are counted.
-  void reject(const std::string& what) {
-    ++rejected_;
-    if (what != last_rejection_) log(what + " (" + std::to_string(rejected_) + " rejected so far)");
-    last_rejection_ = what;
-  }
-
   std::optional<DisparityDepth> matcher_;
   HandPointOptions hand_;
   double baseline_ = 0, info_baseline_ = 0;
@@ -211,8 +189,6 @@ class StereoDepth final : public Component {
   cv::Size K_size_;
   Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity(), dev_T_eye_ = Eigen::Isometry3d::Identity();
   bool have_pose_ = false, have_dev_ = false, keyed_pending_ = false, left_fresh_ = false, right_fresh_ = false;
-  std::uint64_t rejected_ = 0;
-  std::string last_rejection_;
   cv::Mat left_grey_, right_grey_, depth_, alpha_;
   std::vector<Eigen::Vector3f> points_;
   msg::Image left_, right_, keyed_, depth_msg_;

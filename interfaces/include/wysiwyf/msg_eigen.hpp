@@ -1,24 +1,30 @@
 #pragma once
-// Between geometry messages and Eigen: poses as Isometry3d (parent_T_child), twists as vectors.
+// Between geometry messages and Eigen: poses as Isometry3d (parent_T_child), vectors, twists and
+// wrenches. The one place these fields are copied one by one.
 #include <Eigen/Geometry>
 
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::msgs {
 
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+inline Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) { return {v.x(), v.y(), v.z()}; }
+inline Eigen::Vector3d to_eigen(const geometry_msgs::Point& p) { return {p.x(), p.y(), p.z()}; }
+inline Eigen::Quaterniond to_eigen(const geometry_msgs::Quaternion& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+inline void to_msg(const Eigen::Vector3d& v, geometry_msgs::Vector3& out) { out.x(v.x()), out.y(v.y()), out.z(v.z()); }
+inline void to_msg(const Eigen::Vector3d& v, geometry_msgs::Point& out) { out.x(v.x()), out.y(v.y()), out.z(v.z()); }
+
 inline Eigen::Isometry3d to_isometry(const geometry_msgs::Pose& p) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z())
-                   .normalized()
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
+  T.linear() = to_eigen(p.orientation()).normalized().toRotationMatrix();
+  T.translation() = to_eigen(p.position());
   return T;
 }
 
 inline void to_msg(const Eigen::Vector3d& position, const Eigen::Quaterniond& q, geometry_msgs::Pose& p) {
-  p.position().x(position.x());
-  p.position().y(position.y());
-  p.position().z(position.z());
+  to_msg(position, p.position());
   p.orientation().x(q.x());
   p.orientation().y(q.y());
   p.orientation().z(q.z());
@@ -30,8 +36,26 @@ inline void to_msg(const Eigen::Isometry3d& T, geometry_msgs::Pose& p) {
 }
 
 inline void to_msg(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular, geometry_msgs::Twist& t) {
-  t.linear().x(linear.x()), t.linear().y(linear.y()), t.linear().z(linear.z());
-  t.angular().x(angular.x()), t.angular().y(angular.y()), t.angular().z(angular.z());
+  to_msg(linear, t.linear());
+  to_msg(angular, t.angular());
+}
+
+inline void to_msg(const Eigen::Vector3d& force, const Eigen::Vector3d& torque, geometry_msgs::Wrench& w) {
+  to_msg(force, w.force());
+  to_msg(torque, w.torque());
+}
+
+// A wrench as (fx fy fz tx ty tz), and back.
+inline Vector6d to_vector6(const geometry_msgs::Wrench& w) {
+  Vector6d v;
+  v << to_eigen(w.force()), to_eigen(w.torque());
+  return v;
+}
+inline void to_msg(const Vector6d& v, geometry_msgs::Wrench& w) { to_msg(v.head<3>(), v.tail<3>(), w); }
+
+inline bool all_finite(const geometry_msgs::Wrench& w) { return to_vector6(w).allFinite(); }
+inline bool all_finite(const geometry_msgs::Pose& p) {
+  return to_eigen(p.position()).allFinite() && to_eigen(p.orientation()).coeffs().allFinite();
 }
 
 }  // namespace wysiwyf::msgs

@@ -1,17 +1,27 @@
-#include "arm_interface/gate_params.hpp"
+#include "arm_interface/arm_params.hpp"
 
+#include <array>
 #include <stdexcept>
 #include <string>
-#include <vector>
+
+#include "wysiwyf/config_files.hpp"
 
 namespace wysiwyf::robot {
 
-SafetyConfig declare_gate_params(Context& ctx) {
-  SafetyConfig c;
-  const auto accel = ctx.param<std::vector<double>>(
+ArmParams declare_arm_params(Context& ctx) {
+  ArmParams p;
+  p.urdf_path = ctx.param<std::string>("urdf", "robots/puma560.urdf",
+                                       "robot URDF; relative paths are tried from the working directory, then config/");
+  p.tip_frame = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
+  p.tracker_hz = ctx.param<double>("tracker_bandwidth_hz", 10.0,
+                                   "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
+                                   Range{0.1, 200});
+  SafetyConfig& c = p.gate;
+  const auto accel = ctx.param<std::array<double, kDof>>(
       "acceleration_limits", {8, 8, 10, 30, 30, 30},
       "hard joint acceleration limits, rad/s^2 (the URDF has none); the reference uses acceleration_fraction of them",
       Range{0.01, 1000});
+  for (int j = 0; j < kDof; ++j) c.max_acceleration[j] = accel[static_cast<std::size_t>(j)];
   c.velocity_fraction = ctx.param<double>(
       "velocity_fraction", 0.9, "share of the URDF velocity limits the reference may use (the rest is servo margin)",
       Range{0.05, 1});
@@ -41,11 +51,32 @@ SafetyConfig declare_gate_params(Context& ctx) {
   c.max_force = ctx.param<double>("force_limit", 100.0, "N, measured force norm that faults the arm", Range{0.1, 10000});
   c.max_torque =
       ctx.param<double>("torque_limit", 10.0, "N m, measured torque norm that faults the arm", Range{0.01, 1000});
-  if (accel.size() != static_cast<std::size_t>(kDof))
-    throw std::invalid_argument("acceleration_limits needs 6 values, one per joint (got " +
-                                std::to_string(accel.size()) + ")");
-  for (int j = 0; j < kDof; ++j) c.max_acceleration[j] = accel[static_cast<std::size_t>(j)];
-  return c;
+  c.dt = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
+  if (c.approach_rate * c.dt > 2.0)  // the braking set must stay invariant over one period
+    ctx.reject("approach_rate", "must be at most 2 / period = " + std::to_string(2.0 / c.dt) + " 1/s at this rate");
+  return p;
+}
+
+std::unique_ptr<PumaModel> load_arm_model(Context& ctx, ArmParams& params) {
+  std::unique_ptr<PumaModel> model;
+  try {
+    model = std::make_unique<PumaModel>(find_config_file(params.urdf_path), params.tip_frame);
+  } catch (const std::exception& e) {
+    ctx.reject("urdf", e.what());
+    return nullptr;
+  }
+  if (model->frame_body(model->tip()) != kDof) {
+    ctx.reject("tip_frame", "'" + params.tip_frame + "' is not on link 6 of " + params.urdf_path);
+    return nullptr;
+  }
+  params.gate.limits = model->limits();
+  try {
+    params.gate.validate();
+  } catch (const std::invalid_argument& e) {  // (each value is in range: what is left is the margin against the limits)
+    ctx.reject("position_margin", e.what());
+    return nullptr;
+  }
+  return model;
 }
 
 }  // namespace wysiwyf::robot

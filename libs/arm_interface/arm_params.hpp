@@ -1,0 +1,28 @@
+#pragma once
+// The parameters puma_sim and puma_driver declare alike (the robot file and the tip frame, the
+// Cartesian tracker's bandwidth, the safety gate's limits), and the robot model they load from
+// them. One declaration, so both components describe and check them the same way.
+#include <memory>
+#include <string>
+
+#include "puma_model/puma_model.hpp"
+#include "safety_gate/safety_gate.hpp"
+#include "wysiwyf/context.hpp"
+
+namespace wysiwyf::robot {
+
+struct ArmParams {
+  std::string urdf_path;   // robot URDF (found on the config path)
+  std::string tip_frame;   // the frame the Cartesian setpoints place, fixed to link 6
+  double tracker_hz = 10;  // natural frequency of the critically damped setpoint tracker
+  SafetyConfig gate;       // limits from the URDF are filled in by load_arm_model
+};
+
+ArmParams declare_arm_params(Context& ctx);
+
+// Loads the robot of `params` with its tip frame, gives the gate the URDF's joint limits and the
+// component's period, and checks the gate's configuration. What is wrong is rejected at its
+// parameter (Context::reject); then it returns null.
+std::unique_ptr<PumaModel> load_arm_model(Context& ctx, ArmParams& params);
+
+}  // namespace wysiwyf::robot
