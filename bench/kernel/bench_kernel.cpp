@@ -21,6 +21,7 @@
 
 #include "../common/allocation_counter.hpp"
 #include "endpoints.hpp"
+#include "../common/smoke.hpp"
 
 namespace wysiwyf::bench {
 
@@ -199,14 +200,14 @@ void BM_JointState_TwoProcess_RawDds(benchmark::State& s) { two_process<RawEndpo
 void BM_Image640x480_TwoProcess_Kernel(benchmark::State& s) { two_process<KernelEndpoint<msg::Image>, msg::Image>(s, "kernel", 106); }
 void BM_Image640x480_TwoProcess_RawDds(benchmark::State& s) { two_process<RawEndpoint<msg::Image>, msg::Image>(s, "raw", 107); }
 
-BENCHMARK(BM_JointState_InProcess_Kernel)->UseManualTime()->Iterations(200000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_JointState_InProcess_RawDds)->UseManualTime()->Iterations(200000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_InProcess_Kernel)->UseManualTime()->Iterations(2000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_InProcess_RawDds)->UseManualTime()->Iterations(2000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_JointState_TwoProcess_Kernel)->UseManualTime()->Iterations(20000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_JointState_TwoProcess_RawDds)->UseManualTime()->Iterations(20000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_TwoProcess_Kernel)->UseManualTime()->Iterations(2000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_TwoProcess_RawDds)->UseManualTime()->Iterations(2000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_InProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(200000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_InProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(200000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_InProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_InProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_TwoProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_TwoProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
 
 }  // namespace wysiwyf::bench
 

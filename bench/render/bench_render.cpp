@@ -7,6 +7,7 @@
 
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"
+#include "../common/smoke.hpp"
 
 namespace wysiwyf::render {
 
@@ -30,7 +31,7 @@ void BM_Renderer_640x480(benchmark::State& state) {
   }
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Renderer_640x480)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_Renderer_640x480)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
 
 // camera_sim: colour pass, mask pass, depth read-back, spill, blur, noise, ground truth.
 void BM_CameraSim_640x480(benchmark::State& state) {
@@ -50,7 +51,7 @@ void BM_CameraSim_640x480(benchmark::State& state) {
   }
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_CameraSim_640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_CameraSim_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
 
 // compositor: the keyed hand (premultiplied RGBA) over a 640x480 scene, alpha only and z-keyed.
 void BM_Compositor_640x480(benchmark::State& state) {
@@ -89,7 +90,7 @@ void BM_Compositor_640x480(benchmark::State& state) {
   state.counters["with_feeding_ms"] = whole * 1e3 / static_cast<double>(state.iterations());
 }
 // Time: the component's tick alone (manual time).
-BENCHMARK(BM_Compositor_640x480)->Arg(0)->Arg(1)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_Compositor_640x480)->Arg(0)->Arg(1)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
 
 }  // namespace wysiwyf::render
 

@@ -13,6 +13,7 @@
 #include "../common/allocation_counter.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"
+#include "../common/smoke.hpp"
 
 namespace {
 
@@ -25,7 +26,7 @@ void run(benchmark::State& state, bool touch) {
   auto setpoints = h.feed<msg::CartesianSetpoint>("setpoint");
   auto hand = h.feed<msg::PoseStamped>("hand_target");
   auto pose_in = h.watch<msg::PoseStamped>("device_pose", 2);
-  auto status_in = h.watch<msg::DisplayMode>("status", 16);
+  auto status_in = h.watch<msg::RobotStatus>("status", 16);
   h.activate();
   std::int64_t t = 0;
   h.tick(Time{t});
@@ -84,17 +85,17 @@ void run(benchmark::State& state, bool touch) {
   const double ticks = static_cast<double>(state.iterations());
   state.counters["real_time_factor"] = benchmark::Counter(ticks / 1000.0, benchmark::Counter::kIsRate);
   state.counters["allocs_per_tick"] = static_cast<double>(bench::allocation_count() - allocations) / ticks;
-  msg::DisplayMode status;
+  msg::RobotStatus status;
   while (status_in.take(status)) {
   }
-  if (status.mode() == msg::MODE_FAULT) state.SkipWithError(status.reason().c_str());
+  if (status.state() == msg::ARM_FAULT) state.SkipWithError(status.reason().c_str());
 }
 
 void BM_PumaSimFollowing(benchmark::State& state) { run(state, false); }
 void BM_PumaSimHandOnPlate(benchmark::State& state) { run(state, true); }
 
-BENCHMARK(BM_PumaSimFollowing)->UseRealTime()->MinTime(2.0)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PumaSimHandOnPlate)->UseRealTime()->MinTime(2.0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PumaSimFollowing)->UseRealTime()->MinTime(wysiwyf::bench::min_time(2.0))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PumaSimHandOnPlate)->UseRealTime()->MinTime(wysiwyf::bench::min_time(2.0))->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

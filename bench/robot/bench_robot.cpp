@@ -12,6 +12,7 @@
 #include "../common/allocation_counter.hpp"
 #include "puma_model/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
+#include "../common/smoke.hpp"
 
 namespace {
 

@@ -10,6 +10,7 @@
 #include "keyer_frames.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"
+#include "../common/smoke.hpp"
 
 namespace wysiwyf::vision {
 
@@ -49,8 +50,8 @@ void run_chroma_keyer(benchmark::State& state, int opencv_threads) {
 }
 void BM_ChromaKeyer_640x480(benchmark::State& state) { run_chroma_keyer(state, 0); }
 void BM_ChromaKeyer_640x480_OneThread(benchmark::State& state) { run_chroma_keyer(state, 1); }
-BENCHMARK(BM_ChromaKeyer_640x480)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK(BM_ChromaKeyer_640x480_OneThread)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_ChromaKeyer_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
+BENCHMARK(BM_ChromaKeyer_640x480_OneThread)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
 
 // FFmpeg's chromakey (libavfilter, one thread) on the same frames, key colour the keyer's default
 // (26, 41, 158). Its similarity and blend are the best mean IoU (then MAE) over a grid, found once
@@ -122,7 +123,7 @@ void BM_FfmpegChromakey_640x480(benchmark::State& state) {
   }
   report_ffmpeg(state, setting, ffmpeg_score(key));
 }
-BENCHMARK(BM_FfmpegChromakey_640x480)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_FfmpegChromakey_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
 
 // What `ffmpeg -vf chromakey` does with RGB frames: swscale to yuva444p, then the filter.
 void BM_FfmpegChromakey_640x480_WithConversion(benchmark::State& state) {
@@ -143,7 +144,7 @@ void BM_FfmpegChromakey_640x480_WithConversion(benchmark::State& state) {
   }
   report_ffmpeg(state, setting, mean);
 }
-BENCHMARK(BM_FfmpegChromakey_640x480_WithConversion)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_FfmpegChromakey_640x480_WithConversion)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
 
 // stereo_depth on camera_sim's 640x480 stereo pair (6 cm baseline) with the hand 0.6 m from the
 // camera, the keyer's output beside it: depth image and hand position per frame, through the ports.
@@ -197,13 +198,13 @@ void BM_StereoDepth_640x480(benchmark::State& state, const std::string& params) 
   }
 }
 BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_full_size, std::string("{baseline: 0.06, algorithm: sgbm, downscale: 1}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
 BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_half_size_default, std::string("{baseline: 0.06}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
 BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_3way_half_size, std::string("{baseline: 0.06, algorithm: sgbm_3way}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
 BENCHMARK_CAPTURE(BM_StereoDepth_640x480, bm_full_size, std::string("{baseline: 0.06, algorithm: bm, block_size: 9, downscale: 1}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
 
 // marker_tracker through its ports on 50 camera_sim frames (its default camera position, looking
 // at the plate; the arm at the demo's start, swaying), cycled: joint state + image in, poses,
@@ -300,8 +301,8 @@ void run_marker_tracker(benchmark::State& state, bool lose_every_other) {
 }
 void BM_MarkerTracker_Tracking_640x480(benchmark::State& state) { run_marker_tracker(state, false); }
 void BM_MarkerTracker_LoseAndReacquire_640x480(benchmark::State& state) { run_marker_tracker(state, true); }
-BENCHMARK(BM_MarkerTracker_Tracking_640x480)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK(BM_MarkerTracker_LoseAndReacquire_640x480)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_MarkerTracker_Tracking_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
+BENCHMARK(BM_MarkerTracker_LoseAndReacquire_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
 
 }  // namespace wysiwyf::vision
 
