@@ -147,6 +147,26 @@ double seconds_option(Args& args, const std::string& name, double fallback) {
   throw UsageError(name + ": found '" + *v + "'; expected a number of seconds");
 }
 
+long count_option(Args& args, const std::string& name) {
+  auto v = args.value(name);
+  if (!v) return 0;
+  try {
+    std::size_t used = 0;
+    const long n = std::stol(*v, &used);
+    if (used == v->size() && n >= 0) return n;
+  } catch (...) {
+  }
+  throw UsageError(name + ": found '" + *v + "'; expected a whole number of samples (0: no limit)");
+}
+
+// Whether the reader still has a writer to hear from (after it had one): once every writer of
+// the topic has gone, nothing more will come.
+bool writers_gone(DataReader* reader) {
+  SubscriptionMatchedStatus status;
+  reader->get_subscription_matched_status(status);
+  return status.total_count > 0 && status.current_count == 0;
+}
+
 // A reader on `topic` with the QoS of the writer found there, so that it matches.
 DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& info, const MessageType*& type) {
   type = msgs::registry().find(info.type);
@@ -181,7 +201,7 @@ int topic_list(Args& args) {
 int topic_echo(Args& args, const std::string& topic) {
   Session s;
   open(args, s);
-  const auto count = static_cast<long>(seconds_option(args, "--count", 0));
+  const long count = count_option(args, "--count");
   const double timeout = seconds_option(args, "--timeout", 10.0);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   install_stop_signal_handlers();
@@ -196,10 +216,21 @@ int topic_echo(Args& args, const std::string& topic) {
   std::cout << "# topic " << topic << " (" << info->type << ")\n" << std::flush;
   void* sample = reader->type()->createData();
   long printed = 0;
+  // --timeout bounds the wait for the first sample; after it, echo runs until --count samples,
+  // Ctrl-C, or the topic's last writer leaves.
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
   while (!stop_signal_received() && (count == 0 || printed < count)) {
-    if (count > 0 && printed == 0 && Clock::now() > deadline) break;
-    if (!reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 100'000'000))) continue;
+    if (printed == 0 && Clock::now() > deadline) {
+      std::cerr << "no sample on topic '" << topic << "' within " << timeout << " s\n";
+      break;
+    }
+    if (!reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 100'000'000))) {
+      if (writers_gone(reader)) {
+        std::cerr << "every writer of topic '" << topic << "' has gone; " << printed << " sample(s) printed\n";
+        break;
+      }
+      continue;
+    }
     SampleInfo si;
     while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK && (count == 0 || printed < count)) {
       if (!si.valid_data) continue;
@@ -208,7 +239,7 @@ int topic_echo(Args& args, const std::string& topic) {
     }
   }
   reader->type()->deleteData(sample);
-  return printed > 0 || count == 0 ? 0 : 1;
+  return printed > 0 ? 0 : 1;
 }
 
 int topic_hz(Args& args, const std::string& topic) {
@@ -235,6 +266,10 @@ int topic_hz(Args& args, const std::string& topic) {
   std::uint64_t total = 0;
   while (!stop_signal_received()) {
     if (duration > 0 && Clock::now() - start >= std::chrono::duration<double>(duration)) break;
+    if (writers_gone(reader) && reader->get_unread_count() == 0) {
+      std::cerr << "every writer of topic '" << topic << "' has gone\n";
+      break;
+    }
     if (reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 20'000'000))) {
       SampleInfo si;
       while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK) {

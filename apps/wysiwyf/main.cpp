@@ -79,6 +79,8 @@ static const char* kUsage = R"(usage: wysiwyf <command> [options]
         The component types found on the search path; a type's parameters and ports.
   topic list [--domain N | --pipeline FILE] [--transport T] [--wait SECONDS]
   topic echo TOPIC [--domain N | --pipeline FILE] [--transport T] [--count N] [--timeout SECONDS]
+        (--timeout: how long to wait for the first sample, default 10; echo ends after --count
+        samples, on Ctrl-C, or when the topic's last writer leaves)
   topic hz TOPIC [--domain N | --pipeline FILE] [--transport T] [--window SECONDS] [--duration SECONDS]
         Inspect the topics of running pipelines on a DDS domain.
 

@@ -112,4 +112,27 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   for (std::size_t i = 1; i < seqs.size(); ++i) EXPECT_EQ(seqs[i], seqs[i - 1] + 1);
 }
 
+// `topic echo` with no count ends when the topic's writer leaves (it used to wait forever), and
+// --count takes a whole number of samples, not seconds.
+TEST(TopicTools, EchoEndsWhenTheWriterLeaves) {
+  const fs::path dir = scratch_dir();
+  const fs::path pipeline = dir / "source.yaml";
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: source\ndomain: 57\ndds: {transport: local}\n"
+                             "clock: {mode: sim, step: 1ms, duration: 4s, pace: 1}\n"
+                             "components:\n  src: {type: test_probe, rate: 50, topics: {out: leaving}}\n";
+  const pid_t source = spawn_cli({"run", pipeline.string(), "--no-progress"}, dir / "source.log");
+  const pid_t echo = spawn_cli({"topic", "echo", "leaving", "--domain", "57", "--transport", "local", "--timeout", "30"},
+                               dir / "echo.log");
+  EXPECT_EQ(wait_exit(source, std::chrono::seconds(60)), 0) << read_file(dir / "source.log");
+  EXPECT_EQ(wait_exit(echo, std::chrono::seconds(60)), 0) << read_file(dir / "echo.log");  // -1: still waiting
+  const std::string echoed = read_file(dir / "echo.log");
+  EXPECT_NE(echoed.find("every writer of topic 'leaving' has gone"), std::string::npos) << echoed;
+  EXPECT_NE(echoed.find("position: ["), std::string::npos) << echoed;
+
+  const pid_t bad = spawn_cli({"topic", "echo", "leaving", "--domain", "57", "--count", "2.5"}, dir / "bad.log");
+  EXPECT_EQ(wait_exit(bad, std::chrono::seconds(30)), 2) << read_file(dir / "bad.log");
+  EXPECT_NE(read_file(dir / "bad.log").find("--count: found '2.5'; expected a whole number of samples"), std::string::npos)
+      << read_file(dir / "bad.log");
+}
+
 }  // namespace wysiwyf::test
