@@ -17,10 +17,18 @@ function(wysiwyf_idl_library)
     get_filename_component(abs ${idl} ABSOLUTE)
     set(outs ${WYSIWYF_IDL_OUT}/${base}.h ${WYSIWYF_IDL_OUT}/${base}.cxx
              ${WYSIWYF_IDL_OUT}/${base}PubSubTypes.h ${WYSIWYF_IDL_OUT}/${base}PubSubTypes.cxx)
+    # fastddsgen also writes the code of every IDL the file includes: generating into the shared
+    # folder would rewrite (say) std_msgs.h after its library was built and relink everything
+    # on the next build. Each file is generated in a folder of its own; only its four files are
+    # copied out.
+    set(private ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen/${base})
     add_custom_command(
       OUTPUT ${outs}
-      COMMAND ${FASTDDSGEN} -replace -cs -d ${WYSIWYF_IDL_OUT} ${include_flags} ${abs}
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${private}
+      COMMAND ${FASTDDSGEN} -replace -cs -d ${private} ${include_flags} ${abs}
               > ${CMAKE_CURRENT_BINARY_DIR}/${base}.fastddsgen.log
+      COMMAND ${CMAKE_COMMAND} -E copy ${private}/${base}.h ${private}/${base}.cxx ${private}/${base}PubSubTypes.h
+              ${private}/${base}PubSubTypes.cxx ${WYSIWYF_IDL_OUT}
       DEPENDS ${abs}
       COMMENT "fastddsgen ${base}.idl"
       VERBATIM)
