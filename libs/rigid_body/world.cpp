@@ -1,71 +1,15 @@
 #include "rigid_body/world.hpp"
 
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "rigid_body/cvode_integrator.hpp"
+
 namespace wysiwyf::haptics {
 
 constexpr int kStateSize = 13;  // x(3) q(4: w x y z) P(3) L(3)
-
-struct World::Cvode {
-  SUNContext ctx = nullptr;
-  N_Vector y = nullptr;
-  void* mem = nullptr;
-  SUNNonlinearSolver nls = nullptr;
-  bool initialised = false;
-  long steps_seen = 0, failures_seen = 0;  // CVODE's counters at the last count (reset by CVodeReInit)
-
-  explicit Cvode(int n) {
-    if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
-    y = N_VNew_Serial(n, ctx);
-    mem = CVodeCreate(CV_ADAMS, ctx);  // non-stiff rigid-body dynamics: Adams-Moulton
-    if (!y || !mem) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
-  }
-  ~Cvode() {
-    if (mem) CVodeFree(&mem);
-    if (nls) SUNNonlinSolFree(nls);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
-  }
-  static int rhs(realtype, N_Vector y, N_Vector ydot, void* user) {
-    static_cast<World*>(user)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-    return 0;
-  }
-  // CVODE's error weights 1 / (rtol |y_i| + atol), in one pass (its own scalar-tolerance
-  // version takes five vector operations, at every step).
-  static int error_weights(N_Vector y, N_Vector ewt, void* user) {
-    const WorldParams& p = static_cast<World*>(user)->params_;
-    const double* yy = N_VGetArrayPointer(y);
-    double* w = N_VGetArrayPointer(ewt);
-    for (sunindextype i = 0, n = N_VGetLength(y); i < n; ++i) w[i] = 1.0 / (p.rtol * std::abs(yy[i]) + p.atol);
-    return 0;
-  }
-  static int roots(realtype, N_Vector y, realtype* g, void* user) {
-    static_cast<World*>(user)->roots(N_VGetArrayPointer(y), g);
-    return 0;
-  }
-  void reinit(double t) {
-    check(CVodeReInit(mem, t, y), "CVodeReInit");
-    steps_seen = failures_seen = 0;
-  }
-  void count_work(StepReport& report) {
-    long steps = 0, failures = 0;
-    CVodeGetNumSteps(mem, &steps);
-    CVodeGetNumErrTestFails(mem, &failures);
-    report.integrator_steps += static_cast<int>(steps - steps_seen);
-    report.error_test_failures += static_cast<int>(failures - failures_seen);
-    steps_seen = steps, failures_seen = failures;
-  }
-  static void check(int flag, const char* call) {
-    if (flag < 0) throw std::runtime_error(std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag));
-  }
-};
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
     : models_(std::move(models)), states_(std::move(initial)), params_(params) {
@@ -93,7 +37,10 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, Worl
   }
   ext_force_.assign(models_.size(), Vec3::Zero());
   ext_torque_.assign(models_.size(), Vec3::Zero());
-  cvode_ = std::make_unique<Cvode>(std::max<int>(1, kStateSize * static_cast<int>(dynamic_.size())));
+  const CvodeOptions options{params_.rtol, params_.atol, params_.initial_step, params_.restart_growth,
+                             params_.nonlinear_convergence};
+  const int size = std::max<int>(1, kStateSize * static_cast<int>(dynamic_.size()));
+  integrator_ = std::make_unique<CvodeIntegrator>(size, options, *this);
 }
 
 World::~World() = default;
@@ -486,51 +433,31 @@ StepReport World::step(double dt) {
   }
   classify_contacts();
   update_friction(dt);
-  auto& cv = *cvode_;
-  double* y = N_VGetArrayPointer(cv.y);
-  auto reinit_roots = [&] {
+  CvodeIntegrator& cv = *integrator_;
+  double* y = cv.state();
+  auto watch_roots = [&] {
     roots_changed_ = false;
-    std::vector<int> directions(watched_.size(), -1);  // approaching only
-    Cvode::check(CVodeRootInit(cv.mem, static_cast<int>(watched_.size()), watched_.empty() ? nullptr : &Cvode::roots),
-                 "CVodeRootInit");
-    if (!watched_.empty()) Cvode::check(CVodeSetRootDirection(cv.mem, directions.data()), "CVodeSetRootDirection");
+    cv.watch_roots(static_cast<int>(watched_.size()));  // approaching only
   };
   if (restart_) {
     for (int i : dynamic_) states_[i].q.normalize();
     pack(y);
-    if (!cv.initialised) {
-      Cvode::check(CVodeInit(cv.mem, &Cvode::rhs, t_, cv.y), "CVodeInit");
-      Cvode::check(CVodeSetUserData(cv.mem, this), "CVodeSetUserData");
-      cv.nls = SUNNonlinSol_FixedPoint(cv.y, 0, cv.ctx);
-      Cvode::check(CVodeSetNonlinearSolver(cv.mem, cv.nls), "CVodeSetNonlinearSolver");
-      Cvode::check(CVodeSetMaxNumSteps(cv.mem, 100000), "CVodeSetMaxNumSteps");
-      Cvode::check(CVodeWFtolerances(cv.mem, &Cvode::error_weights), "CVodeWFtolerances");
-      // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of
-      // the first step, which costs right-hand sides; a small fixed one grows within a few steps.
-      if (params_.initial_step > 0)
-        Cvode::check(CVodeSetInitStep(cv.mem, params_.initial_step), "CVodeSetInitStep");
-      Cvode::check(CVodeSetEtaMaxEarlyStep(cv.mem, params_.restart_growth), "CVodeSetEtaMaxEarlyStep");
-      Cvode::check(CVodeSetNonlinConvCoef(cv.mem, params_.nonlinear_convergence), "CVodeSetNonlinConvCoef");
-      cv.initialised = true;  // (CVodeReInit keeps these options)
-    } else {
-      cv.reinit(t_);
-    }
-    if (roots_changed_) reinit_roots();
+    cv.restart(t_);
+    if (roots_changed_) watch_roots();
     restart_ = false;
   }
   const double t_end = t_ + dt;
-  Cvode::check(CVodeSetStopTime(cv.mem, t_end), "CVodeSetStopTime");
+  cv.set_stop_time(t_end);
   while (true) {
-    realtype t_reached = t_;
-    const int flag = CVode(cv.mem, t_end, cv.y, &t_reached, CV_NORMAL);
-    Cvode::check(flag, "CVode");
-    cv.count_work(report_);
+    double t_reached = t_;
+    const bool at_root = cv.advance(t_end, t_reached);
+    cv.count_work(report_.integrator_steps, report_.error_test_failures);
     unpack(y, states_);
     t_ = t_reached;
-    if (flag != CV_ROOT_RETURN) break;
+    if (!at_root) break;
     // An impact (STEP 4-6): impulses over every touching contact, then restart from here.
     std::vector<int> found(watched_.size(), 0);
-    Cvode::check(CVodeGetRootInfo(cv.mem, found.data()), "CVodeGetRootInfo");
+    cv.root_info(found.data());
     // Every watched feature that touches now takes part, flagged or not: the four corners of a
     // cube landing flat hit together, whichever of them the root finder happened to report.
     std::vector<ActiveContact> contacts = resting_;
@@ -550,8 +477,8 @@ StepReport World::step(double dt) {
     watched_ = std::move(still_watched);
     if (report_.collisions >= params_.max_collisions_per_step) watched_.clear();  // no more events this step
     pack(y);
-    cv.reinit(t_);
-    reinit_roots();
+    cv.restart(t_);
+    watch_roots();
     if (t_ >= t_end) break;
   }
   return report_;

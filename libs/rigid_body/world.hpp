@@ -73,6 +73,8 @@ struct StepReport {
   int friction_rounds = 0;       // staggered rounds of the step's friction solve
 };
 
+class CvodeIntegrator;
+
 class World {
  public:
   World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params = {});
@@ -95,8 +97,7 @@ class World {
   double energy() const;
 
  private:
-  struct Cvode;
-  friend struct Cvode;
+  friend class CvodeIntegrator;  // calls rhs() and roots()
   void pack(double* y) const;
   void unpack(const double* y, std::vector<BodyState>& states) const;
   Pose pose_of(int body, const BodyState& s) const;
@@ -137,7 +138,7 @@ class World {
   std::vector<ContactFeature> watched_;      // root functions
   bool restart_ = true;                      // CVODE must be (re)initialised before integrating
   bool roots_changed_ = true;                // CVodeRootInit must be called again
-  std::unique_ptr<Cvode> cvode_;
+  std::unique_ptr<CvodeIntegrator> integrator_;
   LcpSolver lcp_;
   LcpIndices rhs_clamped_;  // the last right-hand side's clamped contacts (indices into resting_)
   FrictionSolver friction_;
