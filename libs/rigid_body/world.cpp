@@ -6,10 +6,9 @@
 #include <string>
 
 #include "rigid_body/cvode_integrator.hpp"
+#include "rigid_body/state_vector.hpp"
 
 namespace wysiwyf::haptics {
-
-constexpr int kStateSize = 13;  // x(3) q(4: w x y z) P(3) L(3)
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
     : models_(std::move(models)), states_(std::move(initial)), params_(params) {
@@ -69,29 +68,6 @@ double World::energy() const {
          models_[i].mass * params_.gravity.dot(states_[i].x);
   }
   return e;
-}
-
-void World::pack(double* y) const {
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const BodyState& s = states_[dynamic_[k]];
-    double* o = y + kStateSize * k;
-    o[0] = s.x.x(), o[1] = s.x.y(), o[2] = s.x.z();
-    o[3] = s.q.w(), o[4] = s.q.x(), o[5] = s.q.y(), o[6] = s.q.z();
-    o[7] = s.P.x(), o[8] = s.P.y(), o[9] = s.P.z();
-    o[10] = s.L.x(), o[11] = s.L.y(), o[12] = s.L.z();
-  }
-}
-
-void World::unpack(const double* y, std::vector<BodyState>& states) const {
-  states = states_;
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const double* o = y + kStateSize * k;
-    BodyState& s = states[dynamic_[k]];
-    s.x = Vec3(o[0], o[1], o[2]);
-    s.q = Quat(o[3], o[4], o[5], o[6]);
-    s.P = Vec3(o[7], o[8], o[9]);
-    s.L = Vec3(o[10], o[11], o[12]);
-  }
 }
 
 Pose World::pose_of(int i, const BodyState& s) const {
@@ -273,7 +249,8 @@ void World::update_friction(double dt) {
 
 void World::rhs(const double* y, double* ydot) {
   ++report_.rhs_evaluations;
-  unpack(y, scratch_states_);
+  scratch_states_ = states_;
+  unpack_state(y, dynamic_, scratch_states_);
   poses_of(scratch_states_, scratch_poses_);
   // Resting contacts at this very state.
   const std::size_t live = evaluate_resting(scratch_poses_);
@@ -314,20 +291,13 @@ void World::rhs(const double* y, double* ydot) {
   for (std::size_t k = 0; k < dynamic_.size(); ++k) {
     const int i = dynamic_[k];
     const Pose& p = scratch_poses_[i];
-    const Quat& q = scratch_states_[i].q;
-    double* d = ydot + kStateSize * k;
-    d[0] = p.v.x(), d[1] = p.v.y(), d[2] = p.v.z();
-    // dq/dt = 1/2 (0, omega) q
-    d[3] = -0.5 * p.omega.dot(q.vec());
-    const Vec3 qv = 0.5 * (q.w() * p.omega + p.omega.cross(q.vec()));
-    d[4] = qv.x(), d[5] = qv.y(), d[6] = qv.z();
-    d[7] = force[i].x(), d[8] = force[i].y(), d[9] = force[i].z();
-    d[10] = torque[i].x(), d[11] = torque[i].y(), d[12] = torque[i].z();
+    write_derivative(p.v, p.omega, scratch_states_[i].q, force[i], torque[i], ydot + kStateSize * k);
   }
 }
 
 void World::roots(const double* y, double* g) {
-  unpack(y, scratch_states_);
+  scratch_states_ = states_;
+  unpack_state(y, dynamic_, scratch_states_);
   poses_of(scratch_states_, scratch_poses_);
   for (std::size_t k = 0; k < watched_.size(); ++k) {
     const ContactPoint c = evaluate(watched_[k], models_, scratch_poses_);
@@ -441,7 +411,7 @@ StepReport World::step(double dt) {
   };
   if (restart_) {
     for (int i : dynamic_) states_[i].q.normalize();
-    pack(y);
+    pack_state(states_, dynamic_, y);
     cv.restart(t_);
     if (roots_changed_) watch_roots();
     restart_ = false;
@@ -452,7 +422,7 @@ StepReport World::step(double dt) {
     double t_reached = t_;
     const bool at_root = cv.advance(t_end, t_reached);
     cv.count_work(report_.integrator_steps, report_.error_test_failures);
-    unpack(y, states_);
+    unpack_state(y, dynamic_, states_);
     t_ = t_reached;
     if (!at_root) break;
     // An impact (STEP 4-6): impulses over every touching contact, then restart from here.
@@ -476,7 +446,7 @@ StepReport World::step(double dt) {
     resting_ = std::move(contacts);
     watched_ = std::move(still_watched);
     if (report_.collisions >= params_.max_collisions_per_step) watched_.clear();  // no more events this step
-    pack(y);
+    pack_state(states_, dynamic_, y);
     cv.restart(t_);
     watch_roots();
     if (t_ >= t_end) break;

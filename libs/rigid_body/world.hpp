@@ -98,8 +98,6 @@ class World {
 
  private:
   friend class CvodeIntegrator;  // calls rhs() and roots()
-  void pack(double* y) const;
-  void unpack(const double* y, std::vector<BodyState>& states) const;
   Pose pose_of(int body, const BodyState& s) const;
   void poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
   void rhs(const double* y, double* ydot);
