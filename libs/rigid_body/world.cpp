@@ -10,35 +10,21 @@
 
 namespace wysiwyf::haptics {
 
+namespace {
+
+// (before the model's own checks, in the order they have always come)
+std::vector<BodyModel> one_state_each(std::vector<BodyModel>& models, const std::vector<BodyState>& initial) {
+  if (models.size() != initial.size()) throw std::invalid_argument("World: one initial state per body expected");
+  return std::move(models);
+}
+
+}  // namespace
+
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
-    : models_(std::move(models)), states_(std::move(initial)), params_(params) {
-  if (models_.size() != states_.size()) throw std::invalid_argument("World: one initial state per body expected");
-  if (!(params_.rtol >= 0) || !(params_.atol > 0))
-    throw std::invalid_argument("World: tolerances rtol >= 0 and atol > 0 expected, got rtol " +
-                                std::to_string(params_.rtol) + ", atol " + std::to_string(params_.atol));
-  slot_.assign(models_.size(), -1);
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    const auto& m = models_[i];
-    if ((m.half_extents.array() <= 0).any())
-      throw std::invalid_argument("body '" + m.name + "': half extents must be positive");
-    if (m.dynamic && !(m.mass > 0)) throw std::invalid_argument("body '" + m.name + "': mass must be positive");
-    if (m.restitution < 0 || m.restitution > 1)
-      throw std::invalid_argument("body '" + m.name + "': restitution must be within [0, 1]");
-    if (m.dynamic) {
-      slot_[i] = static_cast<int>(dynamic_.size());
-      dynamic_.push_back(static_cast<int>(i));
-    }
-    states_[i].q.normalize();
-  }
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    inv_inertia_body_.push_back(models_[i].dynamic ? Mat3(models_[i].inertia_body.inverse()) : Mat3::Zero());
-    static_poses_.push_back(pose_of(static_cast<int>(i), states_[i]));
-  }
-  ext_force_.assign(models_.size(), Vec3::Zero());
-  ext_torque_.assign(models_.size(), Vec3::Zero());
-  const CvodeOptions options{params_.rtol, params_.atol, params_.initial_step, params_.restart_growth,
-                             params_.nonlinear_convergence};
-  const int size = std::max<int>(1, kStateSize * static_cast<int>(dynamic_.size()));
+    : model_(one_state_each(models, initial), params), state_(model_, std::move(initial)) {
+  const WorldParams& p = model_.params;
+  const CvodeOptions options{p.rtol, p.atol, p.initial_step, p.restart_growth, p.nonlinear_convergence};
+  const int size = std::max<int>(1, kStateSize * static_cast<int>(model_.dynamic.size()));
   integrator_ = std::make_unique<CvodeIntegrator>(size, options, *this);
 }
 
@@ -48,36 +34,31 @@ void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque)
   // A new sample is a discontinuity of the right-hand side: the multistep history is invalid.
   // (A change at the level of round-off, from a wrench rotated through a pose, is none.)
   const auto changed = [](const Vec3& a, const Vec3& b) { return (a - b).norm() > 1e-12 * std::max(1.0, b.norm()); };
-  if (changed(force, ext_force_[body]) || changed(torque, ext_torque_[body])) restart_ = true;
-  ext_force_[body] = force;
-  ext_torque_[body] = torque;
+  if (changed(force, state_.ext_force[body]) || changed(torque, state_.ext_torque[body])) state_.restart = true;
+  state_.ext_force[body] = force;
+  state_.ext_torque[body] = torque;
 }
 
 void World::set_state(int i, const BodyState& s) {
-  states_[i] = s;
-  states_[i].q.normalize();
-  static_poses_[i] = pose_of(i, states_[i]);
-  restart_ = true;
+  state_.bodies[i] = s;
+  state_.bodies[i].q.normalize();
+  state_.static_poses[i] = model_.pose_of(i, state_.bodies[i]);
+  state_.restart = true;
 }
 
 double World::energy() const {
   double e = 0;
-  for (int i : dynamic_) {
-    const BodyKinematics k(models_[i], states_[i]);
-    e += 0.5 * models_[i].mass * k.v.squaredNorm() + 0.5 * k.omega.dot(states_[i].L) -
-         models_[i].mass * params_.gravity.dot(states_[i].x);
+  for (int i : model_.dynamic) {
+    const BodyKinematics k(model_.bodies[i], state_.bodies[i]);
+    e += 0.5 * model_.bodies[i].mass * k.v.squaredNorm() + 0.5 * k.omega.dot(state_.bodies[i].L) -
+         model_.bodies[i].mass * model_.params.gravity.dot(state_.bodies[i].x);
   }
   return e;
 }
 
-Pose World::pose_of(int i, const BodyState& s) const {
-  const BodyKinematics k(models_[i], s, inv_inertia_body_[i]);
-  return Pose{s.x, k.R, k.v, k.omega, k.inv_mass, k.inv_inertia_world};
-}
-
 void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const {
-  poses = static_poses_;  // (static bodies do not move)
-  for (int i : dynamic_) poses[i] = pose_of(i, states[i]);
+  poses = state_.static_poses;  // (static bodies do not move)
+  for (int i : model_.dynamic) poses[i] = model_.pose_of(i, states[i]);
 }
 
 // A = J M^-1 J^T, one entry at a time: a row of J touches at most two bodies, so the dense
@@ -91,8 +72,8 @@ void World::contact_matrix(const ActiveContact* contacts, std::size_t count, con
     JacobianRow& out = jacobian_[row];
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? c.feature.a : c.feature.b;
-      out.slot[side] = slot_[body];
-      if (slot_[body] < 0) continue;
+      out.slot[side] = model_.slot[body];
+      if (model_.slot[body] < 0) continue;
       const Pose& p = poses[body];
       const Vec3 ds = side == 0 ? d : Vec3(-d);
       const Vec3 moment = (c.point.p - p.x).cross(ds);
@@ -133,7 +114,7 @@ bool World::friction_coefficients(const ActiveContact* contacts, std::size_t cou
   mu_.resize(static_cast<Eigen::Index>(count));
   bool any = false;
   for (std::size_t i = 0; i < count; ++i) {
-    const double mu = std::max(models_[contacts[i].feature.a].friction, models_[contacts[i].feature.b].friction);
+    const double mu = std::max(model_.bodies[contacts[i].feature.a].friction, model_.bodies[contacts[i].feature.b].friction);
     mu_[static_cast<Eigen::Index>(i)] = mu;
     any = any || mu > 0;
   }
@@ -142,18 +123,18 @@ bool World::friction_coefficients(const ActiveContact* contacts, std::size_t cou
 
 // gravity + the user's wrench (+ the friction held for this step) on every dynamic body.
 void World::applied_loads(const std::vector<Pose>& poses, bool with_friction) {
-  force_.resize(models_.size());
-  torque_.resize(models_.size());
-  for (int i : dynamic_) {
-    force_[i] = models_[i].mass * params_.gravity + ext_force_[i];
-    torque_[i] = ext_torque_[i];
+  force_.resize(model_.bodies.size());
+  torque_.resize(model_.bodies.size());
+  for (int i : model_.dynamic) {
+    force_[i] = model_.bodies[i].mass * model_.params.gravity + state_.ext_force[i];
+    torque_[i] = state_.ext_torque[i];
   }
   if (!with_friction) return;
-  for (const auto& c : resting_) {
+  for (const auto& c : state_.resting) {
     if (c.friction.isZero() || !c.point.valid) continue;
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? c.feature.a : c.feature.b;
-      if (slot_[body] < 0) continue;
+      if (model_.slot[body] < 0) continue;
       const Vec3 f = side == 0 ? c.friction : Vec3(-c.friction);
       force_[body] += f;
       torque_[body] += (c.point.p - poses[body].x).cross(f);
@@ -167,10 +148,10 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
   b_.resize(m);
   b_free_.resize(m);
   if (tangent_horizon > 0) bt_.resize(2 * m), vt_.resize(2 * m);
-  const double ws = 2 * M_PI * params_.stabilisation_hz;
+  const double ws = 2 * M_PI * model_.params.stabilisation_hz;
   // Each dynamic body's accelerations under the applied loads alone.
-  acc_.resize(models_.size());
-  for (const int body : dynamic_) {
+  acc_.resize(model_.bodies.size());
+  for (const int body : model_.dynamic) {
     auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
     const Pose& p = poses[body];
     linear = force_[body] * p.inv_mass;
@@ -182,7 +163,7 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
     Vec3 a_rel = Vec3::Zero(), v_rel = Vec3::Zero();  // of a's point relative to b's
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-      if (slot_[body] < 0) continue;  // a static body's points neither move nor accelerate
+      if (model_.slot[body] < 0) continue;  // a static body's points neither move nor accelerate
       const double sgn = side == 0 ? 1.0 : -1.0;
       const Pose& p = poses[body];
       const Vec3 r = c.p - p.x;
@@ -208,108 +189,108 @@ void World::contact_terms(const ActiveContact* active, std::size_t live, const s
 
 std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
   std::size_t live = 0;
-  for (auto& c : resting_) {
-    c.point = evaluate(c.feature, models_, poses);
-    if (c.point.valid) std::swap(c, resting_[live++]);
+  for (auto& c : state_.resting) {
+    c.point = evaluate(c.feature, model_.bodies, poses);
+    if (c.point.valid) std::swap(c, state_.resting[live++]);
   }
   return live;
 }
 
 void World::update_friction(double dt) {
   // (without friction coefficients no contact ever carries friction: nothing to do)
-  if (!friction_coefficients(resting_.data(), resting_.size())) return;
-  std::vector<Pose>& poses = scratch_poses_;
-  poses_of(states_, poses);
+  if (!friction_coefficients(state_.resting.data(), state_.resting.size())) return;
+  std::vector<Pose>& poses = work_.poses;
+  poses_of(state_.bodies, poses);
   const std::size_t live = evaluate_resting(poses);
-  const bool any = live > 0 && friction_coefficients(resting_.data(), live);
+  const bool any = live > 0 && friction_coefficients(state_.resting.data(), live);
   if (any) {
     applied_loads(poses, false);
-    contact_matrix(resting_.data(), live, poses, true);
-    contact_terms(resting_.data(), live, states_, poses, dt);
+    contact_matrix(state_.resting.data(), live, poses, true);
+    contact_terms(state_.resting.data(), live, state_.bodies, poses, dt);
     // The last step's friction (classify_contacts carries it over while the contacts stay the
     // same), in the tangent bases, starts the rounds.
-    ft_start_.resize(static_cast<Eigen::Index>(2 * live));
+    work_.ft_start.resize(static_cast<Eigen::Index>(2 * live));
     for (std::size_t i = 0; i < live; ++i)
       for (std::size_t j = 0; j < 2; ++j)
-        ft_start_[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(resting_[i].friction);
+        work_.ft_start[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(state_.resting[i].friction);
   }
-  for (auto& c : resting_) c.friction.setZero();  // before solving: no failed solve leaves it applied
+  for (auto& c : state_.resting) c.friction.setZero();  // before solving: no failed solve leaves it applied
   if (!any) return;
-  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_, ft_start_);
+  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_, work_.ft_start);
   if (!r.ok) r = friction_.solve(lcp_, A_, b_free_, bt_, mu_, vt_);
   report_.friction_rounds += r.iterations;
   if (!r.ok) return;  // frictionless this step; the normal LCP of the right-hand side reports it
   if (!r.converged) ++report_.friction_unconverged;
   for (std::size_t i = 0; i < live; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    resting_[i].friction = r.ft[2 * k] * tangents_[i][0] + r.ft[2 * k + 1] * tangents_[i][1];
+    state_.resting[i].friction = r.ft[2 * k] * tangents_[i][0] + r.ft[2 * k + 1] * tangents_[i][1];
   }
-  restart_ = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
+  state_.restart = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
 }
 
 void World::rhs(const double* y, double* ydot) {
   ++report_.rhs_evaluations;
-  scratch_states_ = states_;
-  unpack_state(y, dynamic_, scratch_states_);
-  poses_of(scratch_states_, scratch_poses_);
+  work_.states = state_.bodies;
+  unpack_state(y, model_.dynamic, work_.states);
+  poses_of(work_.states, work_.poses);
   // Resting contacts at this very state.
-  const std::size_t live = evaluate_resting(scratch_poses_);
-  for (std::size_t i = live; i < resting_.size(); ++i) resting_[i].force = 0;  // (the live ones get theirs below)
+  const std::size_t live = evaluate_resting(work_.poses);
+  for (std::size_t i = live; i < state_.resting.size(); ++i) state_.resting[i].force = 0;  // (the live ones get theirs below)
   // Gravity, the user's wrench and the friction held for this step, then the normal forces of
   // eqs. (9)-(10) that keep the contacts from closing under them.
-  applied_loads(scratch_poses_, true);
+  applied_loads(work_.poses, true);
   std::vector<Vec3>& force = force_;
   std::vector<Vec3>& torque = torque_;
   if (live > 0) {
-    const ActiveContact* active = resting_.data();
-    contact_matrix(active, live, scratch_poses_);
-    contact_terms(active, live, scratch_states_, scratch_poses_, 0);
+    const ActiveContact* active = state_.resting.data();
+    contact_matrix(active, live, work_.poses);
+    contact_terms(active, live, work_.states, work_.poses, 0);
     // Warm-started from the last right-hand side's clamped set: the contacts rarely change
     // between evaluations, and then one small solve replaces the pivoting.
-    LcpResult r = lcp_.solve(A_, b_, rhs_clamped_);
+    LcpResult r = lcp_.solve(A_, b_, state_.rhs_clamped);
     // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
     // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
     // problem is always solvable (frictionless, b in the range of J): fall back to it.
     if (!r.ok) r = lcp_.solve(A_, b_free_);
     if (r.ok)
-      rhs_clamped_ = r.clamped;
+      state_.rhs_clamped = r.clamped;
     else
       ++report_.lcp_failures;
     for (std::size_t i = 0; i < live; ++i) {
       const double f = r.f[static_cast<Eigen::Index>(i)];
-      resting_[i].force = f;
+      state_.resting[i].force = f;
       const auto& c = active[i].point;
       for (int side = 0; side < 2; ++side) {
         const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-        if (slot_[body] < 0) continue;
+        if (model_.slot[body] < 0) continue;
         const Vec3 fn = (side == 0 ? f : -f) * c.n;
         force[body] += fn;
-        torque[body] += (c.p - scratch_poses_[body].x).cross(fn);
+        torque[body] += (c.p - work_.poses[body].x).cross(fn);
       }
     }
   }
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const int i = dynamic_[k];
-    const Pose& p = scratch_poses_[i];
-    write_derivative(p.v, p.omega, scratch_states_[i].q, force[i], torque[i], ydot + kStateSize * k);
+  for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
+    const int i = model_.dynamic[k];
+    const Pose& p = work_.poses[i];
+    write_derivative(p.v, p.omega, work_.states[i].q, force[i], torque[i], ydot + kStateSize * k);
   }
 }
 
 void World::roots(const double* y, double* g) {
-  scratch_states_ = states_;
-  unpack_state(y, dynamic_, scratch_states_);
-  poses_of(scratch_states_, scratch_poses_);
-  for (std::size_t k = 0; k < watched_.size(); ++k) {
-    const ContactPoint c = evaluate(watched_[k], models_, scratch_poses_);
-    g[k] = c.valid ? c.gap : params_.margin;  // a feature that no longer faces the other cannot hit it
+  work_.states = state_.bodies;
+  unpack_state(y, model_.dynamic, work_.states);
+  poses_of(work_.states, work_.poses);
+  for (std::size_t k = 0; k < state_.watched.size(); ++k) {
+    const ContactPoint c = evaluate(state_.watched[k], model_.bodies, work_.poses);
+    g[k] = c.valid ? c.gap : model_.params.margin;  // a feature that no longer faces the other cannot hit it
   }
 }
 
 bool World::collide(std::vector<ActiveContact>& contacts) {
   if (contacts.empty()) return true;
   std::vector<Pose> poses;
-  poses_of(states_, poses);
-  for (auto& c : contacts) c.point = evaluate(c.feature, models_, poses);
+  poses_of(state_.bodies, poses);
+  for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses);
   const bool friction = friction_coefficients(contacts.data(), contacts.size());
   contact_matrix(contacts.data(), contacts.size(), poses, friction);
   const auto m = static_cast<Eigen::Index>(contacts.size());
@@ -320,8 +301,8 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
     const Pose &A = poses[contact.feature.a], &B = poses[contact.feature.b];
     const Vec3 v = A.v + A.omega.cross(p - A.x) - B.v - B.omega.cross(p - B.x);
     const double v_rel = contact.point.n.dot(v);
-    double e = std::min(models_[contact.feature.a].restitution, models_[contact.feature.b].restitution);
-    if (v_rel > -params_.resting_speed) e = 0;  // a slow approach ends the bounce sequence
+    double e = std::min(model_.bodies[contact.feature.a].restitution, model_.bodies[contact.feature.b].restitution);
+    if (v_rel > -model_.params.resting_speed) e = 0;  // a slow approach ends the bounce sequence
     c[i] = (1 + e) * v_rel;                     // eq. (14): v+ + e v- >= 0
     if (friction)  // target: no tangential velocity after the impact (within mu times the normal impulse)
       for (int k = 0; k < 2; ++k) ct[2 * i + k] = tangents_[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
@@ -344,61 +325,61 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
       j += jt[2 * i] * tangents_[static_cast<std::size_t>(i)][0] + jt[2 * i + 1] * tangents_[static_cast<std::size_t>(i)][1];
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? contact.feature.a : contact.feature.b;
-      if (slot_[body] < 0) continue;
+      if (model_.slot[body] < 0) continue;
       const Vec3 on_body = side == 0 ? j : Vec3(-j);
-      states_[body].P += on_body;
-      states_[body].L += (contact.point.p - poses[body].x).cross(on_body);
+      state_.bodies[body].P += on_body;
+      state_.bodies[body].L += (contact.point.p - poses[body].x).cross(on_body);
     }
   }
   return true;
 }
 
 void World::classify_contacts() {
-  std::vector<Pose>& poses = scratch_poses_;
-  poses_of(states_, poses);
-  candidates_.clear();
-  for (int a : dynamic_)
-    for (int b = 0; b < body_count(); ++b)
-      if (b != a && (!models_[b].dynamic || a < b)) find_candidates(a, b, models_, poses, params_.margin, candidates_);
-  std::vector<ActiveContact>& touching = touching_;
-  std::vector<ContactFeature>& watched = watched_next_;
+  std::vector<Pose>& poses = work_.poses;
+  poses_of(state_.bodies, poses);
+  work_.candidates.clear();
+  for (int a : model_.dynamic)
+    for (int b = 0; b < model_.body_count(); ++b)
+      if (b != a && (!model_.bodies[b].dynamic || a < b)) find_candidates(a, b, model_.bodies, poses, model_.params.margin, work_.candidates);
+  std::vector<ActiveContact>& touching = work_.touching;
+  std::vector<ContactFeature>& watched = work_.watched_next;
   touching.clear();
   watched.clear();
   bool colliding = false;
-  for (const auto& f : candidates_) {
-    const ContactPoint c = evaluate(f, models_, poses);
+  for (const auto& f : work_.candidates) {
+    const ContactPoint c = evaluate(f, model_.bodies, poses);
     if (!c.valid) continue;
-    if (c.gap > params_.contact_tolerance) {
+    if (c.gap > model_.params.contact_tolerance) {
       watched.push_back(f);
       continue;
     }
     touching.push_back(ActiveContact{f, c, 0});
     const Vec3 r_a = c.p - poses[f.a].x, r_b = c.p - poses[f.b].x;
     const double v_rel = c.n.dot(poses[f.a].v + poses[f.a].omega.cross(r_a) - poses[f.b].v - poses[f.b].omega.cross(r_b));
-    if (v_rel < -params_.resting_speed) colliding = true;
+    if (v_rel < -model_.params.resting_speed) colliding = true;
   }
   if (colliding) {  // approaching faster than resting: an impact at the start of the step
     if (!collide(touching)) ++report_.lcp_failures;
     ++report_.collisions;
-    restart_ = true;
+    state_.restart = true;
   }
   const bool same_resting =
-      touching.size() == resting_.size() &&
-      std::equal(touching.begin(), touching.end(), resting_.begin(),
+      touching.size() == state_.resting.size() &&
+      std::equal(touching.begin(), touching.end(), state_.resting.begin(),
                  [](const ActiveContact& x, const ActiveContact& y) { return x.feature == y.feature; });
   if (same_resting)  // the same contacts: the friction they held starts this step's solve
-    for (std::size_t i = 0; i < touching.size(); ++i) touching[i].friction = resting_[i].friction;
+    for (std::size_t i = 0; i < touching.size(); ++i) touching[i].friction = state_.resting[i].friction;
   else
-    restart_ = true;
-  if (watched != watched_) restart_ = roots_changed_ = true;
-  resting_.swap(touching);  // (the scratch vectors keep their capacity)
-  watched_.swap(watched);
+    state_.restart = true;
+  if (watched != state_.watched) state_.restart = state_.roots_changed = true;
+  state_.resting.swap(touching);  // (the scratch vectors keep their capacity)
+  state_.watched.swap(watched);
 }
 
 StepReport World::step(double dt) {
   report_ = StepReport{};
-  if (dynamic_.empty()) {
-    t_ += dt;
+  if (model_.dynamic.empty()) {
+    state_.t += dt;
     return report_;
   }
   classify_contacts();
@@ -406,50 +387,50 @@ StepReport World::step(double dt) {
   CvodeIntegrator& cv = *integrator_;
   double* y = cv.state();
   auto watch_roots = [&] {
-    roots_changed_ = false;
-    cv.watch_roots(static_cast<int>(watched_.size()));  // approaching only
+    state_.roots_changed = false;
+    cv.watch_roots(static_cast<int>(state_.watched.size()));  // approaching only
   };
-  if (restart_) {
-    for (int i : dynamic_) states_[i].q.normalize();
-    pack_state(states_, dynamic_, y);
-    cv.restart(t_);
-    if (roots_changed_) watch_roots();
-    restart_ = false;
+  if (state_.restart) {
+    for (int i : model_.dynamic) state_.bodies[i].q.normalize();
+    pack_state(state_.bodies, model_.dynamic, y);
+    cv.restart(state_.t);
+    if (state_.roots_changed) watch_roots();
+    state_.restart = false;
   }
-  const double t_end = t_ + dt;
+  const double t_end = state_.t + dt;
   cv.set_stop_time(t_end);
   while (true) {
-    double t_reached = t_;
+    double t_reached = state_.t;
     const bool at_root = cv.advance(t_end, t_reached);
     cv.count_work(report_.integrator_steps, report_.error_test_failures);
-    unpack_state(y, dynamic_, states_);
-    t_ = t_reached;
+    unpack_state(y, model_.dynamic, state_.bodies);
+    state_.t = t_reached;
     if (!at_root) break;
     // An impact (STEP 4-6): impulses over every touching contact, then restart from here.
-    std::vector<int> found(watched_.size(), 0);
+    std::vector<int> found(state_.watched.size(), 0);
     cv.root_info(found.data());
     // Every watched feature that touches now takes part, flagged or not: the four corners of a
     // cube landing flat hit together, whichever of them the root finder happened to report.
-    std::vector<ActiveContact> contacts = resting_;
+    std::vector<ActiveContact> contacts = state_.resting;
     std::vector<ContactFeature> still_watched;
     std::vector<Pose> poses;
-    poses_of(states_, poses);
-    for (std::size_t k = 0; k < watched_.size(); ++k) {
-      const ContactPoint c = evaluate(watched_[k], models_, poses);
-      if (found[k] != 0 || (c.valid && c.gap <= params_.contact_tolerance))
-        contacts.push_back(ActiveContact{watched_[k], c, 0});
+    poses_of(state_.bodies, poses);
+    for (std::size_t k = 0; k < state_.watched.size(); ++k) {
+      const ContactPoint c = evaluate(state_.watched[k], model_.bodies, poses);
+      if (found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance))
+        contacts.push_back(ActiveContact{state_.watched[k], c, 0});
       else
-        still_watched.push_back(watched_[k]);
+        still_watched.push_back(state_.watched[k]);
     }
     if (!collide(contacts)) ++report_.lcp_failures;
     ++report_.collisions;
-    resting_ = std::move(contacts);
-    watched_ = std::move(still_watched);
-    if (report_.collisions >= params_.max_collisions_per_step) watched_.clear();  // no more events this step
-    pack_state(states_, dynamic_, y);
-    cv.restart(t_);
+    state_.resting = std::move(contacts);
+    state_.watched = std::move(still_watched);
+    if (report_.collisions >= model_.params.max_collisions_per_step) state_.watched.clear();  // no more events this step
+    pack_state(state_.bodies, model_.dynamic, y);
+    cv.restart(state_.t);
     watch_roots();
-    if (t_ >= t_end) break;
+    if (state_.t >= t_end) break;
   }
   return report_;
 }
