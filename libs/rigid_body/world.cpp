@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rigid_body/contact_system.hpp"
 #include "rigid_body/cvode_integrator.hpp"
 #include "rigid_body/state_vector.hpp"
 
@@ -21,7 +22,7 @@ std::vector<BodyModel> one_state_each(std::vector<BodyModel>& models, const std:
 }  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
-    : model_(one_state_each(models, initial), params), state_(model_, std::move(initial)) {
+    : model_(one_state_each(models, initial), params), state_(model_, std::move(initial)), contact_system_(model_) {
   const WorldParams& p = model_.params;
   const CvodeOptions options{p.rtol, p.atol, p.initial_step, p.restart_growth, p.nonlinear_convergence};
   const int size = std::max<int>(1, kStateSize * static_cast<int>(model_.dynamic.size()));
@@ -61,132 +62,6 @@ void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& po
   for (int i : model_.dynamic) poses[i] = model_.pose_of(i, states[i]);
 }
 
-// A = J M^-1 J^T, one entry at a time: a row of J touches at most two bodies, so the dense
-// product over 6 columns per dynamic body would be mostly zeros.
-void World::contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
-                           bool with_tangents) {
-  const std::size_t rows = with_tangents ? 3 * count : count;
-  jacobian_.resize(rows);
-  if (with_tangents) tangents_.resize(count);
-  auto set_row = [&](std::size_t row, const ActiveContact& c, const Vec3& d) {
-    JacobianRow& out = jacobian_[row];
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? c.feature.a : c.feature.b;
-      out.slot[side] = model_.slot[body];
-      if (model_.slot[body] < 0) continue;
-      const Pose& p = poses[body];
-      const Vec3 ds = side == 0 ? d : Vec3(-d);
-      const Vec3 moment = (c.point.p - p.x).cross(ds);
-      out.j[side].head<3>() = ds;
-      out.j[side].tail<3>() = moment;
-      out.minv_j[side].head<3>() = p.inv_mass * ds;
-      out.minv_j[side].tail<3>() = p.inv_inertia * moment;
-    }
-  };
-  for (std::size_t i = 0; i < count; ++i) {
-    const auto& c = contacts[i];
-    set_row(i, c, c.point.n);
-    if (!with_tangents) continue;
-    // Any orthonormal pair spanning the tangent plane (the friction disc is isotropic).
-    const Vec3& nn = c.point.n;
-    Eigen::Index least;
-    nn.cwiseAbs().minCoeff(&least);
-    const Vec3 t1 = nn.cross(Vec3::Unit(least)).normalized();
-    const Vec3 t2 = nn.cross(t1);
-    tangents_[i] = {t1, t2};
-    set_row(count + 2 * i, c, t1);
-    set_row(count + 2 * i + 1, c, t2);
-  }
-  const auto n = static_cast<Eigen::Index>(rows);
-  A_.resize(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index k = 0; k <= i; ++k) {
-      const JacobianRow &ri = jacobian_[static_cast<std::size_t>(i)], &rk = jacobian_[static_cast<std::size_t>(k)];
-      double sum = 0;
-      for (int s = 0; s < 2; ++s)
-        for (int t = 0; t < 2; ++t)
-          if (ri.slot[s] >= 0 && ri.slot[s] == rk.slot[t]) sum += ri.j[s].dot(rk.minv_j[t]);
-      A_(i, k) = A_(k, i) = sum;
-    }
-}
-
-bool World::friction_coefficients(const ActiveContact* contacts, std::size_t count) {
-  mu_.resize(static_cast<Eigen::Index>(count));
-  bool any = false;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double mu = std::max(model_.bodies[contacts[i].feature.a].friction, model_.bodies[contacts[i].feature.b].friction);
-    mu_[static_cast<Eigen::Index>(i)] = mu;
-    any = any || mu > 0;
-  }
-  return any;
-}
-
-// gravity + the user's wrench (+ the friction held for this step) on every dynamic body.
-void World::applied_loads(const std::vector<Pose>& poses, bool with_friction) {
-  force_.resize(model_.bodies.size());
-  torque_.resize(model_.bodies.size());
-  for (int i : model_.dynamic) {
-    force_[i] = model_.bodies[i].mass * model_.params.gravity + state_.ext_force[i];
-    torque_[i] = state_.ext_torque[i];
-  }
-  if (!with_friction) return;
-  for (const auto& c : state_.resting) {
-    if (c.friction.isZero() || !c.point.valid) continue;
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? c.feature.a : c.feature.b;
-      if (model_.slot[body] < 0) continue;
-      const Vec3 f = side == 0 ? c.friction : Vec3(-c.friction);
-      force_[body] += f;
-      torque_[body] += (c.point.p - poses[body].x).cross(f);
-    }
-  }
-}
-
-void World::contact_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
-                          const std::vector<Pose>& poses, double tangent_horizon) {
-  const auto m = static_cast<Eigen::Index>(live);
-  b_.resize(m);
-  b_free_.resize(m);
-  if (tangent_horizon > 0) bt_.resize(2 * m), vt_.resize(2 * m);
-  const double ws = 2 * M_PI * model_.params.stabilisation_hz;
-  // Each dynamic body's accelerations under the applied loads alone.
-  acc_.resize(model_.bodies.size());
-  for (const int body : model_.dynamic) {
-    auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
-    const Pose& p = poses[body];
-    linear = force_[body] * p.inv_mass;
-    angular = p.inv_inertia * (torque_[body] - p.omega.cross(states[body].L));
-  }
-  for (std::size_t i = 0; i < live; ++i) {
-    const auto& c = active[i].point;
-    double acc = 0, gap_rate = 0;
-    Vec3 a_rel = Vec3::Zero(), v_rel = Vec3::Zero();  // of a's point relative to b's
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-      if (model_.slot[body] < 0) continue;  // a static body's points neither move nor accelerate
-      const double sgn = side == 0 ? 1.0 : -1.0;
-      const Pose& p = poses[body];
-      const Vec3 r = c.p - p.x;
-      const auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
-      const Vec3 a = p.omega.cross(p.omega.cross(r)) + linear + angular.cross(r);  // centripetal + applied
-      const Vec3 vp = p.v + p.omega.cross(r);
-      acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
-      gap_rate += sgn * c.n.dot(vp);
-      a_rel += sgn * a;
-      v_rel += sgn * vp;
-    }
-    const auto k = static_cast<Eigen::Index>(i);
-    b_free_[k] = acc;
-    b_[k] = acc + 2 * ws * gap_rate + ws * ws * c.gap;
-    if (tangent_horizon > 0)
-      for (int j = 0; j < 2; ++j) {
-        const Vec3& t = tangents_[i][static_cast<std::size_t>(j)];
-        vt_[2 * k + j] = t.dot(v_rel);
-        bt_[2 * k + j] = t.dot(a_rel) + vt_[2 * k + j] / tangent_horizon;  // target: no sliding at the horizon
-      }
-  }
-}
-
 std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
   std::size_t live = 0;
   for (auto& c : state_.resting) {
@@ -197,82 +72,88 @@ std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
 }
 
 void World::update_friction(double dt) {
+  ContactSystem& cs = contact_system_;
+  std::vector<ActiveContact>& resting = state_.resting;
   // (without friction coefficients no contact ever carries friction: nothing to do)
-  if (!friction_coefficients(state_.resting.data(), state_.resting.size())) return;
+  if (!cs.friction_coefficients(resting.data(), resting.size())) return;
   std::vector<Pose>& poses = work_.poses;
   poses_of(state_.bodies, poses);
   const std::size_t live = evaluate_resting(poses);
-  const bool any = live > 0 && friction_coefficients(state_.resting.data(), live);
+  const bool any = live > 0 && cs.friction_coefficients(resting.data(), live);
   if (any) {
-    applied_loads(poses, false);
-    contact_matrix(state_.resting.data(), live, poses, true);
-    contact_terms(state_.resting.data(), live, state_.bodies, poses, dt);
+    cs.applied_loads(state_, poses, false);
+    cs.build(resting.data(), live, poses, true);
+    cs.free_terms(resting.data(), live, state_.bodies, poses, dt);
     // The last step's friction (classify_contacts carries it over while the contacts stay the
     // same), in the tangent bases, starts the rounds.
     work_.ft_start.resize(static_cast<Eigen::Index>(2 * live));
     for (std::size_t i = 0; i < live; ++i)
       for (std::size_t j = 0; j < 2; ++j)
-        work_.ft_start[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(state_.resting[i].friction);
+        work_.ft_start[static_cast<Eigen::Index>(2 * i + j)] = cs.tangents[i][j].dot(resting[i].friction);
   }
-  for (auto& c : state_.resting) c.friction.setZero();  // before solving: no failed solve leaves it applied
+  for (auto& c : resting) c.friction.setZero();  // before solving: no failed solve leaves it applied
   if (!any) return;
-  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_, work_.ft_start);
-  if (!r.ok) r = friction_.solve(lcp_, A_, b_free_, bt_, mu_, vt_);
+  FrictionResult r = friction_.solve(lcp_, cs.A, cs.b, cs.bt, cs.mu, cs.vt, work_.ft_start);
+  if (!r.ok) r = friction_.solve(lcp_, cs.A, cs.b_free, cs.bt, cs.mu, cs.vt);
   report_.friction_rounds += r.iterations;
   if (!r.ok) return;  // frictionless this step; the normal LCP of the right-hand side reports it
   if (!r.converged) ++report_.friction_unconverged;
   for (std::size_t i = 0; i < live; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    state_.resting[i].friction = r.ft[2 * k] * tangents_[i][0] + r.ft[2 * k + 1] * tangents_[i][1];
+    resting[i].friction = r.ft[2 * k] * cs.tangents[i][0] + r.ft[2 * k + 1] * cs.tangents[i][1];
   }
   state_.restart = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
 }
 
 void World::rhs(const double* y, double* ydot) {
   ++report_.rhs_evaluations;
-  work_.states = state_.bodies;
-  unpack_state(y, model_.dynamic, work_.states);
-  poses_of(work_.states, work_.poses);
+  ContactSystem& cs = contact_system_;
+  std::vector<ActiveContact>& resting = state_.resting;
+  std::vector<BodyState>& states = work_.states;
+  std::vector<Pose>& poses = work_.poses;
+  states = state_.bodies;
+  unpack_state(y, model_.dynamic, states);
+  poses_of(states, poses);
   // Resting contacts at this very state.
-  const std::size_t live = evaluate_resting(work_.poses);
-  for (std::size_t i = live; i < state_.resting.size(); ++i) state_.resting[i].force = 0;  // (the live ones get theirs below)
+  const std::size_t live = evaluate_resting(poses);
+  for (std::size_t i = live; i < resting.size(); ++i) resting[i].force = 0;  // (the live ones get theirs below)
   // Gravity, the user's wrench and the friction held for this step, then the normal forces of
   // eqs. (9)-(10) that keep the contacts from closing under them.
-  applied_loads(work_.poses, true);
-  std::vector<Vec3>& force = force_;
-  std::vector<Vec3>& torque = torque_;
+  cs.applied_loads(state_, poses, true);
+  std::vector<Vec3>& force = cs.force;
+  std::vector<Vec3>& torque = cs.torque;
   if (live > 0) {
-    const ActiveContact* active = state_.resting.data();
-    contact_matrix(active, live, work_.poses);
-    contact_terms(active, live, work_.states, work_.poses, 0);
+    const ActiveContact* active = resting.data();
+    cs.build(active, live, poses);
+    cs.free_terms(active, live, states, poses, 0);
     // Warm-started from the last right-hand side's clamped set: the contacts rarely change
     // between evaluations, and then one small solve replaces the pivoting.
-    LcpResult r = lcp_.solve(A_, b_, state_.rhs_clamped);
+    LcpResult r = lcp_.solve(cs.A, cs.b, state_.rhs_clamped);
     // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
     // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
     // problem is always solvable (frictionless, b in the range of J): fall back to it.
-    if (!r.ok) r = lcp_.solve(A_, b_free_);
+    if (!r.ok) r = lcp_.solve(cs.A, cs.b_free);
     if (r.ok)
       state_.rhs_clamped = r.clamped;
     else
       ++report_.lcp_failures;
     for (std::size_t i = 0; i < live; ++i) {
       const double f = r.f[static_cast<Eigen::Index>(i)];
-      state_.resting[i].force = f;
+      resting[i].force = f;
       const auto& c = active[i].point;
       for (int side = 0; side < 2; ++side) {
         const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
         if (model_.slot[body] < 0) continue;
         const Vec3 fn = (side == 0 ? f : -f) * c.n;
         force[body] += fn;
-        torque[body] += (c.p - work_.poses[body].x).cross(fn);
+        torque[body] += (c.p - poses[body].x).cross(fn);
       }
     }
   }
   for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
     const int i = model_.dynamic[k];
-    const Pose& p = work_.poses[i];
-    write_derivative(p.v, p.omega, work_.states[i].q, force[i], torque[i], ydot + kStateSize * k);
+    const Pose& p = poses[i];
+    write_derivative(p.v, p.omega, states[i].q, force[i], torque[i], ydot + kStateSize * k);
   }
 }
 
@@ -291,8 +172,9 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
   std::vector<Pose> poses;
   poses_of(state_.bodies, poses);
   for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses);
-  const bool friction = friction_coefficients(contacts.data(), contacts.size());
-  contact_matrix(contacts.data(), contacts.size(), poses, friction);
+  ContactSystem& cs = contact_system_;
+  const bool friction = cs.friction_coefficients(contacts.data(), contacts.size());
+  cs.build(contacts.data(), contacts.size(), poses, friction);
   const auto m = static_cast<Eigen::Index>(contacts.size());
   Eigen::VectorXd c(m), ct(friction ? 2 * m : 0);
   for (Eigen::Index i = 0; i < m; ++i) {
@@ -305,24 +187,27 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
     if (v_rel > -model_.params.resting_speed) e = 0;  // a slow approach ends the bounce sequence
     c[i] = (1 + e) * v_rel;                     // eq. (14): v+ + e v- >= 0
     if (friction)  // target: no tangential velocity after the impact (within mu times the normal impulse)
-      for (int k = 0; k < 2; ++k) ct[2 * i + k] = tangents_[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
+      for (int k = 0; k < 2; ++k)
+        ct[2 * i + k] = cs.tangents[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
   }
   Eigen::VectorXd jn, jt;
   if (friction) {
-    const FrictionResult r = friction_.solve(lcp_, A_, c, ct, mu_, ct);
+    const FrictionResult r = friction_.solve(lcp_, cs.A, c, ct, cs.mu, ct);
     if (!r.ok) return false;
     if (!r.converged) ++report_.friction_unconverged;
     jn = r.fn, jt = r.ft;
   } else {
-    const LcpResult r = lcp_.solve(A_, c);
+    const LcpResult r = lcp_.solve(cs.A, c);
     if (!r.ok) return false;
     jn = r.f;
   }
   for (Eigen::Index i = 0; i < m; ++i) {
     const auto& contact = contacts[static_cast<std::size_t>(i)];
     Vec3 j = jn[i] * contact.point.n;
-    if (friction)
-      j += jt[2 * i] * tangents_[static_cast<std::size_t>(i)][0] + jt[2 * i + 1] * tangents_[static_cast<std::size_t>(i)][1];
+    if (friction) {
+      const auto& t = cs.tangents[static_cast<std::size_t>(i)];
+      j += jt[2 * i] * t[0] + jt[2 * i + 1] * t[1];
+    }
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? contact.feature.a : contact.feature.b;
       if (model_.slot[body] < 0) continue;
@@ -340,7 +225,8 @@ void World::classify_contacts() {
   work_.candidates.clear();
   for (int a : model_.dynamic)
     for (int b = 0; b < model_.body_count(); ++b)
-      if (b != a && (!model_.bodies[b].dynamic || a < b)) find_candidates(a, b, model_.bodies, poses, model_.params.margin, work_.candidates);
+      if (b != a && (!model_.bodies[b].dynamic || a < b))
+        find_candidates(a, b, model_.bodies, poses, model_.params.margin, work_.candidates);
   std::vector<ActiveContact>& touching = work_.touching;
   std::vector<ContactFeature>& watched = work_.watched_next;
   touching.clear();

@@ -25,6 +25,7 @@
 
 #include "scene/body.hpp"
 #include "rigid_body/contact.hpp"
+#include "rigid_body/contact_system.hpp"
 #include "rigid_body/friction.hpp"
 #include "rigid_body/lcp.hpp"
 #include "rigid_body/world_model.hpp"
@@ -80,18 +81,6 @@ class World {
   void classify_contacts();
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to the bodies; returns false if it failed.
   bool collide(std::vector<ActiveContact>& contacts);
-  // A = J M^-1 J^T over the first `count` of `contacts`: their normal rows, then (with_tangents)
-  // two tangent rows per contact along tangents_. The rows of J are kept in jacobian_.
-  void contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
-                      bool with_tangents = false);
-  // The contacts' friction coefficients into mu_; true if any is > 0.
-  bool friction_coefficients(const ActiveContact* contacts, std::size_t count);
-  // force_, torque_: gravity and the user's wrench, plus (with_friction) the held friction.
-  void applied_loads(const std::vector<Pose>& poses, bool with_friction);
-  // The contact rows' free terms under force_/torque_: b_ (with gap feedback), b_free_, and for
-  // tangent_horizon > 0 bt_ (tangential acceleration that stops sliding within the horizon).
-  void contact_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
-                     const std::vector<Pose>& poses, double tangent_horizon);
   // Evaluates the resting contacts at `poses` and moves those still facing to the front; returns
   // how many they are.
   std::size_t evaluate_resting(const std::vector<Pose>& poses);
@@ -104,19 +93,7 @@ class World {
   std::unique_ptr<CvodeIntegrator> integrator_;
   LcpSolver lcp_;
   FrictionSolver friction_;
-  std::vector<Vec3> force_, torque_;
-  // A row of J: a unit force along a contact direction as it acts on each side's body (force and
-  // moment about the centre of mass), and M^-1 times that; slot -1 for a static body.
-  struct JacobianRow {
-    int slot[2];
-    Eigen::Matrix<double, 6, 1> j[2], minv_j[2];
-  };
-  std::vector<JacobianRow> jacobian_;
-  std::vector<std::pair<Vec3, Vec3>> acc_;  // per body: linear and angular acceleration under the applied loads
-  Eigen::MatrixXd A_;
-  Eigen::VectorXd b_, b_free_;  // with and without the gap feedback
-  Eigen::VectorXd bt_, vt_, mu_;  // tangent rows' free terms and sliding velocities, friction coefficients
-  std::vector<std::array<Vec3, 2>> tangents_;
+  ContactSystem contact_system_;  // rebuilt at each right-hand side and impact
   StepReport report_;
 };
 
