@@ -141,13 +141,11 @@ void World::rhs(const double* y, double* ydot) {
       const double f = r.f[static_cast<Eigen::Index>(i)];
       resting[i].force = f;
       const auto& c = active[i].point;
-      for (int side = 0; side < 2; ++side) {
-        const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-        if (model_.slot[body] < 0) continue;
-        const Vec3 fn = (side == 0 ? f : -f) * c.n;
-        force[body] += fn;
-        torque[body] += (c.p - poses[body].x).cross(fn);
-      }
+      apply_at_contact(active[i].feature, c.p, Vec3(f * c.n), model_.slot, poses,
+                       [&](int, int body, const Vec3& fn, const Vec3& moment) {
+                         force[body] += fn;
+                         torque[body] += moment;
+                       });
     }
   }
   for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
@@ -208,13 +206,11 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
       const auto& t = cs.tangents[static_cast<std::size_t>(i)];
       j += jt[2 * i] * t[0] + jt[2 * i + 1] * t[1];
     }
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? contact.feature.a : contact.feature.b;
-      if (model_.slot[body] < 0) continue;
-      const Vec3 on_body = side == 0 ? j : Vec3(-j);
-      state_.bodies[body].P += on_body;
-      state_.bodies[body].L += (contact.point.p - poses[body].x).cross(on_body);
-    }
+    apply_at_contact(contact.feature, contact.point.p, j, model_.slot, poses,
+                     [&](int, int body, const Vec3& on_body, const Vec3& moment) {
+                       state_.bodies[body].P += on_body;
+                       state_.bodies[body].L += moment;
+                     });
   }
   return true;
 }
