@@ -32,35 +32,10 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, Worl
 World::~World() = default;
 
 void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque) {
-  // A new sample is a discontinuity of the right-hand side: the multistep history is invalid.
-  // (A change at the level of round-off, from a wrench rotated through a pose, is none.)
-  const auto changed = [](const Vec3& a, const Vec3& b) { return (a - b).norm() > 1e-12 * std::max(1.0, b.norm()); };
-  if (changed(force, state_.ext_force[body]) || changed(torque, state_.ext_torque[body])) state_.restart = true;
-  state_.ext_force[body] = force;
-  state_.ext_torque[body] = torque;
+  state_.set_wrench(body, force, torque);
 }
-
-void World::set_state(int i, const BodyState& s) {
-  state_.bodies[i] = s;
-  state_.bodies[i].q.normalize();
-  state_.static_poses[i] = model_.pose_of(i, state_.bodies[i]);
-  state_.restart = true;
-}
-
-double World::energy() const {
-  double e = 0;
-  for (int i : model_.dynamic) {
-    const BodyKinematics k(model_.bodies[i], state_.bodies[i]);
-    e += 0.5 * model_.bodies[i].mass * k.v.squaredNorm() + 0.5 * k.omega.dot(state_.bodies[i].L) -
-         model_.bodies[i].mass * model_.params.gravity.dot(state_.bodies[i].x);
-  }
-  return e;
-}
-
-void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const {
-  poses = state_.static_poses;  // (static bodies do not move)
-  for (int i : model_.dynamic) poses[i] = model_.pose_of(i, states[i]);
-}
+void World::set_state(int i, const BodyState& s) { state_.set_body(model_, i, s); }
+double World::energy() const { return state_.energy(model_); }
 
 std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
   std::size_t live = 0;
@@ -77,7 +52,7 @@ void World::update_friction(double dt) {
   // (without friction coefficients no contact ever carries friction: nothing to do)
   if (!cs.friction_coefficients(resting.data(), resting.size())) return;
   std::vector<Pose>& poses = work_.poses;
-  poses_of(state_.bodies, poses);
+  state_.poses_of(model_, state_.bodies, poses);
   const std::size_t live = evaluate_resting(poses);
   const bool any = live > 0 && cs.friction_coefficients(resting.data(), live);
   if (any) {
@@ -113,7 +88,7 @@ void World::rhs(const double* y, double* ydot) {
   std::vector<Pose>& poses = work_.poses;
   states = state_.bodies;
   unpack_state(y, model_.dynamic, states);
-  poses_of(states, poses);
+  state_.poses_of(model_, states, poses);
   // Resting contacts at this very state.
   const std::size_t live = evaluate_resting(poses);
   for (std::size_t i = live; i < resting.size(); ++i) resting[i].force = 0;  // (the live ones get theirs below)
@@ -158,7 +133,7 @@ void World::rhs(const double* y, double* ydot) {
 void World::roots(const double* y, double* g) {
   work_.states = state_.bodies;
   unpack_state(y, model_.dynamic, work_.states);
-  poses_of(work_.states, work_.poses);
+  state_.poses_of(model_, work_.states, work_.poses);
   for (std::size_t k = 0; k < state_.watched.size(); ++k) {
     const ContactPoint c = evaluate(state_.watched[k], model_.bodies, work_.poses);
     g[k] = c.valid ? c.gap : model_.params.margin;  // a feature that no longer faces the other cannot hit it
@@ -168,7 +143,7 @@ void World::roots(const double* y, double* g) {
 bool World::collide(std::vector<ActiveContact>& contacts) {
   if (contacts.empty()) return true;
   std::vector<Pose> poses;
-  poses_of(state_.bodies, poses);
+  state_.poses_of(model_, state_.bodies, poses);
   for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses);
   ContactSystem& cs = contact_system_;
   const bool friction = cs.friction_coefficients(contacts.data(), contacts.size());
@@ -217,7 +192,7 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
 
 void World::classify_contacts() {
   std::vector<Pose>& poses = work_.poses;
-  poses_of(state_.bodies, poses);
+  state_.poses_of(model_, state_.bodies, poses);
   work_.candidates.clear();
   for (int a : model_.dynamic)
     for (int b = 0; b < model_.body_count(); ++b)
@@ -296,7 +271,7 @@ StepReport World::step(double dt) {
     std::vector<ActiveContact> contacts = state_.resting;
     std::vector<ContactFeature> still_watched;
     std::vector<Pose> poses;
-    poses_of(state_.bodies, poses);
+    state_.poses_of(model_, state_.bodies, poses);
     for (std::size_t k = 0; k < state_.watched.size(); ++k) {
       const ContactPoint c = evaluate(state_.watched[k], model_.bodies, poses);
       if (found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance))

@@ -75,7 +75,6 @@ class World {
 
  private:
   friend class CvodeIntegrator;  // calls rhs() and roots()
-  void poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
   void rhs(const double* y, double* ydot);
   void roots(const double* y, double* g);
   void classify_contacts();

@@ -21,6 +21,14 @@ struct ActiveContact {
 struct WorldState {
   // At t = 0 in `initial` (orientations normalised), with no wrench and no contact yet.
   WorldState(const WorldModel& model, std::vector<BodyState> initial);
+  // The user's wrench on body i's centre of mass (world frame), held until changed.
+  void set_wrench(int body, const Vec3& force, const Vec3& torque);
+  // Body i's state (orientation normalised), set from outside: the integrator starts over.
+  void set_body(const WorldModel& model, int i, const BodyState& s);
+  // The bodies' poses at `states`; the static ones stay where they were last set.
+  void poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
+  // Kinetic plus gravitational potential energy of the dynamic bodies.
+  double energy(const WorldModel& model) const;
 
   double t = 0;
   std::vector<BodyState> bodies;
