@@ -43,6 +43,11 @@ void apply_at_contact(const ContactFeature& f, const Vec3& p, const Vec3& v, con
   });
 }
 
+// The velocity at point p of body a relative to body b (poses a and b).
+inline Vec3 relative_velocity(const Pose& a, const Pose& b, const Vec3& p) {
+  return a.v + a.omega.cross(p - a.x) - b.v - b.omega.cross(p - b.x);
+}
+
 struct ContactSystem {
   // The model must outlive the system.
   explicit ContactSystem(const WorldModel& model) : model(model) {}

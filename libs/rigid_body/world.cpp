@@ -152,9 +152,7 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
   Eigen::VectorXd c(m), ct(friction ? 2 * m : 0);
   for (Eigen::Index i = 0; i < m; ++i) {
     const auto& contact = contacts[static_cast<std::size_t>(i)];
-    const Vec3& p = contact.point.p;
-    const Pose &A = poses[contact.feature.a], &B = poses[contact.feature.b];
-    const Vec3 v = A.v + A.omega.cross(p - A.x) - B.v - B.omega.cross(p - B.x);
+    const Vec3 v = relative_velocity(poses[contact.feature.a], poses[contact.feature.b], contact.point.p);
     const double v_rel = contact.point.n.dot(v);
     double e = std::min(model_.bodies[contact.feature.a].restitution, model_.bodies[contact.feature.b].restitution);
     if (v_rel > -model_.params.resting_speed) e = 0;  // a slow approach ends the bounce sequence
@@ -211,9 +209,7 @@ void World::classify_contacts() {
       continue;
     }
     touching.push_back(ActiveContact{f, c, 0});
-    const Vec3 r_a = c.p - poses[f.a].x, r_b = c.p - poses[f.b].x;
-    const double v_rel = c.n.dot(poses[f.a].v + poses[f.a].omega.cross(r_a) - poses[f.b].v - poses[f.b].omega.cross(r_b));
-    if (v_rel < -model_.params.resting_speed) colliding = true;
+    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.resting_speed) colliding = true;
   }
   if (colliding) {  // approaching faster than resting: an impact at the start of the step
     if (!collide(touching)) ++report_.lcp_failures;
