@@ -11,8 +11,8 @@ void ContactSystem::build(const ActiveContact* contacts, std::size_t count, cons
                           bool with_tangents) {
   const std::size_t row_count = with_tangents ? 3 * count : count;
   rows.resize(row_count);
-  if (with_tangents) tangents.resize(count);
-  if (with_tangents)
+  if (with_tangents) {
+    tangents.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
       // Any orthonormal pair spanning the tangent plane (the friction disc is isotropic).
       const Vec3& nn = contacts[i].point.n;
@@ -22,6 +22,7 @@ void ContactSystem::build(const ActiveContact* contacts, std::size_t count, cons
       const Vec3 t2 = nn.cross(t1);
       tangents[i] = {t1, t2};
     }
+  }
   // Row r: contact r's normal for r < count, then contact i's two tangents at count + 2i, + 1.
   for (std::size_t r = 0; r < row_count; ++r) {
     const std::size_t i = r < count ? r : (r - count) / 2;

@@ -1,9 +1,9 @@
 #include "rigid_body/world.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <memory>
 #include <stdexcept>
-#include <string>
+#include <utility>
 
 #include "rigid_body/contact_system.hpp"
 #include "rigid_body/cvode_integrator.hpp"

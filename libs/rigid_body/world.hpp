@@ -19,7 +19,6 @@
 // right-hand side with the held friction as a load. At impacts, the impulses make each contact's
 // tangential velocity zero within mu times its normal impulse. Without friction the frictionless
 // LCP runs alone, as before.
-#include <array>
 #include <memory>
 #include <vector>
 

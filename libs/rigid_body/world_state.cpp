@@ -1,6 +1,7 @@
 #include "rigid_body/world_state.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace wysiwyf::haptics {
 
