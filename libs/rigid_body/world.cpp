@@ -1,558 +1,289 @@
 #include "rigid_body/world.hpp"
 
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
-
 #include <algorithm>
-#include <cmath>
+#include <memory>
 #include <stdexcept>
-#include <string>
+#include <utility>
+
+#include "rigid_body/contact_system.hpp"
+#include "rigid_body/cvode_integrator.hpp"
+#include "rigid_body/state_vector.hpp"
 
 namespace wysiwyf::haptics {
 
-constexpr int kStateSize = 13;  // x(3) q(4: w x y z) P(3) L(3)
+namespace {
 
-struct World::Cvode {
-  SUNContext ctx = nullptr;
-  N_Vector y = nullptr;
-  void* mem = nullptr;
-  SUNNonlinearSolver nls = nullptr;
-  bool initialised = false;
-  long steps_seen = 0, failures_seen = 0;  // CVODE's counters at the last count (reset by CVodeReInit)
+// (before the model's own checks, in the order they have always come)
+std::vector<BodyModel> one_state_each(std::vector<BodyModel>& models, const std::vector<BodyState>& initial) {
+  if (models.size() != initial.size()) throw std::invalid_argument("World: one initial state per body expected");
+  return std::move(models);
+}
 
-  explicit Cvode(int n) {
-    if (SUNContext_Create(nullptr, &ctx) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
-    y = N_VNew_Serial(n, ctx);
-    mem = CVodeCreate(CV_ADAMS, ctx);  // non-stiff rigid-body dynamics: Adams-Moulton
-    if (!y || !mem) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
-  }
-  ~Cvode() {
-    if (mem) CVodeFree(&mem);
-    if (nls) SUNNonlinSolFree(nls);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
-  }
-  static int rhs(realtype, N_Vector y, N_Vector ydot, void* user) {
-    static_cast<World*>(user)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-    return 0;
-  }
-  // CVODE's error weights 1 / (rtol |y_i| + atol), in one pass (its own scalar-tolerance
-  // version takes five vector operations, at every step).
-  static int error_weights(N_Vector y, N_Vector ewt, void* user) {
-    const WorldParams& p = static_cast<World*>(user)->params_;
-    const double* yy = N_VGetArrayPointer(y);
-    double* w = N_VGetArrayPointer(ewt);
-    for (sunindextype i = 0, n = N_VGetLength(y); i < n; ++i) w[i] = 1.0 / (p.rtol * std::abs(yy[i]) + p.atol);
-    return 0;
-  }
-  static int roots(realtype, N_Vector y, realtype* g, void* user) {
-    static_cast<World*>(user)->roots(N_VGetArrayPointer(y), g);
-    return 0;
-  }
-  void reinit(double t) {
-    check(CVodeReInit(mem, t, y), "CVodeReInit");
-    steps_seen = failures_seen = 0;
-  }
-  void count_work(StepReport& report) {
-    long steps = 0, failures = 0;
-    CVodeGetNumSteps(mem, &steps);
-    CVodeGetNumErrTestFails(mem, &failures);
-    report.integrator_steps += static_cast<int>(steps - steps_seen);
-    report.error_test_failures += static_cast<int>(failures - failures_seen);
-    steps_seen = steps, failures_seen = failures;
-  }
-  static void check(int flag, const char* call) {
-    if (flag < 0) throw std::runtime_error(std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag));
-  }
-};
+}  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
-    : models_(std::move(models)), states_(std::move(initial)), params_(params) {
-  if (models_.size() != states_.size()) throw std::invalid_argument("World: one initial state per body expected");
-  if (!(params_.rtol >= 0) || !(params_.atol > 0))
-    throw std::invalid_argument("World: tolerances rtol >= 0 and atol > 0 expected, got rtol " +
-                                std::to_string(params_.rtol) + ", atol " + std::to_string(params_.atol));
-  slot_.assign(models_.size(), -1);
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    const auto& m = models_[i];
-    if ((m.half_extents.array() <= 0).any())
-      throw std::invalid_argument("body '" + m.name + "': half extents must be positive");
-    if (m.dynamic && !(m.mass > 0)) throw std::invalid_argument("body '" + m.name + "': mass must be positive");
-    if (m.restitution < 0 || m.restitution > 1)
-      throw std::invalid_argument("body '" + m.name + "': restitution must be within [0, 1]");
-    if (m.dynamic) {
-      slot_[i] = static_cast<int>(dynamic_.size());
-      dynamic_.push_back(static_cast<int>(i));
-    }
-    states_[i].q.normalize();
-  }
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    inv_inertia_body_.push_back(models_[i].dynamic ? Mat3(models_[i].inertia_body.inverse()) : Mat3::Zero());
-    static_poses_.push_back(pose_of(static_cast<int>(i), states_[i]));
-  }
-  ext_force_.assign(models_.size(), Vec3::Zero());
-  ext_torque_.assign(models_.size(), Vec3::Zero());
-  cvode_ = std::make_unique<Cvode>(std::max<int>(1, kStateSize * static_cast<int>(dynamic_.size())));
+    : model_(one_state_each(models, initial), params), state_(model_, std::move(initial)), contact_system_(model_) {
+  const WorldParams& p = model_.params;
+  const CvodeOptions options{p.rtol, p.atol, p.initial_step, p.restart_growth, p.nonlinear_convergence};
+  const int size = std::max<int>(1, kStateSize * static_cast<int>(model_.dynamic.size()));
+  integrator_ = std::make_unique<CvodeIntegrator>(size, options, *this);
 }
 
 World::~World() = default;
 
 void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque) {
-  // A new sample is a discontinuity of the right-hand side: the multistep history is invalid.
-  // (A change at the level of round-off, from a wrench rotated through a pose, is none.)
-  const auto changed = [](const Vec3& a, const Vec3& b) { return (a - b).norm() > 1e-12 * std::max(1.0, b.norm()); };
-  if (changed(force, ext_force_[body]) || changed(torque, ext_torque_[body])) restart_ = true;
-  ext_force_[body] = force;
-  ext_torque_[body] = torque;
+  state_.set_wrench(body, force, torque);
 }
-
-void World::set_state(int i, const BodyState& s) {
-  states_[i] = s;
-  states_[i].q.normalize();
-  static_poses_[i] = pose_of(i, states_[i]);
-  restart_ = true;
-}
-
-double World::energy() const {
-  double e = 0;
-  for (int i : dynamic_) {
-    const BodyKinematics k(models_[i], states_[i]);
-    e += 0.5 * models_[i].mass * k.v.squaredNorm() + 0.5 * k.omega.dot(states_[i].L) -
-         models_[i].mass * params_.gravity.dot(states_[i].x);
-  }
-  return e;
-}
-
-void World::pack(double* y) const {
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const BodyState& s = states_[dynamic_[k]];
-    double* o = y + kStateSize * k;
-    o[0] = s.x.x(), o[1] = s.x.y(), o[2] = s.x.z();
-    o[3] = s.q.w(), o[4] = s.q.x(), o[5] = s.q.y(), o[6] = s.q.z();
-    o[7] = s.P.x(), o[8] = s.P.y(), o[9] = s.P.z();
-    o[10] = s.L.x(), o[11] = s.L.y(), o[12] = s.L.z();
-  }
-}
-
-void World::unpack(const double* y, std::vector<BodyState>& states) const {
-  states = states_;
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const double* o = y + kStateSize * k;
-    BodyState& s = states[dynamic_[k]];
-    s.x = Vec3(o[0], o[1], o[2]);
-    s.q = Quat(o[3], o[4], o[5], o[6]);
-    s.P = Vec3(o[7], o[8], o[9]);
-    s.L = Vec3(o[10], o[11], o[12]);
-  }
-}
-
-Pose World::pose_of(int i, const BodyState& s) const {
-  const BodyKinematics k(models_[i], s, inv_inertia_body_[i]);
-  return Pose{s.x, k.R, k.v, k.omega, k.inv_mass, k.inv_inertia_world};
-}
-
-void World::poses_of(const std::vector<BodyState>& states, std::vector<Pose>& poses) const {
-  poses = static_poses_;  // (static bodies do not move)
-  for (int i : dynamic_) poses[i] = pose_of(i, states[i]);
-}
-
-// A = J M^-1 J^T, one entry at a time: a row of J touches at most two bodies, so the dense
-// product over 6 columns per dynamic body would be mostly zeros.
-void World::contact_matrix(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
-                           bool with_tangents) {
-  const std::size_t rows = with_tangents ? 3 * count : count;
-  jacobian_.resize(rows);
-  if (with_tangents) tangents_.resize(count);
-  auto set_row = [&](std::size_t row, const ActiveContact& c, const Vec3& d) {
-    JacobianRow& out = jacobian_[row];
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? c.feature.a : c.feature.b;
-      out.slot[side] = slot_[body];
-      if (slot_[body] < 0) continue;
-      const Pose& p = poses[body];
-      const Vec3 ds = side == 0 ? d : Vec3(-d);
-      const Vec3 moment = (c.point.p - p.x).cross(ds);
-      out.j[side].head<3>() = ds;
-      out.j[side].tail<3>() = moment;
-      out.minv_j[side].head<3>() = p.inv_mass * ds;
-      out.minv_j[side].tail<3>() = p.inv_inertia * moment;
-    }
-  };
-  for (std::size_t i = 0; i < count; ++i) {
-    const auto& c = contacts[i];
-    set_row(i, c, c.point.n);
-    if (!with_tangents) continue;
-    // Any orthonormal pair spanning the tangent plane (the friction disc is isotropic).
-    const Vec3& nn = c.point.n;
-    Eigen::Index least;
-    nn.cwiseAbs().minCoeff(&least);
-    const Vec3 t1 = nn.cross(Vec3::Unit(least)).normalized();
-    const Vec3 t2 = nn.cross(t1);
-    tangents_[i] = {t1, t2};
-    set_row(count + 2 * i, c, t1);
-    set_row(count + 2 * i + 1, c, t2);
-  }
-  const auto n = static_cast<Eigen::Index>(rows);
-  A_.resize(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index k = 0; k <= i; ++k) {
-      const JacobianRow &ri = jacobian_[static_cast<std::size_t>(i)], &rk = jacobian_[static_cast<std::size_t>(k)];
-      double sum = 0;
-      for (int s = 0; s < 2; ++s)
-        for (int t = 0; t < 2; ++t)
-          if (ri.slot[s] >= 0 && ri.slot[s] == rk.slot[t]) sum += ri.j[s].dot(rk.minv_j[t]);
-      A_(i, k) = A_(k, i) = sum;
-    }
-}
-
-bool World::friction_coefficients(const ActiveContact* contacts, std::size_t count) {
-  mu_.resize(static_cast<Eigen::Index>(count));
-  bool any = false;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double mu = std::max(models_[contacts[i].feature.a].friction, models_[contacts[i].feature.b].friction);
-    mu_[static_cast<Eigen::Index>(i)] = mu;
-    any = any || mu > 0;
-  }
-  return any;
-}
-
-// gravity + the user's wrench (+ the friction held for this step) on every dynamic body.
-void World::applied_loads(const std::vector<Pose>& poses, bool with_friction) {
-  force_.resize(models_.size());
-  torque_.resize(models_.size());
-  for (int i : dynamic_) {
-    force_[i] = models_[i].mass * params_.gravity + ext_force_[i];
-    torque_[i] = ext_torque_[i];
-  }
-  if (!with_friction) return;
-  for (const auto& c : resting_) {
-    if (c.friction.isZero() || !c.point.valid) continue;
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? c.feature.a : c.feature.b;
-      if (slot_[body] < 0) continue;
-      const Vec3 f = side == 0 ? c.friction : Vec3(-c.friction);
-      force_[body] += f;
-      torque_[body] += (c.point.p - poses[body].x).cross(f);
-    }
-  }
-}
-
-void World::contact_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
-                          const std::vector<Pose>& poses, double tangent_horizon) {
-  const auto m = static_cast<Eigen::Index>(live);
-  b_.resize(m);
-  b_free_.resize(m);
-  if (tangent_horizon > 0) bt_.resize(2 * m), vt_.resize(2 * m);
-  const double ws = 2 * M_PI * params_.stabilisation_hz;
-  // Each dynamic body's accelerations under the applied loads alone.
-  acc_.resize(models_.size());
-  for (const int body : dynamic_) {
-    auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
-    const Pose& p = poses[body];
-    linear = force_[body] * p.inv_mass;
-    angular = p.inv_inertia * (torque_[body] - p.omega.cross(states[body].L));
-  }
-  for (std::size_t i = 0; i < live; ++i) {
-    const auto& c = active[i].point;
-    double acc = 0, gap_rate = 0;
-    Vec3 a_rel = Vec3::Zero(), v_rel = Vec3::Zero();  // of a's point relative to b's
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-      if (slot_[body] < 0) continue;  // a static body's points neither move nor accelerate
-      const double sgn = side == 0 ? 1.0 : -1.0;
-      const Pose& p = poses[body];
-      const Vec3 r = c.p - p.x;
-      const auto& [linear, angular] = acc_[static_cast<std::size_t>(body)];
-      const Vec3 a = p.omega.cross(p.omega.cross(r)) + linear + angular.cross(r);  // centripetal + applied
-      const Vec3 vp = p.v + p.omega.cross(r);
-      acc += sgn * (c.n.dot(a) + 2 * c.ndot.dot(vp));
-      gap_rate += sgn * c.n.dot(vp);
-      a_rel += sgn * a;
-      v_rel += sgn * vp;
-    }
-    const auto k = static_cast<Eigen::Index>(i);
-    b_free_[k] = acc;
-    b_[k] = acc + 2 * ws * gap_rate + ws * ws * c.gap;
-    if (tangent_horizon > 0)
-      for (int j = 0; j < 2; ++j) {
-        const Vec3& t = tangents_[i][static_cast<std::size_t>(j)];
-        vt_[2 * k + j] = t.dot(v_rel);
-        bt_[2 * k + j] = t.dot(a_rel) + vt_[2 * k + j] / tangent_horizon;  // target: no sliding at the horizon
-      }
-  }
-}
+void World::set_state(int i, const BodyState& s) { state_.set_body(model_, i, s); }
+double World::energy() const { return state_.energy(model_); }
 
 std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
   std::size_t live = 0;
-  for (auto& c : resting_) {
-    c.point = evaluate(c.feature, models_, poses);
-    if (c.point.valid) std::swap(c, resting_[live++]);
+  for (auto& c : state_.resting) {
+    c.point = evaluate(c.feature, model_.bodies, poses);
+    if (c.point.valid) std::swap(c, state_.resting[live++]);
   }
   return live;
 }
 
 void World::update_friction(double dt) {
+  ContactSystem& cs = contact_system_;
+  std::vector<ActiveContact>& resting = state_.resting;
   // (without friction coefficients no contact ever carries friction: nothing to do)
-  if (!friction_coefficients(resting_.data(), resting_.size())) return;
-  std::vector<Pose>& poses = scratch_poses_;
-  poses_of(states_, poses);
+  if (!cs.friction_coefficients(resting.data(), resting.size())) return;
+  std::vector<Pose>& poses = work_.poses;
+  state_.poses_of(model_, state_.bodies, poses);
   const std::size_t live = evaluate_resting(poses);
-  const bool any = live > 0 && friction_coefficients(resting_.data(), live);
+  const bool any = live > 0 && cs.friction_coefficients(resting.data(), live);
   if (any) {
-    applied_loads(poses, false);
-    contact_matrix(resting_.data(), live, poses, true);
-    contact_terms(resting_.data(), live, states_, poses, dt);
+    cs.applied_loads(state_, poses, false);
+    cs.build(resting.data(), live, poses, true);
+    cs.free_terms(resting.data(), live, state_.bodies, poses, dt);
     // The last step's friction (classify_contacts carries it over while the contacts stay the
     // same), in the tangent bases, starts the rounds.
-    ft_start_.resize(static_cast<Eigen::Index>(2 * live));
+    work_.ft_start.resize(static_cast<Eigen::Index>(2 * live));
     for (std::size_t i = 0; i < live; ++i)
       for (std::size_t j = 0; j < 2; ++j)
-        ft_start_[static_cast<Eigen::Index>(2 * i + j)] = tangents_[i][j].dot(resting_[i].friction);
+        work_.ft_start[static_cast<Eigen::Index>(2 * i + j)] = cs.tangents[i][j].dot(resting[i].friction);
   }
-  for (auto& c : resting_) c.friction.setZero();  // before solving: no failed solve leaves it applied
+  for (auto& c : resting) c.friction.setZero();  // before solving: no failed solve leaves it applied
   if (!any) return;
-  FrictionResult r = friction_.solve(lcp_, A_, b_, bt_, mu_, vt_, ft_start_);
-  if (!r.ok) r = friction_.solve(lcp_, A_, b_free_, bt_, mu_, vt_);
+  FrictionResult r = friction_.solve(lcp_, cs.A, cs.b, cs.bt, cs.mu, cs.vt, work_.ft_start);
+  if (!r.ok) r = friction_.solve(lcp_, cs.A, cs.b_free, cs.bt, cs.mu, cs.vt);
   report_.friction_rounds += r.iterations;
   if (!r.ok) return;  // frictionless this step; the normal LCP of the right-hand side reports it
   if (!r.converged) ++report_.friction_unconverged;
   for (std::size_t i = 0; i < live; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    resting_[i].friction = r.ft[2 * k] * tangents_[i][0] + r.ft[2 * k + 1] * tangents_[i][1];
+    resting[i].friction = r.ft[2 * k] * cs.tangents[i][0] + r.ft[2 * k + 1] * cs.tangents[i][1];
   }
-  restart_ = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
+  state_.restart = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
 }
 
 void World::rhs(const double* y, double* ydot) {
   ++report_.rhs_evaluations;
-  unpack(y, scratch_states_);
-  poses_of(scratch_states_, scratch_poses_);
+  ContactSystem& cs = contact_system_;
+  std::vector<ActiveContact>& resting = state_.resting;
+  std::vector<BodyState>& states = work_.states;
+  std::vector<Pose>& poses = work_.poses;
+  states = state_.bodies;
+  unpack_state(y, model_.dynamic, states);
+  state_.poses_of(model_, states, poses);
   // Resting contacts at this very state.
-  const std::size_t live = evaluate_resting(scratch_poses_);
-  for (std::size_t i = live; i < resting_.size(); ++i) resting_[i].force = 0;  // (the live ones get theirs below)
+  const std::size_t live = evaluate_resting(poses);
+  for (std::size_t i = live; i < resting.size(); ++i) resting[i].force = 0;  // (the live ones get theirs below)
   // Gravity, the user's wrench and the friction held for this step, then the normal forces of
   // eqs. (9)-(10) that keep the contacts from closing under them.
-  applied_loads(scratch_poses_, true);
-  std::vector<Vec3>& force = force_;
-  std::vector<Vec3>& torque = torque_;
+  cs.applied_loads(state_, poses, true);
+  std::vector<Vec3>& force = cs.force;
+  std::vector<Vec3>& torque = cs.torque;
   if (live > 0) {
-    const ActiveContact* active = resting_.data();
-    contact_matrix(active, live, scratch_poses_);
-    contact_terms(active, live, scratch_states_, scratch_poses_, 0);
+    const ActiveContact* active = resting.data();
+    cs.build(active, live, poses);
+    cs.free_terms(active, live, states, poses, 0);
     // Warm-started from the last right-hand side's clamped set: the contacts rarely change
     // between evaluations, and then one small solve replaces the pivoting.
-    LcpResult r = lcp_.solve(A_, b_, rhs_clamped_);
+    LcpResult r = lcp_.solve(cs.A, cs.b, state_.rhs_clamped);
     // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
     // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
     // problem is always solvable (frictionless, b in the range of J): fall back to it.
-    if (!r.ok) r = lcp_.solve(A_, b_free_);
+    if (!r.ok) r = lcp_.solve(cs.A, cs.b_free);
     if (r.ok)
-      rhs_clamped_ = r.clamped;
+      state_.rhs_clamped = r.clamped;
     else
       ++report_.lcp_failures;
     for (std::size_t i = 0; i < live; ++i) {
       const double f = r.f[static_cast<Eigen::Index>(i)];
-      resting_[i].force = f;
+      resting[i].force = f;
       const auto& c = active[i].point;
-      for (int side = 0; side < 2; ++side) {
-        const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
-        if (slot_[body] < 0) continue;
-        const Vec3 fn = (side == 0 ? f : -f) * c.n;
-        force[body] += fn;
-        torque[body] += (c.p - scratch_poses_[body].x).cross(fn);
-      }
+      apply_at_contact(active[i].feature, c.p, Vec3(f * c.n), model_.slot, poses,
+                       [&](int, int body, const Vec3& fn, const Vec3& moment) {
+                         force[body] += fn;
+                         torque[body] += moment;
+                       });
     }
   }
-  for (std::size_t k = 0; k < dynamic_.size(); ++k) {
-    const int i = dynamic_[k];
-    const Pose& p = scratch_poses_[i];
-    const Quat& q = scratch_states_[i].q;
-    double* d = ydot + kStateSize * k;
-    d[0] = p.v.x(), d[1] = p.v.y(), d[2] = p.v.z();
-    // dq/dt = 1/2 (0, omega) q
-    d[3] = -0.5 * p.omega.dot(q.vec());
-    const Vec3 qv = 0.5 * (q.w() * p.omega + p.omega.cross(q.vec()));
-    d[4] = qv.x(), d[5] = qv.y(), d[6] = qv.z();
-    d[7] = force[i].x(), d[8] = force[i].y(), d[9] = force[i].z();
-    d[10] = torque[i].x(), d[11] = torque[i].y(), d[12] = torque[i].z();
+  for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
+    const int i = model_.dynamic[k];
+    const Pose& p = poses[i];
+    write_derivative(p.v, p.omega, states[i].q, force[i], torque[i], ydot + kStateSize * k);
   }
 }
 
 void World::roots(const double* y, double* g) {
-  unpack(y, scratch_states_);
-  poses_of(scratch_states_, scratch_poses_);
-  for (std::size_t k = 0; k < watched_.size(); ++k) {
-    const ContactPoint c = evaluate(watched_[k], models_, scratch_poses_);
-    g[k] = c.valid ? c.gap : params_.margin;  // a feature that no longer faces the other cannot hit it
+  work_.states = state_.bodies;
+  unpack_state(y, model_.dynamic, work_.states);
+  state_.poses_of(model_, work_.states, work_.poses);
+  for (std::size_t k = 0; k < state_.watched.size(); ++k) {
+    const ContactPoint c = evaluate(state_.watched[k], model_.bodies, work_.poses);
+    g[k] = c.valid ? c.gap : model_.params.margin;  // a feature that no longer faces the other cannot hit it
   }
 }
 
 bool World::collide(std::vector<ActiveContact>& contacts) {
   if (contacts.empty()) return true;
   std::vector<Pose> poses;
-  poses_of(states_, poses);
-  for (auto& c : contacts) c.point = evaluate(c.feature, models_, poses);
-  const bool friction = friction_coefficients(contacts.data(), contacts.size());
-  contact_matrix(contacts.data(), contacts.size(), poses, friction);
+  state_.poses_of(model_, state_.bodies, poses);
+  for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses);
+  ContactSystem& cs = contact_system_;
+  const bool friction = cs.friction_coefficients(contacts.data(), contacts.size());
+  cs.build(contacts.data(), contacts.size(), poses, friction);
   const auto m = static_cast<Eigen::Index>(contacts.size());
   Eigen::VectorXd c(m), ct(friction ? 2 * m : 0);
   for (Eigen::Index i = 0; i < m; ++i) {
     const auto& contact = contacts[static_cast<std::size_t>(i)];
-    const Vec3& p = contact.point.p;
-    const Pose &A = poses[contact.feature.a], &B = poses[contact.feature.b];
-    const Vec3 v = A.v + A.omega.cross(p - A.x) - B.v - B.omega.cross(p - B.x);
+    const Vec3 v = relative_velocity(poses[contact.feature.a], poses[contact.feature.b], contact.point.p);
     const double v_rel = contact.point.n.dot(v);
-    double e = std::min(models_[contact.feature.a].restitution, models_[contact.feature.b].restitution);
-    if (v_rel > -params_.resting_speed) e = 0;  // a slow approach ends the bounce sequence
+    double e = std::min(model_.bodies[contact.feature.a].restitution, model_.bodies[contact.feature.b].restitution);
+    if (v_rel > -model_.params.resting_speed) e = 0;  // a slow approach ends the bounce sequence
     c[i] = (1 + e) * v_rel;                     // eq. (14): v+ + e v- >= 0
     if (friction)  // target: no tangential velocity after the impact (within mu times the normal impulse)
-      for (int k = 0; k < 2; ++k) ct[2 * i + k] = tangents_[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
+      for (int k = 0; k < 2; ++k)
+        ct[2 * i + k] = cs.tangents[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
   }
   Eigen::VectorXd jn, jt;
   if (friction) {
-    const FrictionResult r = friction_.solve(lcp_, A_, c, ct, mu_, ct);
+    const FrictionResult r = friction_.solve(lcp_, cs.A, c, ct, cs.mu, ct);
     if (!r.ok) return false;
     if (!r.converged) ++report_.friction_unconverged;
     jn = r.fn, jt = r.ft;
   } else {
-    const LcpResult r = lcp_.solve(A_, c);
+    const LcpResult r = lcp_.solve(cs.A, c);
     if (!r.ok) return false;
     jn = r.f;
   }
   for (Eigen::Index i = 0; i < m; ++i) {
     const auto& contact = contacts[static_cast<std::size_t>(i)];
     Vec3 j = jn[i] * contact.point.n;
-    if (friction)
-      j += jt[2 * i] * tangents_[static_cast<std::size_t>(i)][0] + jt[2 * i + 1] * tangents_[static_cast<std::size_t>(i)][1];
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? contact.feature.a : contact.feature.b;
-      if (slot_[body] < 0) continue;
-      const Vec3 on_body = side == 0 ? j : Vec3(-j);
-      states_[body].P += on_body;
-      states_[body].L += (contact.point.p - poses[body].x).cross(on_body);
+    if (friction) {
+      const auto& t = cs.tangents[static_cast<std::size_t>(i)];
+      j += jt[2 * i] * t[0] + jt[2 * i + 1] * t[1];
     }
+    apply_at_contact(contact.feature, contact.point.p, j, model_.slot, poses,
+                     [&](int, int body, const Vec3& on_body, const Vec3& moment) {
+                       state_.bodies[body].P += on_body;
+                       state_.bodies[body].L += moment;
+                     });
   }
   return true;
 }
 
 void World::classify_contacts() {
-  std::vector<Pose>& poses = scratch_poses_;
-  poses_of(states_, poses);
-  candidates_.clear();
-  for (int a : dynamic_)
-    for (int b = 0; b < body_count(); ++b)
-      if (b != a && (!models_[b].dynamic || a < b)) find_candidates(a, b, models_, poses, params_.margin, candidates_);
-  std::vector<ActiveContact>& touching = touching_;
-  std::vector<ContactFeature>& watched = watched_next_;
+  std::vector<Pose>& poses = work_.poses;
+  state_.poses_of(model_, state_.bodies, poses);
+  work_.candidates.clear();
+  for (int a : model_.dynamic)
+    for (int b = 0; b < model_.body_count(); ++b)
+      if (b != a && (!model_.bodies[b].dynamic || a < b))
+        find_candidates(a, b, model_.bodies, poses, model_.params.margin, work_.candidates);
+  std::vector<ActiveContact>& touching = work_.touching;
+  std::vector<ContactFeature>& watched = work_.watched_next;
   touching.clear();
   watched.clear();
   bool colliding = false;
-  for (const auto& f : candidates_) {
-    const ContactPoint c = evaluate(f, models_, poses);
+  for (const auto& f : work_.candidates) {
+    const ContactPoint c = evaluate(f, model_.bodies, poses);
     if (!c.valid) continue;
-    if (c.gap > params_.contact_tolerance) {
+    if (c.gap > model_.params.contact_tolerance) {
       watched.push_back(f);
       continue;
     }
     touching.push_back(ActiveContact{f, c, 0});
-    const Vec3 r_a = c.p - poses[f.a].x, r_b = c.p - poses[f.b].x;
-    const double v_rel = c.n.dot(poses[f.a].v + poses[f.a].omega.cross(r_a) - poses[f.b].v - poses[f.b].omega.cross(r_b));
-    if (v_rel < -params_.resting_speed) colliding = true;
+    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.resting_speed) colliding = true;
   }
   if (colliding) {  // approaching faster than resting: an impact at the start of the step
     if (!collide(touching)) ++report_.lcp_failures;
     ++report_.collisions;
-    restart_ = true;
+    state_.restart = true;
   }
   const bool same_resting =
-      touching.size() == resting_.size() &&
-      std::equal(touching.begin(), touching.end(), resting_.begin(),
+      touching.size() == state_.resting.size() &&
+      std::equal(touching.begin(), touching.end(), state_.resting.begin(),
                  [](const ActiveContact& x, const ActiveContact& y) { return x.feature == y.feature; });
   if (same_resting)  // the same contacts: the friction they held starts this step's solve
-    for (std::size_t i = 0; i < touching.size(); ++i) touching[i].friction = resting_[i].friction;
+    for (std::size_t i = 0; i < touching.size(); ++i) touching[i].friction = state_.resting[i].friction;
   else
-    restart_ = true;
-  if (watched != watched_) restart_ = roots_changed_ = true;
-  resting_.swap(touching);  // (the scratch vectors keep their capacity)
-  watched_.swap(watched);
+    state_.restart = true;
+  if (watched != state_.watched) state_.restart = state_.roots_changed = true;
+  state_.resting.swap(touching);  // (the scratch vectors keep their capacity)
+  state_.watched.swap(watched);
 }
 
 StepReport World::step(double dt) {
   report_ = StepReport{};
-  if (dynamic_.empty()) {
-    t_ += dt;
+  if (model_.dynamic.empty()) {
+    state_.t += dt;
     return report_;
   }
   classify_contacts();
   update_friction(dt);
-  auto& cv = *cvode_;
-  double* y = N_VGetArrayPointer(cv.y);
-  auto reinit_roots = [&] {
-    roots_changed_ = false;
-    std::vector<int> directions(watched_.size(), -1);  // approaching only
-    Cvode::check(CVodeRootInit(cv.mem, static_cast<int>(watched_.size()), watched_.empty() ? nullptr : &Cvode::roots),
-                 "CVodeRootInit");
-    if (!watched_.empty()) Cvode::check(CVodeSetRootDirection(cv.mem, directions.data()), "CVodeSetRootDirection");
+  CvodeIntegrator& cv = *integrator_;
+  double* y = cv.state();
+  auto watch_roots = [&] {
+    state_.roots_changed = false;
+    cv.watch_roots(static_cast<int>(state_.watched.size()));  // approaching only
   };
-  if (restart_) {
-    for (int i : dynamic_) states_[i].q.normalize();
-    pack(y);
-    if (!cv.initialised) {
-      Cvode::check(CVodeInit(cv.mem, &Cvode::rhs, t_, cv.y), "CVodeInit");
-      Cvode::check(CVodeSetUserData(cv.mem, this), "CVodeSetUserData");
-      cv.nls = SUNNonlinSol_FixedPoint(cv.y, 0, cv.ctx);
-      Cvode::check(CVodeSetNonlinearSolver(cv.mem, cv.nls), "CVodeSetNonlinearSolver");
-      Cvode::check(CVodeSetMaxNumSteps(cv.mem, 100000), "CVodeSetMaxNumSteps");
-      Cvode::check(CVodeWFtolerances(cv.mem, &Cvode::error_weights), "CVodeWFtolerances");
-      // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of
-      // the first step, which costs right-hand sides; a small fixed one grows within a few steps.
-      if (params_.initial_step > 0)
-        Cvode::check(CVodeSetInitStep(cv.mem, params_.initial_step), "CVodeSetInitStep");
-      Cvode::check(CVodeSetEtaMaxEarlyStep(cv.mem, params_.restart_growth), "CVodeSetEtaMaxEarlyStep");
-      Cvode::check(CVodeSetNonlinConvCoef(cv.mem, params_.nonlinear_convergence), "CVodeSetNonlinConvCoef");
-      cv.initialised = true;  // (CVodeReInit keeps these options)
-    } else {
-      cv.reinit(t_);
-    }
-    if (roots_changed_) reinit_roots();
-    restart_ = false;
+  if (state_.restart) {
+    for (int i : model_.dynamic) state_.bodies[i].q.normalize();
+    pack_state(state_.bodies, model_.dynamic, y);
+    cv.restart(state_.t);
+    if (state_.roots_changed) watch_roots();
+    state_.restart = false;
   }
-  const double t_end = t_ + dt;
-  Cvode::check(CVodeSetStopTime(cv.mem, t_end), "CVodeSetStopTime");
+  const double t_end = state_.t + dt;
+  cv.set_stop_time(t_end);
   while (true) {
-    realtype t_reached = t_;
-    const int flag = CVode(cv.mem, t_end, cv.y, &t_reached, CV_NORMAL);
-    Cvode::check(flag, "CVode");
-    cv.count_work(report_);
-    unpack(y, states_);
-    t_ = t_reached;
-    if (flag != CV_ROOT_RETURN) break;
+    double t_reached = state_.t;
+    const bool at_root = cv.advance(t_end, t_reached);
+    cv.count_work(report_.integrator_steps, report_.error_test_failures);
+    unpack_state(y, model_.dynamic, state_.bodies);
+    state_.t = t_reached;
+    if (!at_root) break;
     // An impact (STEP 4-6): impulses over every touching contact, then restart from here.
-    std::vector<int> found(watched_.size(), 0);
-    Cvode::check(CVodeGetRootInfo(cv.mem, found.data()), "CVodeGetRootInfo");
+    std::vector<int> found(state_.watched.size(), 0);
+    cv.root_info(found.data());
     // Every watched feature that touches now takes part, flagged or not: the four corners of a
     // cube landing flat hit together, whichever of them the root finder happened to report.
-    std::vector<ActiveContact> contacts = resting_;
+    std::vector<ActiveContact> contacts = state_.resting;
     std::vector<ContactFeature> still_watched;
     std::vector<Pose> poses;
-    poses_of(states_, poses);
-    for (std::size_t k = 0; k < watched_.size(); ++k) {
-      const ContactPoint c = evaluate(watched_[k], models_, poses);
-      if (found[k] != 0 || (c.valid && c.gap <= params_.contact_tolerance))
-        contacts.push_back(ActiveContact{watched_[k], c, 0});
+    state_.poses_of(model_, state_.bodies, poses);
+    for (std::size_t k = 0; k < state_.watched.size(); ++k) {
+      const ContactPoint c = evaluate(state_.watched[k], model_.bodies, poses);
+      if (found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance))
+        contacts.push_back(ActiveContact{state_.watched[k], c, 0});
       else
-        still_watched.push_back(watched_[k]);
+        still_watched.push_back(state_.watched[k]);
     }
     if (!collide(contacts)) ++report_.lcp_failures;
     ++report_.collisions;
-    resting_ = std::move(contacts);
-    watched_ = std::move(still_watched);
-    if (report_.collisions >= params_.max_collisions_per_step) watched_.clear();  // no more events this step
-    pack(y);
-    cv.reinit(t_);
-    reinit_roots();
-    if (t_ >= t_end) break;
+    state_.resting = std::move(contacts);
+    state_.watched = std::move(still_watched);
+    if (report_.collisions >= model_.params.max_collisions_per_step) state_.watched.clear();  // no more events this step
+    pack_state(state_.bodies, model_.dynamic, y);
+    cv.restart(state_.t);
+    watch_roots();
+    if (state_.t >= t_end) break;
   }
   return report_;
 }

@@ -1,0 +1,46 @@
+#pragma once
+// What a World's motion changes, as MuJoCo's mjData less its scratch: the time, the bodies'
+// states, the user's wrenches, the contacts being held and the ones being watched, and what
+// the integrator must redo before it goes on.
+#include <vector>
+
+#include "scene/body.hpp"
+#include "rigid_body/contact.hpp"
+#include "rigid_body/lcp.hpp"
+#include "rigid_body/world_model.hpp"
+
+namespace wysiwyf::haptics {
+
+struct ActiveContact {
+  ContactFeature feature;
+  ContactPoint point;
+  double force = 0;                 // N, normal, from the last LCP
+  Vec3 friction = Vec3::Zero();     // N, tangential force on body a (world frame)
+};
+
+struct WorldState {
+  // At t = 0 in `initial` (orientations normalised), with no wrench and no contact yet.
+  WorldState(const WorldModel& model, std::vector<BodyState> initial);
+  // The user's wrench on body i's centre of mass (world frame), held until changed.
+  void set_wrench(int body, const Vec3& force, const Vec3& torque);
+  // Body i's state (orientation normalised), set from outside: the integrator starts over.
+  void set_body(const WorldModel& model, int i, const BodyState& s);
+  // The bodies' poses at `states`; the static ones stay where they were last set.
+  void poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
+  // Kinetic plus gravitational potential energy of the dynamic bodies.
+  double energy(const WorldModel& model) const;
+
+  double t = 0;
+  std::vector<BodyState> bodies;
+  std::vector<Pose> static_poses;            // every body's pose at its last set state; static ones stay so
+  std::vector<Vec3> ext_force, ext_torque;   // the user's wrenches, held until changed
+  std::vector<ActiveContact> resting;        // their last normal forces and the friction held for the step
+  std::vector<ContactFeature> watched;       // root functions
+  bool restart = true;                       // CVODE must be (re)initialised before integrating
+  bool roots_changed = true;                 // CVodeRootInit must be called again
+  // The last right-hand side's clamped contacts (indices into resting): the next one's warm
+  // start. It picks the LCP's solution path, so it belongs with the state that repeats a run.
+  LcpIndices rhs_clamped;
+};
+
+}  // namespace wysiwyf::haptics

@@ -1,0 +1,26 @@
+#pragma once
+// A World's scratch, as the arena of MuJoCo's mjData: vectors reused across steps and
+// right-hand-side evaluations, so that neither allocates once their sizes have settled.
+// Nothing here carries meaning from one use to the next.
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include "scene/body.hpp"
+#include "rigid_body/contact.hpp"
+#include "rigid_body/world_state.hpp"
+
+namespace wysiwyf::haptics {
+
+struct WorldWorkspace {
+  std::vector<BodyState> states;  // the state a right-hand side or root function is evaluated at
+  std::vector<Pose> poses;        // the bodies' poses at it (or at the current state)
+  // classify_contacts: the features near enough to look at, and the next resting contacts and
+  // root functions (swapped with the state's, so both keep their capacity).
+  std::vector<ContactFeature> candidates;
+  std::vector<ActiveContact> touching;
+  std::vector<ContactFeature> watched_next;
+  Eigen::VectorXd ft_start;  // update_friction: the last step's friction, in the tangent bases
+};
+
+}  // namespace wysiwyf::haptics
