@@ -28,14 +28,23 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument(a + " needs " + what);
         return std::string(argv[++i]);
       };
-      if (a == "--port") o.port = static_cast<std::uint16_t>(std::stoi(next("a port")));
-      else if (a == "--lockstep") o.lockstep = true;
-      else if (a == "--encoder-counts") o.encoder_counts = std::stoi(next("a count"));
-      else if (a == "--servo-bandwidth") o.servo.bandwidth_hz = std::stod(next("a frequency in Hz"));
-      else if (a == "--urdf") o.urdf = next("a file");
-      else if (a == "--drive") o.drive = next("a file");
-      else if (a == "--initial-q") for (int j = 0; j < 6; ++j) o.initial_q[j] = std::stod(next("six joint angles, rad"));
-      else throw std::invalid_argument("unknown option " + a + " (see the comment at the top of apps/puma-link-emulator/main.cpp)");
+      if (a == "--port")
+        o.port = static_cast<std::uint16_t>(std::stoi(next("a port")));
+      else if (a == "--lockstep")
+        o.lockstep = true;
+      else if (a == "--encoder-counts")
+        o.encoder_counts = std::stoi(next("a count"));
+      else if (a == "--servo-bandwidth")
+        o.servo.bandwidth_hz = std::stod(next("a frequency in Hz"));
+      else if (a == "--urdf")
+        o.urdf = next("a file");
+      else if (a == "--drive")
+        o.drive = next("a file");
+      else if (a == "--initial-q")
+        for (int j = 0; j < 6; ++j) o.initial_q[j] = std::stod(next("six joint angles, rad"));
+      else
+        throw std::invalid_argument("unknown option " + a +
+                                    " (see the comment at the top of apps/puma-link-emulator/main.cpp)");
     }
   } catch (const std::exception& e) {
     std::cerr << "puma-link-emulator: " << e.what() << "\n";
@@ -46,7 +55,8 @@ int main(int argc, char** argv) {
   try {
     ControllerEmulator emulator(o);
     std::cout << "puma-link emulator on 127.0.0.1:" << emulator.port() << (o.lockstep ? " (lockstep)" : " (1 kHz)")
-              << "\n" << std::flush;
+              << "\n"
+              << std::flush;
     while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
     const auto c = emulator.counters();
     std::cout << "applied " << c.commands_applied << " commands, answered " << c.queries << " queries, sent "

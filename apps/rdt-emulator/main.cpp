@@ -25,12 +25,18 @@ int main(int argc, char** argv) {
       }
       return std::string(argv[++i]);
     };
-    if (a == "--port") o.port = static_cast<std::uint16_t>(std::stoi(next("a port")));
-    else if (a == "--rate") o.rate_hz = std::stod(next("a rate in Hz"));
-    else if (a == "--counts-per-force") o.counts_per_force = std::stod(next("a number"));
-    else if (a == "--counts-per-torque") o.counts_per_torque = std::stod(next("a number"));
-    else if (a == "--drop-every") o.drop_every = std::stoi(next("a number"));
-    else if (a == "--wrench") for (auto& w : wrench) w = std::stod(next("six numbers"));
+    if (a == "--port")
+      o.port = static_cast<std::uint16_t>(std::stoi(next("a port")));
+    else if (a == "--rate")
+      o.rate_hz = std::stod(next("a rate in Hz"));
+    else if (a == "--counts-per-force")
+      o.counts_per_force = std::stod(next("a number"));
+    else if (a == "--counts-per-torque")
+      o.counts_per_torque = std::stod(next("a number"));
+    else if (a == "--drop-every")
+      o.drop_every = std::stoi(next("a number"));
+    else if (a == "--wrench")
+      for (auto& w : wrench) w = std::stod(next("six numbers"));
     else {
       std::cerr << "rdt-emulator: unknown option " << a << "\n";
       return 2;

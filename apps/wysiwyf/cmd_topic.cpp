@@ -170,7 +170,8 @@ bool writers_gone(DataReader* reader) {
 // A reader on `topic` with the QoS of the writer found there, so that it matches.
 DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& info, const MessageType*& type) {
   type = msgs::registry().find(info.type);
-  if (!type) throw std::runtime_error("topic '" + topic + "' carries " + info.type + ", which this build does not know");
+  if (!type)
+    throw std::runtime_error("topic '" + topic + "' carries " + info.type + ", which this build does not know");
   TypeSupport support(type->make_type());
   support.register_type(s.participant);
   Topic* t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
@@ -190,7 +191,8 @@ int topic_list(Args& args) {
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   std::this_thread::sleep_for(std::chrono::duration<double>(wait));
   const auto topics = s.discovery.topics();
-  std::cout << std::left << std::setw(32) << "topic" << std::setw(40) << "type" << "writers readers\n";
+  std::cout << std::left << std::setw(32) << "topic" << std::setw(40) << "type"
+            << "writers readers\n";
   for (const auto& [name, t] : topics)
     std::cout << std::left << std::setw(32) << name << std::setw(40) << t.type << std::setw(8) << t.writers.size()
               << t.readers.size() << "\n";
@@ -205,8 +207,8 @@ int topic_echo(Args& args, const std::string& topic) {
   const double timeout = seconds_option(args, "--timeout", 10.0);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   install_stop_signal_handlers();
-  const auto info = s.discovery.wait_for_writer(topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                                         std::chrono::duration<double>(timeout)));
+  const auto info = s.discovery.wait_for_writer(
+      topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout)));
   if (!info) {
     std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
     return 1;
@@ -218,7 +220,8 @@ int topic_echo(Args& args, const std::string& topic) {
   long printed = 0;
   // --timeout bounds the wait for the first sample; after it, echo runs until --count samples,
   // Ctrl-C, or the topic's last writer leaves.
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
   while (!stop_signal_received() && (count == 0 || printed < count)) {
     if (printed == 0 && Clock::now() > deadline) {
       std::cerr << "no sample on topic '" << topic << "' within " << timeout << " s\n";
@@ -250,8 +253,8 @@ int topic_hz(Args& args, const std::string& topic) {
   const double timeout = seconds_option(args, "--timeout", 10.0);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   install_stop_signal_handlers();
-  const auto info = s.discovery.wait_for_writer(topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                                         std::chrono::duration<double>(timeout)));
+  const auto info = s.discovery.wait_for_writer(
+      topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout)));
   if (!info) {
     std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
     return 1;

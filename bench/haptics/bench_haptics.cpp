@@ -82,14 +82,23 @@ void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
   noisy_push_steps(state, cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0)))));
 }
 // Argument: -log10 of CVODE's relative tolerance (7: admittance_sim's default).
-BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)->Arg(7)->Arg(8)->Arg(6)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)
+    ->Arg(7)
+    ->Arg(8)
+    ->Arg(6)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
 
 // The noisy push on a table with Coulomb friction mu = 0.4 (the push stays below mu m g: the cube
 // sticks): the friction solve at each step's start comes on top.
 void BM_HapticStep_RestingCube_NoisyPush_Friction(benchmark::State& state) {
   noisy_push_steps(state, cube_on_table(kHapticRtol, 0.4));
 }
-BENCHMARK(BM_HapticStep_RestingCube_NoisyPush_Friction)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HapticStep_RestingCube_NoisyPush_Friction)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
 
 // The same push held constant: CVODE keeps its history across steps.
 void BM_HapticStep_RestingCube_ConstantPush(benchmark::State& state) {
@@ -107,7 +116,10 @@ void BM_HapticStep_RestingCube_ConstantPush(benchmark::State& state) {
   state.counters["sink_mm"] = std::max(0.0, (0.1 - w.state(0).x.z()) * 1e3);
   percentiles(state, us);
 }
-BENCHMARK(BM_HapticStep_RestingCube_ConstantPush)->UseManualTime()->Iterations(wysiwyf::bench::iterations(5000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HapticStep_RestingCube_ConstantPush)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(5000))
+    ->Unit(benchmark::kMicrosecond);
 
 // The LCP alone: n contacts spread over the bottom face of a resting cube.
 void BM_Lcp(benchmark::State& state) {
@@ -173,7 +185,11 @@ void BM_RealTimeLoop_1kHz_10s(benchmark::State& state) {
     state.counters["step_p99_us"] = step_us[step_us.size() * 99 / 100];
   }
 }
-BENCHMARK(BM_RealTimeLoop_1kHz_10s)->Arg(0)->Arg(100)->Iterations(wysiwyf::bench::iterations(1))->Unit(benchmark::kSecond);
+BENCHMARK(BM_RealTimeLoop_1kHz_10s)
+    ->Arg(0)
+    ->Arg(100)
+    ->Iterations(wysiwyf::bench::iterations(1))
+    ->Unit(benchmark::kSecond);
 
 #ifdef WYSIWYF_HAVE_MUJOCO
 // The peer: MuJoCo, the same 1 kg, 20 cm cube on a frictionless plane, 1 ms steps.
@@ -241,7 +257,10 @@ void BM_MuJoCo_Step_RestingCube_Push(benchmark::State& state) {
   state.counters["sink_mm"] = sink * 1e3;
   percentiles(state, us);
 }
-BENCHMARK(BM_MuJoCo_Step_RestingCube_Push)->UseManualTime()->Iterations(wysiwyf::bench::iterations(5000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MuJoCo_Step_RestingCube_Push)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(5000))
+    ->Unit(benchmark::kMicrosecond);
 
 // The comparison the goal is about: our haptic step (admittance_sim's tolerance) and MuJoCo's,
 // alternately, on the same noisy sampled push, so both see the same load of this shared machine.
@@ -282,7 +301,10 @@ void BM_Peer_Interleaved_NoisyPush(benchmark::State& state) {
   state.counters["mujoco_sink_mm"] = sink * 1e3;
   state.counters["our_sink_mm"] = std::max(0.0, (0.1 - w.state(0).x.z()) * 1e3);
 }
-BENCHMARK(BM_Peer_Interleaved_NoisyPush)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Peer_Interleaved_NoisyPush)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
 #endif
 
 }  // namespace wysiwyf::haptics

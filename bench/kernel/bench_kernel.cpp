@@ -120,8 +120,10 @@ void in_process(benchmark::State& state, int domain) {
     state.SetIterationTime(dt);
     hops.push_back(dt * 1e6);
   }
-  state.counters["allocs_per_hop"] = static_cast<double>(allocation_count() - allocs) / static_cast<double>(hops.size());
-  state.counters["alloc_bytes_per_hop"] = static_cast<double>(allocated_bytes() - bytes) / static_cast<double>(hops.size());
+  state.counters["allocs_per_hop"] =
+      static_cast<double>(allocation_count() - allocs) / static_cast<double>(hops.size());
+  state.counters["alloc_bytes_per_hop"] =
+      static_cast<double>(allocated_bytes() - bytes) / static_cast<double>(hops.size());
   state.counters["hops_per_s"] = benchmark::Counter(static_cast<double>(hops.size()), benchmark::Counter::kIsRate);
   percentiles(state, hops);
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * (image ? 640 * 480 * 3 : 152));
@@ -172,8 +174,10 @@ void two_process(benchmark::State& state, const std::string& impl, int domain) {
     state.SetIterationTime(hop);
     hops.push_back(hop * 1e6);
   }
-  state.counters["allocs_per_hop"] = static_cast<double>(allocation_count() - allocs) / static_cast<double>(hops.size());
-  state.counters["alloc_bytes_per_hop"] = static_cast<double>(allocated_bytes() - bytes) / static_cast<double>(hops.size());
+  state.counters["allocs_per_hop"] =
+      static_cast<double>(allocation_count() - allocs) / static_cast<double>(hops.size());
+  state.counters["alloc_bytes_per_hop"] =
+      static_cast<double>(allocated_bytes() - bytes) / static_cast<double>(hops.size());
   state.counters["lost"] = static_cast<double>(lost);
   percentiles(state, hops);
   // Ask the child for its own allocation count.
@@ -191,23 +195,61 @@ void two_process(benchmark::State& state, const std::string& impl, int domain) {
 }
 
 // Domains 100+: apart from the tests' and the demo's.
-void BM_JointState_InProcess_Kernel(benchmark::State& s) { in_process<KernelEndpoint<msg::JointState>, msg::JointState>(s, 100); }
-void BM_JointState_InProcess_RawDds(benchmark::State& s) { in_process<RawEndpoint<msg::JointState>, msg::JointState>(s, 101); }
-void BM_Image640x480_InProcess_Kernel(benchmark::State& s) { in_process<KernelEndpoint<msg::Image>, msg::Image>(s, 102); }
+void BM_JointState_InProcess_Kernel(benchmark::State& s) {
+  in_process<KernelEndpoint<msg::JointState>, msg::JointState>(s, 100);
+}
+void BM_JointState_InProcess_RawDds(benchmark::State& s) {
+  in_process<RawEndpoint<msg::JointState>, msg::JointState>(s, 101);
+}
+void BM_Image640x480_InProcess_Kernel(benchmark::State& s) {
+  in_process<KernelEndpoint<msg::Image>, msg::Image>(s, 102);
+}
 void BM_Image640x480_InProcess_RawDds(benchmark::State& s) { in_process<RawEndpoint<msg::Image>, msg::Image>(s, 103); }
-void BM_JointState_TwoProcess_Kernel(benchmark::State& s) { two_process<KernelEndpoint<msg::JointState>, msg::JointState>(s, "kernel", 104); }
-void BM_JointState_TwoProcess_RawDds(benchmark::State& s) { two_process<RawEndpoint<msg::JointState>, msg::JointState>(s, "raw", 105); }
-void BM_Image640x480_TwoProcess_Kernel(benchmark::State& s) { two_process<KernelEndpoint<msg::Image>, msg::Image>(s, "kernel", 106); }
-void BM_Image640x480_TwoProcess_RawDds(benchmark::State& s) { two_process<RawEndpoint<msg::Image>, msg::Image>(s, "raw", 107); }
+void BM_JointState_TwoProcess_Kernel(benchmark::State& s) {
+  two_process<KernelEndpoint<msg::JointState>, msg::JointState>(s, "kernel", 104);
+}
+void BM_JointState_TwoProcess_RawDds(benchmark::State& s) {
+  two_process<RawEndpoint<msg::JointState>, msg::JointState>(s, "raw", 105);
+}
+void BM_Image640x480_TwoProcess_Kernel(benchmark::State& s) {
+  two_process<KernelEndpoint<msg::Image>, msg::Image>(s, "kernel", 106);
+}
+void BM_Image640x480_TwoProcess_RawDds(benchmark::State& s) {
+  two_process<RawEndpoint<msg::Image>, msg::Image>(s, "raw", 107);
+}
 
-BENCHMARK(BM_JointState_InProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(200000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_JointState_InProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(200000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_InProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_InProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_JointState_TwoProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_JointState_TwoProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(20000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_TwoProcess_Kernel)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Image640x480_TwoProcess_RawDds)->UseManualTime()->Iterations(wysiwyf::bench::iterations(2000))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_InProcess_Kernel)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(200000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_InProcess_RawDds)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(200000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_InProcess_Kernel)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(2000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_InProcess_RawDds)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(2000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_Kernel)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_RawDds)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_TwoProcess_Kernel)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(2000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_TwoProcess_RawDds)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(2000))
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace wysiwyf::bench
 

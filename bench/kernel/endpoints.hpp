@@ -28,11 +28,13 @@ template <class T>
 class RawEndpoint {
  public:
   RawEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos) {
-    participant_ = DomainParticipantFactory::get_instance()->create_participant(domain, dds::participant_qos("local", "bench-raw"));
+    participant_ = DomainParticipantFactory::get_instance()->create_participant(
+        domain, dds::participant_qos("local", "bench-raw"));
     TypeSupport type(MessageTraits<T>::make_type());
     type.register_type(participant_);
     Topic* out = participant_->create_topic(out_topic, type.get_type_name(), TOPIC_QOS_DEFAULT);
-    Topic* in = in_topic == out_topic ? out : participant_->create_topic(in_topic, type.get_type_name(), TOPIC_QOS_DEFAULT);
+    Topic* in =
+        in_topic == out_topic ? out : participant_->create_topic(in_topic, type.get_type_name(), TOPIC_QOS_DEFAULT);
     writer_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT)->create_datawriter(out, dds::writer_qos(qos));
     reader_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT)->create_datareader(in, dds::reader_qos(qos));
   }

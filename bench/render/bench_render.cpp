@@ -90,7 +90,12 @@ void BM_Compositor_640x480(benchmark::State& state) {
   state.counters["with_feeding_ms"] = whole * 1e3 / static_cast<double>(state.iterations());
 }
 // Time: the component's tick alone (manual time).
-BENCHMARK(BM_Compositor_640x480)->Arg(0)->Arg(1)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
+BENCHMARK(BM_Compositor_640x480)
+    ->Arg(0)
+    ->Arg(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(1.0));
 
 }  // namespace wysiwyf::render
 

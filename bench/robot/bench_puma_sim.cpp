@@ -42,10 +42,11 @@ void run(benchmark::State& state, bool touch) {
   target.header().frame_id("base");
   target.pose().orientation().w(1.0);
   const Eigen::Vector3d park(1.1, 0.0, 0.2), front = ready * Eigen::Vector3d(0.05, 0.04, 0.02),
-                        behind = ready * Eigen::Vector3d(0.05, 0.04, -0.03);
+                                             behind = ready * Eigen::Vector3d(0.05, 0.04, -0.03);
   auto move_hand = [&](int ms) {
     if (!touch || ms > 1500) return;
-    const Eigen::Vector3d p = ms < 1000 ? park + (front - park) * (ms / 1000.0) : front + (behind - front) * ((ms - 1000) / 500.0);
+    const Eigen::Vector3d p =
+        ms < 1000 ? park + (front - park) * (ms / 1000.0) : front + (behind - front) * ((ms - 1000) / 500.0);
     target.pose().position().x(p.x());
     target.pose().position().y(p.y());
     target.pose().position().z(p.z());

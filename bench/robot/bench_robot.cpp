@@ -60,8 +60,9 @@ void run(benchmark::State& state, Call call) {
     call(i);
     i = (i + 1) % kPoses;
   }
-  state.counters["allocs_per_call"] = benchmark::Counter(
-      static_cast<double>(wysiwyf::bench::allocation_count() - allocs_before) / static_cast<double>(state.iterations()));
+  state.counters["allocs_per_call"] =
+      benchmark::Counter(static_cast<double>(wysiwyf::bench::allocation_count() - allocs_before) /
+                         static_cast<double>(state.iterations()));
 }
 
 void BM_ForwardKinematics(benchmark::State& state) {
@@ -78,17 +79,14 @@ BENCHMARK(BM_Jacobian);
 
 void BM_InverseKinematicsAll8(benchmark::State& state) {
   Fixture& f = fixture();
-  run(state, [&](std::size_t i) {
-    benchmark::DoNotOptimize(f.model.ik(f.base_T_flange[i], f.q[(i + 1) % kPoses]));
-  });
+  run(state, [&](std::size_t i) { benchmark::DoNotOptimize(f.model.ik(f.base_T_flange[i], f.q[(i + 1) % kPoses])); });
 }
 BENCHMARK(BM_InverseKinematicsAll8);
 
 void BM_InverseKinematicsNearest(benchmark::State& state) {
   Fixture& f = fixture();
-  run(state, [&](std::size_t i) {
-    benchmark::DoNotOptimize(f.model.ik_nearest(f.base_T_flange[i], f.q[(i + 1) % kPoses]));
-  });
+  run(state,
+      [&](std::size_t i) { benchmark::DoNotOptimize(f.model.ik_nearest(f.base_T_flange[i], f.q[(i + 1) % kPoses])); });
 }
 BENCHMARK(BM_InverseKinematicsNearest);
 
@@ -114,9 +112,7 @@ BENCHMARK(BM_MassMatrix);
 
 void BM_ForwardDynamics(benchmark::State& state) {
   Fixture& f = fixture();
-  run(state, [&](std::size_t i) {
-    benchmark::DoNotOptimize(f.model.forward_dynamics(f.q[i], f.qd[i], f.qdd[i]));
-  });
+  run(state, [&](std::size_t i) { benchmark::DoNotOptimize(f.model.forward_dynamics(f.q[i], f.qd[i], f.qdd[i])); });
 }
 BENCHMARK(BM_ForwardDynamics);
 

@@ -144,7 +144,9 @@ void BM_FfmpegChromakey_640x480_WithConversion(benchmark::State& state) {
   }
   report_ffmpeg(state, setting, mean);
 }
-BENCHMARK(BM_FfmpegChromakey_640x480_WithConversion)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
+BENCHMARK(BM_FfmpegChromakey_640x480_WithConversion)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(1.0));
 
 // stereo_depth on camera_sim's 640x480 stereo pair (6 cm baseline) with the hand 0.6 m from the
 // camera, the keyer's output beside it: depth image and hand position per frame, through the ports.
@@ -194,17 +196,24 @@ void BM_StereoDepth_640x480(benchmark::State& state, const std::string& params) 
     left.header().stamp_ns(t), right.header().stamp_ns(t), keyed.header().stamp_ns(t);
     left_in.write(left), right_in.write(right), keyed_in.write(keyed);
     stereo.tick(Time{t});
-    if (!depth.take_latest(depth_out) || !hand.take_latest(hand_out)) state.SkipWithError("no depth or no hand position");
+    if (!depth.take_latest(depth_out) || !hand.take_latest(hand_out))
+      state.SkipWithError("no depth or no hand position");
   }
 }
-BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_full_size, std::string("{baseline: 0.06, algorithm: sgbm, downscale: 1}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
+BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_full_size,
+                  std::string("{baseline: 0.06, algorithm: sgbm, downscale: 1}"))
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(2.0));
 BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_half_size_default, std::string("{baseline: 0.06}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(2.0));
 BENCHMARK_CAPTURE(BM_StereoDepth_640x480, sgbm_3way_half_size, std::string("{baseline: 0.06, algorithm: sgbm_3way}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
-BENCHMARK_CAPTURE(BM_StereoDepth_640x480, bm_full_size, std::string("{baseline: 0.06, algorithm: bm, block_size: 9, downscale: 1}"))
-    ->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(2.0));
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(2.0));
+BENCHMARK_CAPTURE(BM_StereoDepth_640x480, bm_full_size,
+                  std::string("{baseline: 0.06, algorithm: bm, block_size: 9, downscale: 1}"))
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(2.0));
 
 // marker_tracker through its ports on 50 camera_sim frames (its default camera position, looking
 // at the plate; the arm at the demo's start, swaying), cycled: joint state + image in, poses,
@@ -251,7 +260,8 @@ const TrackerFrames& tracker_frames() {
       f.images.emplace_back();
       image.take_latest(f.images.back());
     }
-    Harness off("camera_sim", "{" + look_at + ", hidden_markers: [0, 1.0e6, 0,  0, 1.0e6, 1,  0, 1.0e6, 2,  0, 1.0e6, 3]}", 25);
+    Harness off("camera_sim",
+                "{" + look_at + ", hidden_markers: [0, 1.0e6, 0,  0, 1.0e6, 1,  0, 1.0e6, 2,  0, 1.0e6, 3]}", 25);
     auto off_joints = off.feed<msg::JointState>("joint_state");
     auto off_image = off.watch<msg::Image>("image");
     off.activate();
@@ -265,8 +275,10 @@ const TrackerFrames& tracker_frames() {
 
 void run_marker_tracker(benchmark::State& state, bool lose_every_other) {
   const auto& frames = tracker_frames();
-  Harness tracker("marker_tracker", lose_every_other ? "{intrinsics: [600, 600, 319.5, 239.5], lost_after: 1}"
-                                                     : "{intrinsics: [600, 600, 319.5, 239.5]}", 25);
+  Harness tracker("marker_tracker",
+                  lose_every_other ? "{intrinsics: [600, 600, 319.5, 239.5], lost_after: 1}"
+                                   : "{intrinsics: [600, 600, 319.5, 239.5]}",
+                  25);
   auto joints = tracker.feed<msg::JointState>("joint_state");
   auto image = tracker.feed<msg::Image>("image");
   auto markers = tracker.watch<msg::MarkerObservation>("markers", 2);
@@ -302,7 +314,9 @@ void run_marker_tracker(benchmark::State& state, bool lose_every_other) {
 void BM_MarkerTracker_Tracking_640x480(benchmark::State& state) { run_marker_tracker(state, false); }
 void BM_MarkerTracker_LoseAndReacquire_640x480(benchmark::State& state) { run_marker_tracker(state, true); }
 BENCHMARK(BM_MarkerTracker_Tracking_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
-BENCHMARK(BM_MarkerTracker_LoseAndReacquire_640x480)->Unit(benchmark::kMillisecond)->MinTime(wysiwyf::bench::min_time(1.0));
+BENCHMARK(BM_MarkerTracker_LoseAndReacquire_640x480)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(wysiwyf::bench::min_time(1.0));
 
 }  // namespace wysiwyf::vision
 

@@ -23,8 +23,8 @@ void check(int status, const std::string& what) {
 }
 
 // buffer (in_format) -> chain -> buffersink (yuva444p), on one thread.
-AVFilterGraph* build_graph(int width, int height, AVPixelFormat in_format, const std::string& chain, AVFilterContext*& source,
-                           AVFilterContext*& sink) {
+AVFilterGraph* build_graph(int width, int height, AVPixelFormat in_format, const std::string& chain,
+                           AVFilterContext*& source, AVFilterContext*& sink) {
   AVFilterGraph* graph = avfilter_graph_alloc();
   if (!graph) throw std::runtime_error("libavfilter: cannot allocate a filter graph");
   graph->nb_threads = 1;
@@ -32,8 +32,10 @@ AVFilterGraph* build_graph(int width, int height, AVPixelFormat in_format, const
   const std::string args = "video_size=" + std::to_string(width) + "x" + std::to_string(height) +
                            ":pix_fmt=" + std::to_string(in_format) + ":time_base=1/25:pixel_aspect=1/1";
   try {
-    check(avfilter_graph_create_filter(&source, avfilter_get_by_name("buffer"), "in", args.c_str(), nullptr, graph), "buffer source");
-    check(avfilter_graph_create_filter(&sink, avfilter_get_by_name("buffersink"), "out", nullptr, nullptr, graph), "buffer sink");
+    check(avfilter_graph_create_filter(&source, avfilter_get_by_name("buffer"), "in", args.c_str(), nullptr, graph),
+          "buffer source");
+    check(avfilter_graph_create_filter(&sink, avfilter_get_by_name("buffersink"), "out", nullptr, nullptr, graph),
+          "buffer sink");
     const AVPixelFormat formats[] = {AV_PIX_FMT_YUVA444P, AV_PIX_FMT_NONE};
     check(av_opt_set_int_list(sink, "pix_fmts", formats, AV_PIX_FMT_NONE, AV_OPT_SEARCH_CHILDREN), "sink format");
     AVFilterInOut* outputs = avfilter_inout_alloc();
@@ -58,7 +60,8 @@ const char* kToFullRangeYuva = "scale=out_range=full,format=yuva444p";
 
 FfmpegChromakey::FfmpegChromakey(int width, int height, const std::string& chromakey_args, bool with_conversion)
     : width_(width), height_(height), with_conversion_(with_conversion) {
-  const std::string chain = (with_conversion ? std::string(kToFullRangeYuva) + "," : "") + "chromakey=" + chromakey_args;
+  const std::string chain =
+      (with_conversion ? std::string(kToFullRangeYuva) + "," : "") + "chromakey=" + chromakey_args;
   graph_ = build_graph(width, height, with_conversion ? AV_PIX_FMT_RGB24 : AV_PIX_FMT_YUVA444P, chain, source_, sink_);
   input_ = av_frame_alloc();
   output_ = av_frame_alloc();
@@ -84,8 +87,9 @@ void FfmpegChromakey::key_rgb(const cv::Mat& rgb, cv::Mat& alpha) {
                                 std::to_string(height_) + " CV_8UC3 image");
   // The image itself, read-only, as the frame's buffer: no copy on the way in.
   input_->format = AV_PIX_FMT_RGB24, input_->width = width_, input_->height = height_;
-  input_->buf[0] = av_buffer_create(rgb.data, rgb.step * static_cast<std::size_t>(rgb.rows), [](void*, uint8_t*) {}, nullptr,
-                                    AV_BUFFER_FLAG_READONLY);
+  input_->buf[0] = av_buffer_create(
+      rgb.data, rgb.step * static_cast<std::size_t>(rgb.rows), [](void*, uint8_t*) {}, nullptr,
+      AV_BUFFER_FLAG_READONLY);
   input_->data[0] = rgb.data;
   input_->linesize[0] = static_cast<int>(rgb.step);
   run(input_, output_, alpha);

@@ -28,8 +28,9 @@ inline const std::vector<KeyerFrame>& keyer_frames() {
     for (double x : {0.55, 0.7, 0.85})
       for (double angle : {0.0, 0.8, -1.2}) {
         Eigen::Isometry3d base_T_hand = Eigen::Isometry3d::Identity();
-        base_T_hand.linear() = (Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitX()))
-                                   .toRotationMatrix();
+        base_T_hand.linear() =
+            (Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitX()))
+                .toRotationMatrix();
         base_T_hand.translation() = Eigen::Vector3d(x, -0.05, 0.35);
         msg::PoseStamped p;
         msgs::to_msg(base_T_hand, p.pose());
@@ -57,7 +58,8 @@ inline MatteScore score(const cv::Mat& alpha, const cv::Mat& truth) {
   const cv::Mat keyed = alpha > 127;
   cv::Mat diff;
   cv::absdiff(alpha, truth, diff);
-  return {static_cast<double>(cv::countNonZero(keyed & truth)) / cv::countNonZero(keyed | truth), cv::mean(diff)[0] / 255.0};
+  return {static_cast<double>(cv::countNonZero(keyed & truth)) / cv::countNonZero(keyed | truth),
+          cv::mean(diff)[0] / 255.0};
 }
 
 }  // namespace wysiwyf::vision

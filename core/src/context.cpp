@@ -74,9 +74,13 @@ bool in_range(const std::vector<double>& v, const Range& r) {
 bool in_range(const std::vector<std::string>&, const Range&) { return true; }
 
 template <class T>
-std::optional<std::size_t> length_of(const T&) { return std::nullopt; }
+std::optional<std::size_t> length_of(const T&) {
+  return std::nullopt;
+}
 template <class V>
-std::optional<std::size_t> length_of(const std::vector<V>& v) { return v.size(); }
+std::optional<std::size_t> length_of(const std::vector<V>& v) {
+  return v.size();
+}
 
 std::string range_text(const Range& r) {
   std::ostringstream s;
@@ -110,7 +114,8 @@ bool Context::read_as(const std::string& name, const T& default_value, const std
     return text;
   };
   if (!convert(given.value, out)) {
-    add_issue(given.where, param_label(name) + ": found '" + found() + "'; expected " + to_string(ParamTypeOf<T>::value));
+    add_issue(given.where,
+              param_label(name) + ": found '" + found() + "'; expected " + to_string(ParamTypeOf<T>::value));
     return false;
   }
   if (range && !in_range(out, *range)) {
@@ -125,10 +130,10 @@ bool Context::read_as(const std::string& name, const T& default_value, const std
   return true;
 }
 
-#define WYSIWYF_CONTEXT_READ(T)                                                                                 \
-  bool Context::read(const std::string& name, const T& default_value, const std::string& description,         \
-                     std::optional<Range> range, std::optional<Length> length, T& out) {                      \
-    return read_as<T>(name, default_value, description, range, length, out);                                  \
+#define WYSIWYF_CONTEXT_READ(T)                                                                       \
+  bool Context::read(const std::string& name, const T& default_value, const std::string& description, \
+                     std::optional<Range> range, std::optional<Length> length, T& out) {              \
+    return read_as<T>(name, default_value, description, range, length, out);                          \
   }
 WYSIWYF_CONTEXT_READ(bool)
 WYSIWYF_CONTEXT_READ(int)
@@ -151,13 +156,15 @@ std::string Context::param_choice(const std::string& name, const std::string& de
   if (convert(it->second.value, value))
     for (const auto& c : choices)
       if (c == value) return value;
-  add_issue(it->second.where, param_label(name) + ": found '" + YAML::Dump(it->second.value) + "'; expected one of " + all);
+  add_issue(it->second.where,
+            param_label(name) + ": found '" + YAML::Dump(it->second.value) + "'; expected one of " + all);
   return default_value;
 }
 
 void Context::reject(const std::string& name, const std::string& why) {
   const bool declared = std::any_of(params_.begin(), params_.end(), [&](const ParamSpec& p) { return p.name == name; });
-  if (!declared) throw std::logic_error("component '" + instance_ + "' rejects parameter '" + name + "', which it did not declare");
+  if (!declared)
+    throw std::logic_error("component '" + instance_ + "' rejects parameter '" + name + "', which it did not declare");
   add_issue(param_location(name), param_label(name) + ": " + why);
 }
 
@@ -196,8 +203,6 @@ Qos Context::effective_qos(const std::string& port, Qos declared) const {
   return it == spec_->qos.end() ? declared : it->second.apply(declared);
 }
 
-std::string Context::topic_for(const std::string& port) const {
-  return spec_ ? spec_->topic_for(port) : port;
-}
+std::string Context::topic_for(const std::string& port) const { return spec_ ? spec_->topic_for(port) : port; }
 
 }  // namespace wysiwyf

@@ -23,7 +23,8 @@ namespace {
 // local topics always write, so a late reader still gets the last samples.
 class WriterLink final : public DdsWriterLink, public DataWriterListener {
  public:
-  WriterLink(Publisher* publisher, Topic* topic, const Qos& qos) : always_(qos.durability == Durability::kTransientLocal) {
+  WriterLink(Publisher* publisher, Topic* topic, const Qos& qos)
+      : always_(qos.durability == Durability::kTransientLocal) {
     writer_ = publisher->create_datawriter(topic, dds::writer_qos(qos), this, StatusMask::publication_matched());
     if (!writer_) throw std::runtime_error("cannot create a DDS writer for topic '" + topic->get_name() + "'");
   }
@@ -81,7 +82,8 @@ void DdsBridge::connect(TopicChannelBase& channel) {
   TypeSupport type(channel.make_type());
   if (!participant_->find_type(channel.type_name())) type.register_type(participant_);
   Topic* topic = participant_->create_topic(channel.topic(), channel.type_name(), TOPIC_QOS_DEFAULT);
-  if (!topic) throw std::runtime_error("cannot create DDS topic '" + channel.topic() + "' of type " + channel.type_name());
+  if (!topic)
+    throw std::runtime_error("cannot create DDS topic '" + channel.topic() + "' of type " + channel.type_name());
   if (channel.local_writers() > 0) {
     channel.set_dds_writer(std::make_unique<WriterLink>(publisher_, topic, channel.writer_qos()));
   } else if (channel.local_readers() > 0) {

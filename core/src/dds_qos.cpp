@@ -47,8 +47,10 @@ namespace {
 // What a writer and a reader of one port share: the port's QoS, and memory and transport choices.
 template <class EndpointQos>
 EndpointQos endpoint_qos(EndpointQos qos, const Qos& q) {
-  qos.reliability().kind = q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
-  qos.durability().kind = q.durability == Durability::kVolatile ? VOLATILE_DURABILITY_QOS : TRANSIENT_LOCAL_DURABILITY_QOS;
+  qos.reliability().kind =
+      q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
+  qos.durability().kind =
+      q.durability == Durability::kVolatile ? VOLATILE_DURABILITY_QOS : TRANSIENT_LOCAL_DURABILITY_QOS;
   qos.history().kind = KEEP_LAST_HISTORY_QOS;
   qos.history().depth = q.depth;
   if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);

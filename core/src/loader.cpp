@@ -95,7 +95,7 @@ const ComponentLibrary& Loader::load_file(const std::string& path) {
   if (!fn) {
     dlclose(handle);
     throw LoadError(path + " is not a wysiwyf component library: it has no '" WYSIWYF_COMPONENT_ENTRY_SYMBOL
-                    "' symbol; export the component class with WYSIWYF_COMPONENT(Class, \"type\")");
+                           "' symbol; export the component class with WYSIWYF_COMPONENT(Class, \"type\")");
   }
   const ComponentEntry* entry = fn();
   if (!entry) throw LoadError(path + ": " WYSIWYF_COMPONENT_ENTRY_SYMBOL " returned null");

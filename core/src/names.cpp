@@ -20,7 +20,8 @@ std::string Length::text() const {
   const auto values = [](std::size_t n) { return std::to_string(n) + (n == 1 ? " value" : " values"); };
   std::string t;
   if (multiple_of > 1)
-    t = "whole rows of " + values(multiple_of) + (min > 0 ? " (at least " + std::to_string(min / multiple_of) + ")" : "");
+    t = "whole rows of " + values(multiple_of) +
+        (min > 0 ? " (at least " + std::to_string(min / multiple_of) + ")" : "");
   else if (min == max)
     t = values(min);
   else if (max == SIZE_MAX)

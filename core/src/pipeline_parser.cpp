@@ -51,8 +51,12 @@ std::optional<std::int64_t> parse_duration(const std::string& text) {
   if (!std::regex_match(text, m, re)) return std::nullopt;
   const double value = std::stod(m[1].str());
   const std::string unit = m[2].str();
-  const double scale = unit == "ns" ? 1 : unit == "us" ? 1e3 : unit == "ms" ? 1e6 : unit == "s" ? 1e9
-                     : unit == "min" ? 60e9 : 3600e9;
+  const double scale = unit == "ns"    ? 1
+                       : unit == "us"  ? 1e3
+                       : unit == "ms"  ? 1e6
+                       : unit == "s"   ? 1e9
+                       : unit == "min" ? 60e9
+                                       : 3600e9;
   const double ns = value * scale;
   if (!std::isfinite(ns) || ns > 9e18) return std::nullopt;
   return static_cast<std::int64_t>(std::llround(ns));
@@ -63,7 +67,7 @@ namespace {
 const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain", "clock", "dds", "components"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
-const std::vector<std::string> kComponentKeys = {"type",   "rate",   "process", "enabled", "spin",
+const std::vector<std::string> kComponentKeys = {"type",     "rate",   "process", "enabled", "spin",
                                                  "priority", "params", "topics",  "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
@@ -116,7 +120,8 @@ class Parser {
       return;
     }
     if (!root.IsMap()) {
-      error(Location{file, 1, 1}, "found " + describe_node(root) + " at the top of the file; expected a map with keys " + join(kTopKeys));
+      error(Location{file, 1, 1},
+            "found " + describe_node(root) + " at the top of the file; expected a map with keys " + join(kTopKeys));
       return;
     }
     check_keys(root, file, kTopKeys, "top-level key");
@@ -134,9 +139,12 @@ class Parser {
     }
     if (const YAML::Node inc = root["include"]) {
       std::vector<YAML::Node> items;
-      if (inc.IsScalar()) items.push_back(inc);
-      else if (inc.IsSequence()) for (const auto& i : inc) items.push_back(i);
-      else error(at(inc, file), "include: found " + describe_node(inc) + "; expected a file name or a list of them");
+      if (inc.IsScalar())
+        items.push_back(inc);
+      else if (inc.IsSequence())
+        for (const auto& i : inc) items.push_back(i);
+      else
+        error(at(inc, file), "include: found " + describe_node(inc) + "; expected a file name or a list of them");
       for (const auto& item : items) {
         if (!item.IsScalar()) {
           error(at(item, file), "include: found " + describe_node(item) + "; expected a file name");
@@ -277,8 +285,8 @@ class Parser {
         const std::string name = it->first.Scalar();
         static const std::regex valid_name("^[A-Za-z_][A-Za-z0-9_]*$");
         if (!std::regex_match(name, valid_name)) {
-          error(at(it->first, file), "component name '" + name +
-                                         "': expected letters, digits and _ only, not starting with a digit");
+          error(at(it->first, file),
+                "component name '" + name + "': expected letters, digits and _ only, not starting with a digit");
           continue;
         }
         ComponentSpec* spec = nullptr;
@@ -299,9 +307,12 @@ class Parser {
   void apply_clock(const YAML::Node& n, const std::string& file, ClockSpec& clock) {
     check_keys(n, file, kClockKeys, "clock key");
     if (const YAML::Node m = n["mode"]) {
-      if (m.IsScalar() && m.Scalar() == "sim") clock.mode.assign(ClockMode::kSim, at(m, file));
-      else if (m.IsScalar() && m.Scalar() == "real") clock.mode.assign(ClockMode::kReal, at(m, file));
-      else error(at(m, file), "clock mode: found " + describe_node(m) + "; expected sim or real");
+      if (m.IsScalar() && m.Scalar() == "sim")
+        clock.mode.assign(ClockMode::kSim, at(m, file));
+      else if (m.IsScalar() && m.Scalar() == "real")
+        clock.mode.assign(ClockMode::kReal, at(m, file));
+      else
+        error(at(m, file), "clock mode: found " + describe_node(m) + "; expected sim or real");
     }
     if (const YAML::Node m = n["step"]) get_duration(m, file, "clock step", false, clock.step_ns);
     if (const YAML::Node m = n["duration"]) get_duration(m, file, "clock duration", true, clock.duration_ns);
@@ -331,10 +342,13 @@ class Parser {
         fs::path p = dds.profiles_file.value;
         if (p.is_relative() && !set_location_) p = fs::path(file).parent_path() / p;
         dds.profiles_file.value = p.string();
-        if (!fs::exists(p)) error(dds.profiles_file.where, "dds profiles: found '" + p.string() + "', which does not exist; expected a Fast DDS XML profiles file");
+        if (!fs::exists(p))
+          error(dds.profiles_file.where, "dds profiles: found '" + p.string() +
+                                             "', which does not exist; expected a Fast DDS XML profiles file");
       }
     }
-    if (const YAML::Node m = n["participant_profile"]) get_string(m, file, "dds participant_profile", dds.participant_profile);
+    if (const YAML::Node m = n["participant_profile"])
+      get_string(m, file, "dds participant_profile", dds.participant_profile);
   }
 
   void apply_component(const YAML::Node& n, const std::string& file, ComponentSpec& c) {
@@ -344,7 +358,8 @@ class Parser {
     if (const YAML::Node m = n["rate"]) {
       double rate = 0;
       if (!to_double(m, rate) || rate <= 0 || rate > 100000)
-        error(at(m, file), label + " rate: found " + describe_node(m) + "; expected a rate in Hz, above 0 and at most 100000");
+        error(at(m, file),
+              label + " rate: found " + describe_node(m) + "; expected a rate in Hz, above 0 and at most 100000");
       else
         c.rate.assign(rate, at(m, file));
     }
@@ -359,7 +374,8 @@ class Parser {
     if (const YAML::Node m = n["priority"]) {
       int p = 0;
       if (!to_int(m, p) || p < 1 || p > 99)
-        error(at(m, file), label + " priority: found " + describe_node(m) + "; expected a SCHED_FIFO priority from 1 to 99");
+        error(at(m, file),
+              label + " priority: found " + describe_node(m) + "; expected a SCHED_FIFO priority from 1 to 99");
       else
         c.priority.assign(p, at(m, file));
     }
@@ -378,8 +394,9 @@ class Parser {
         if (!get_string(it->second, file, label + " topic of port '" + it->first.Scalar() + "'", topic)) continue;
         if (!std::regex_match(topic.value, valid_topic) || topic.value.back() == '/' ||
             topic.value.find("//") != std::string::npos) {
-          error(topic.where, label + " topic of port '" + it->first.Scalar() + "': found '" + topic.value +
-                                 "'; expected a name of letters, digits, _ and single / separators, like robot/joint_state");
+          error(topic.where,
+                label + " topic of port '" + it->first.Scalar() + "': found '" + topic.value +
+                    "'; expected a name of letters, digits, _ and single / separators, like robot/joint_state");
           continue;
         }
         c.topics[it->first.Scalar()] = topic;
@@ -399,14 +416,20 @@ class Parser {
   void apply_qos(const YAML::Node& n, const std::string& file, const std::string& label, QosOverride& q) {
     check_keys(n, file, kQosKeys, "qos key");
     if (const YAML::Node m = n["reliability"]) {
-      if (m.IsScalar() && m.Scalar() == "reliable") q.reliability.assign(Reliability::kReliable, at(m, file));
-      else if (m.IsScalar() && m.Scalar() == "best_effort") q.reliability.assign(Reliability::kBestEffort, at(m, file));
-      else error(at(m, file), label + " reliability: found " + describe_node(m) + "; expected reliable or best_effort");
+      if (m.IsScalar() && m.Scalar() == "reliable")
+        q.reliability.assign(Reliability::kReliable, at(m, file));
+      else if (m.IsScalar() && m.Scalar() == "best_effort")
+        q.reliability.assign(Reliability::kBestEffort, at(m, file));
+      else
+        error(at(m, file), label + " reliability: found " + describe_node(m) + "; expected reliable or best_effort");
     }
     if (const YAML::Node m = n["durability"]) {
-      if (m.IsScalar() && m.Scalar() == "volatile") q.durability.assign(Durability::kVolatile, at(m, file));
-      else if (m.IsScalar() && m.Scalar() == "transient_local") q.durability.assign(Durability::kTransientLocal, at(m, file));
-      else error(at(m, file), label + " durability: found " + describe_node(m) + "; expected volatile or transient_local");
+      if (m.IsScalar() && m.Scalar() == "volatile")
+        q.durability.assign(Durability::kVolatile, at(m, file));
+      else if (m.IsScalar() && m.Scalar() == "transient_local")
+        q.durability.assign(Durability::kTransientLocal, at(m, file));
+      else
+        error(at(m, file), label + " durability: found " + describe_node(m) + "; expected volatile or transient_local");
     }
     if (const YAML::Node m = n["depth"]) {
       int depth = 0;
@@ -425,10 +448,12 @@ void check_merged(PipelineSpec& spec, std::vector<ConfigIssue>& issues) {
   if (spec.components.empty())
     issues.push_back({top, "the pipeline has no components; expected a 'components:' map with at least one entry"});
   if (spec.clock_mode() == ClockMode::kReal && spec.clock.pace.set)
-    issues.push_back({spec.clock.pace.where, "clock pace: found a pace with the real clock; expected pace only with mode: sim"});
+    issues.push_back(
+        {spec.clock.pace.where, "clock pace: found a pace with the real clock; expected pace only with mode: sim"});
   const std::int64_t step = spec.step_ns();
   for (const auto& c : spec.components) {
-    if (!c.type.set) issues.push_back({c.where, "component '" + c.name + "' has no type; expected type: <component type>"});
+    if (!c.type.set)
+      issues.push_back({c.where, "component '" + c.name + "' has no type; expected type: <component type>"});
     if (!c.rate.set) {
       issues.push_back({c.where, "component '" + c.name + "' has no rate; expected rate: <ticks per second>"});
       continue;

@@ -75,15 +75,16 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     for (const auto& [name, value] : c.params)
       if (std::find(param_names.begin(), param_names.end(), name) == param_names.end())
         error(c.param_keys.at(name), "unknown parameter '" + name + "' for " + label + "; expected one of " +
-                               (param_names.empty() ? "(it has no parameters)" : join(param_names)) +
-                               did_you_mean(name, param_names));
+                                         (param_names.empty() ? "(it has no parameters)" : join(param_names)) +
+                                         did_you_mean(name, param_names));
 
     std::vector<std::string> port_names;
     for (const auto& p : ctx.declared_ports()) port_names.push_back(p.name);
     for (const auto& [port, topic] : c.topics)
       if (std::find(port_names.begin(), port_names.end(), port) == port_names.end())
         error(c.topic_keys.at(port), "unknown port '" + port + "' for " + label + "; expected one of " +
-                               (port_names.empty() ? "(it has no ports)" : join(port_names)) + did_you_mean(port, port_names));
+                                         (port_names.empty() ? "(it has no ports)" : join(port_names)) +
+                                         did_you_mean(port, port_names));
     for (const auto& [port, where] : c.qos_where)
       if (std::find(port_names.begin(), port_names.end(), port) == port_names.end())
         error(where, "qos for unknown port '" + port + "' of " + label + "; expected one of " + join(port_names) +
@@ -94,9 +95,8 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
       const Location where = t != c.topics.end() ? t->second.where : c.where;
       topics[c.topic_for(p.name)].push_back(PortUse{c.name + "." + p.name, p.type_name, p.direction, where});
     }
-    result.described[c.name] =
-        ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path, ctx.declared_params(),
-                             ctx.declared_ports()};
+    result.described[c.name] = ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path,
+                                                    ctx.declared_params(), ctx.declared_ports()};
   }
 
   for (const auto& [topic, uses] : topics) {
@@ -106,8 +106,8 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         error(use.where, "topic '" + topic + "': port " + use.label + " carries " + use.type + " but port " +
                              first.label + " (" + first.where.str() + ") carries " + first.type +
                              "; expected one message type per topic");
-    const bool produced = std::any_of(uses.begin(), uses.end(),
-                                      [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
+    const bool produced =
+        std::any_of(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
     if (!produced)
       for (const auto& use : uses)
         result.warnings.push_back({use.where, "no component of this pipeline publishes topic '" + topic +

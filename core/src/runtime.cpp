@@ -31,7 +31,8 @@ using kernel_msgs::ComponentState;
 namespace {
 
 std::int64_t wall_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
 }
 
 // Where a component's requests end up: the executor.
@@ -137,8 +138,10 @@ struct Runtime::Impl final : RunHost {
   template <class Phase, class Fn>
   bool guarded(Slot& slot, const Phase& phase, Fn&& fn) {
     const auto phase_text = [&]() -> std::string {
-      if constexpr (std::is_invocable_v<Phase>) return phase();
-      else return phase;
+      if constexpr (std::is_invocable_v<Phase>)
+        return phase();
+      else
+        return phase;
     };
     try {
       fn();
@@ -154,7 +157,8 @@ struct Runtime::Impl final : RunHost {
   // late_us: how long after its deadline the tick started (real clock).
   void tick(Slot& slot, Time now, double late_us = 0) {
     const auto t0 = Clock::now();
-    guarded(slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
+    guarded(
+        slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
     slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
   }
 
@@ -166,8 +170,8 @@ struct Runtime::Impl final : RunHost {
       d.instance(slot->spec->name);
       d.type(slot->spec->type.value);
       d.process(slot->spec->process_name());
-      d.state(!slot->last_error.empty() ? ComponentState::STATE_FAULT
-              : final                   ? ComponentState::STATE_STOPPED
+      d.state(!slot->last_error.empty()             ? ComponentState::STATE_FAULT
+              : final                               ? ComponentState::STATE_STOPPED
               : slot->stage == Slot::Stage::kActive ? ComponentState::STATE_ACTIVE
                                                     : ComponentState::STATE_CONFIGURED);
       d.rate_hz(slot->spec->rate.value);
@@ -198,8 +202,8 @@ struct Runtime::Impl final : RunHost {
     sched_param p{};
     p.sched_priority = slot.spec->priority.value;
     if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0)
-      log(slot.spec->name, "priority " + std::to_string(p.sched_priority) + " (SCHED_FIFO) refused: " +
-                               std::strerror(err) +
+      log(slot.spec->name, "priority " + std::to_string(p.sched_priority) +
+                               " (SCHED_FIFO) refused: " + std::strerror(err) +
                                "; expected CAP_SYS_NICE or an rtprio limit (ulimit -r); running at normal priority");
   }
 
@@ -349,7 +353,8 @@ void Runtime::Impl::run_real(RunResult& result) {
   auto next_diag = start;
   while (!stopping.load()) {
     if (stop_signal_received()) request_stop("", "signal");
-    if (duration > 0 && Clock::now() - start >= std::chrono::nanoseconds(duration)) request_stop("", "duration reached");
+    if (duration > 0 && Clock::now() - start >= std::chrono::nanoseconds(duration))
+      request_stop("", "duration reached");
     if (Clock::now() >= next_diag) {
       publish_diagnostics(Time{wall_now_ns()}, 1.0, false);
       next_diag += std::chrono::seconds(1);
@@ -376,9 +381,9 @@ void Runtime::Impl::teardown(RunResult& result) {
   for (auto& slot : slots) {
     const auto s = slot->stats.summarise();
     std::lock_guard<std::mutex> lock(slot->health_mutex);
-    result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns,
-                                                s.p50_us, s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us,
-                                                s.late_max_us, slot->dropped(), slot->rejected, slot->warnings});
+    result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns, s.p50_us,
+                                                s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us, s.late_max_us,
+                                                slot->dropped(), slot->rejected, slot->warnings});
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

@@ -14,9 +14,9 @@ class TickStats {
   struct Summary {
     std::uint64_t ticks = 0;
     std::uint64_t overruns = 0;
-    double p50_us = 0, p99_us = 0, max_us = 0;            // tick durations
+    double p50_us = 0, p99_us = 0, max_us = 0;                 // tick durations
     double late_p50_us = 0, late_p99_us = 0, late_max_us = 0;  // start after the deadline (real clock)
-    std::uint64_t window_ticks = 0;  // ticks since the previous summary
+    std::uint64_t window_ticks = 0;                            // ticks since the previous summary
   };
 
   void record(double duration_us, double late_us = 0) {

@@ -23,12 +23,14 @@ bool scalar_to_int64(const YAML::Node& node, std::int64_t& out) {
   bool negative = false;
   if (i < s.size() && (s[i] == '+' || s[i] == '-')) negative = s[i++] == '-';
   int base = 10;
-  if (s.compare(i, 2, "0x") == 0) base = 16, i += 2;
-  else if (s.compare(i, 2, "0o") == 0) base = 8, i += 2;
+  if (s.compare(i, 2, "0x") == 0)
+    base = 16, i += 2;
+  else if (s.compare(i, 2, "0o") == 0)
+    base = 8, i += 2;
   if (i >= s.size()) return false;
   for (std::size_t k = i; k < s.size(); ++k) {
     const char c = s[k];
-    const bool ok = base == 16 ? std::isxdigit(static_cast<unsigned char>(c)) != 0
+    const bool ok = base == 16  ? std::isxdigit(static_cast<unsigned char>(c)) != 0
                     : base == 8 ? (c >= '0' && c <= '7')
                                 : (c >= '0' && c <= '9');
     if (!ok) return false;

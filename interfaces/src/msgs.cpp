@@ -52,8 +52,14 @@ class Yaml {
     out_ << "]\n";
     return *this;
   }
-  Yaml& in() { ++depth_; return *this; }
-  Yaml& out() { --depth_; return *this; }
+  Yaml& in() {
+    ++depth_;
+    return *this;
+  }
+  Yaml& out() {
+    --depth_;
+    return *this;
+  }
   std::string text() const { return out_.str(); }
 
   static std::string num(double v) {
@@ -258,7 +264,9 @@ std::string to_yaml(const msg::MarkerObservation& m) {
   header(y, m.header());
   y.kv("status", tracking_name(m.status())).kv("acquired", m.acquired() ? "true" : "false");
   y.kv("blobs", m.blobs()).kv("rejected", m.rejected());
-  y.list("ids", m.ids().begin(), m.ids().end()).list("u", m.u().begin(), m.u().end()).list("v", m.v().begin(), m.v().end());
+  y.list("ids", m.ids().begin(), m.ids().end())
+      .list("u", m.u().begin(), m.u().end())
+      .list("v", m.v().begin(), m.v().end());
   y.kv("reprojection_rms", m.reprojection_rms()).kv("frames_without_fix", m.frames_without_fix());
   return y.text();
 }

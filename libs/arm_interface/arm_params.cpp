@@ -13,9 +13,9 @@ ArmParams declare_arm_params(Context& ctx) {
   p.urdf_path = ctx.param<std::string>("urdf", "robots/puma560.urdf",
                                        "robot URDF; relative paths are tried from the working directory, then config/");
   p.tip_frame = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
-  p.tracker_hz = ctx.param<double>("tracker_bandwidth_hz", 10.0,
-                                   "natural frequency of the critically damped Cartesian setpoint tracker, Hz",
-                                   Range{0.1, 200});
+  p.tracker_hz =
+      ctx.param<double>("tracker_bandwidth_hz", 10.0,
+                        "natural frequency of the critically damped Cartesian setpoint tracker, Hz", Range{0.1, 200});
   SafetyConfig& c = p.gate;
   const auto accel = ctx.param<std::array<double, kDof>>(
       "acceleration_limits", {8, 8, 10, 30, 30, 30},
@@ -27,28 +27,31 @@ ArmParams declare_arm_params(Context& ctx) {
       Range{0.05, 1});
   c.acceleration_fraction = ctx.param<double>("acceleration_fraction", 0.8,
                                               "share of acceleration_limits the reference may use", Range{0.05, 1});
-  c.position_margin = ctx.param<double>(
-      "position_margin", 0.02, "rad kept between the reference and every joint position limit", Range{0, 0.5});
-  c.approach_rate = ctx.param<double>(
-      "approach_rate", 50.0, "1/s, first-order rate at which the reference closes the last bit of a move", Range{1, 2000});
-  c.setpoint_timeout = ctx.param<double>(
-      "setpoint_timeout", 0.06, "s without a setpoint before braking to a hold (3 periods of a 20 ms stream)",
-      Range{0.002, 10});
-  c.max_setpoint_step = ctx.param<double>(
-      "max_setpoint_step", 0.1, "m a setpoint may lie from the previous one (or from the arm when starting)",
-      Range{1e-4, 10});
-  c.max_setpoint_rotation = ctx.param<double>(
-      "max_setpoint_rotation", 0.5, "rad a setpoint may turn from the previous one (or from the arm)", Range{1e-4, 3.15});
-  c.max_setpoint_speed = ctx.param<double>("max_setpoint_speed", 2.0, "m/s, largest linear speed in a setpoint's twist",
-                                           Range{1e-3, 100});
+  c.position_margin = ctx.param<double>("position_margin", 0.02,
+                                        "rad kept between the reference and every joint position limit", Range{0, 0.5});
+  c.approach_rate =
+      ctx.param<double>("approach_rate", 50.0,
+                        "1/s, first-order rate at which the reference closes the last bit of a move", Range{1, 2000});
+  c.setpoint_timeout = ctx.param<double>("setpoint_timeout", 0.06,
+                                         "s without a setpoint before braking to a hold (3 periods of a 20 ms stream)",
+                                         Range{0.002, 10});
+  c.max_setpoint_step =
+      ctx.param<double>("max_setpoint_step", 0.1,
+                        "m a setpoint may lie from the previous one (or from the arm when starting)", Range{1e-4, 10});
+  c.max_setpoint_rotation =
+      ctx.param<double>("max_setpoint_rotation", 0.5, "rad a setpoint may turn from the previous one (or from the arm)",
+                        Range{1e-4, 3.15});
+  c.max_setpoint_speed =
+      ctx.param<double>("max_setpoint_speed", 2.0, "m/s, largest linear speed in a setpoint's twist", Range{1e-3, 100});
   c.max_setpoint_angular_speed = ctx.param<double>(
       "max_setpoint_angular_speed", 6.0, "rad/s, largest angular speed in a setpoint's twist", Range{1e-3, 100});
   c.max_joint_target_step = ctx.param<double>(
       "max_joint_target_step", 0.2, "rad the IK target may move in one servo period (more: an IK branch change, fault)",
       Range{1e-4, 10});
-  c.max_following_error = ctx.param<double>(
-      "max_following_error", 0.1, "rad between reference and measured joint before a fault", Range{1e-4, 10});
-  c.max_force = ctx.param<double>("force_limit", 100.0, "N, measured force norm that faults the arm", Range{0.1, 10000});
+  c.max_following_error = ctx.param<double>("max_following_error", 0.1,
+                                            "rad between reference and measured joint before a fault", Range{1e-4, 10});
+  c.max_force =
+      ctx.param<double>("force_limit", 100.0, "N, measured force norm that faults the arm", Range{0.1, 10000});
   c.max_torque =
       ctx.param<double>("torque_limit", 10.0, "N m, measured torque norm that faults the arm", Range{0.01, 1000});
   c.dt = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;

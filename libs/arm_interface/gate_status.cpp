@@ -5,8 +5,8 @@ namespace wysiwyf::robot {
 bool GateStatus::publish(std::int64_t now_ns, const SafetyGate& gate, const std::string& source,
                          Output<msg::RobotStatus>& out) {
   const SafetyState state = gate.state();
-  const bool changed =
-      last_ns_ < 0 || state != last_state_ || gate.reason() != last_reason_ || (state == SafetyState::kOk && source != last_source_);
+  const bool changed = last_ns_ < 0 || state != last_state_ || gate.reason() != last_reason_ ||
+                       (state == SafetyState::kOk && source != last_source_);
   if (!changed && now_ns - last_ns_ < 100'000'000) return false;
   last_ns_ = now_ns;
   const bool new_fault = changed && state == SafetyState::kFault;

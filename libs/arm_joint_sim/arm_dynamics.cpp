@@ -5,8 +5,7 @@
 
 namespace wysiwyf::robot {
 
-ArmDynamics::ArmDynamics(const PumaModel& model, const DriveParams& drive, int encoder_counts,
-                         double coulomb_smoothing)
+ArmDynamics::ArmDynamics(const PumaModel& model, const DriveParams& drive, int encoder_counts, double coulomb_smoothing)
     : model_(model), drive_(drive), coulomb_smoothing_(coulomb_smoothing) {
   if (encoder_counts < 0) throw std::invalid_argument("encoder_counts must be >= 0");
   if (!(coulomb_smoothing > 0.0)) throw std::invalid_argument("coulomb_smoothing must be > 0 rad/s");

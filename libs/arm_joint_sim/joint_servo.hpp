@@ -10,12 +10,12 @@
 namespace wysiwyf::robot {
 
 struct JointServoConfig {
-  double bandwidth_hz = 10.0;        // derived gains: kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this
-  double damping = 1.0;              // zeta of the derived gains
-  std::vector<double> kp, kd;        // explicit gains per joint (empty: derived from M(q_gains))
-  double accel_feedforward = 1.0;    // share of M(q) qdd_ref + C(q, qd) qd added
-  double friction_feedforward = 1.0; // share of the drive friction added while the reference moves
-  double coulomb_smoothing = 0.01;   // rad/s over which the Coulomb model turns (tanh)
+  double bandwidth_hz = 10.0;         // derived gains: kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this
+  double damping = 1.0;               // zeta of the derived gains
+  std::vector<double> kp, kd;         // explicit gains per joint (empty: derived from M(q_gains))
+  double accel_feedforward = 1.0;     // share of M(q) qdd_ref + C(q, qd) qd added
+  double friction_feedforward = 1.0;  // share of the drive friction added while the reference moves
+  double coulomb_smoothing = 0.01;    // rad/s over which the Coulomb model turns (tanh)
 
   // Throws std::invalid_argument naming the value that does not fit.
   void validate() const;

@@ -24,14 +24,14 @@ std::string problem(const msg::Image& m, std::initializer_list<std::string_view>
   if (!accepted) return "encoding '" + std::string(encoding) + "', expected " + expected;
   const int type = cv_type(encoding);
   if (type < 0) return "encoding '" + std::string(encoding) + "' is not one this build handles";
-  if (m.width() == 0 || m.height() == 0) return "an empty image (" + std::to_string(m.width()) + "x" +
-                                                std::to_string(m.height()) + ")";
+  if (m.width() == 0 || m.height() == 0)
+    return "an empty image (" + std::to_string(m.width()) + "x" + std::to_string(m.height()) + ")";
   const std::size_t row = static_cast<std::size_t>(m.width()) * CV_ELEM_SIZE(type);
   if (m.step() < row)
     return "row step " + std::to_string(m.step()) + " shorter than a row of " + std::to_string(row) + " bytes";
   if (m.data().size() < static_cast<std::size_t>(m.step()) * m.height())
-    return "data of " + std::to_string(m.data().size()) + " bytes, shorter than step x height = " +
-           std::to_string(static_cast<std::size_t>(m.step()) * m.height());
+    return "data of " + std::to_string(m.data().size()) +
+           " bytes, shorter than step x height = " + std::to_string(static_cast<std::size_t>(m.step()) * m.height());
   return {};
 }
 

@@ -14,9 +14,9 @@ class Keyframes {
   Keyframes(const std::vector<double>& flat, int values_per_row);
 
   struct Segment {
-    int from, to;    // row indices (equal after the last row)
-    double tau;      // 0..1 within the segment
-    double duration; // seconds
+    int from, to;     // row indices (equal after the last row)
+    double tau;       // 0..1 within the segment
+    double duration;  // seconds
   };
   // The segment containing time t (seconds since start); after the end: the last row, tau 1.
   Segment at(double t) const;

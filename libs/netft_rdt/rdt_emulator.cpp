@@ -55,7 +55,10 @@ void Emulator::run() {
   auto next = Clock::now();
   while (!stop_) {
     // Requests: wait up to the next record's time.
-    const auto wait_ms = streaming ? std::max<long>(0, std::chrono::duration_cast<std::chrono::milliseconds>(next - Clock::now()).count()) : 20;
+    const auto wait_ms =
+        streaming
+            ? std::max<long>(0, std::chrono::duration_cast<std::chrono::milliseconds>(next - Clock::now()).count())
+            : 20;
     pollfd pfd{socket_, POLLIN, 0};
     if (::poll(&pfd, 1, static_cast<int>(wait_ms)) > 0) {
       std::uint8_t buffer[64];
@@ -89,7 +92,8 @@ void Emulator::run() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       for (int i = 0; i < 6; ++i)
-        rec.counts[i] = static_cast<std::int32_t>(std::lround(wrench_[i] * (i < 3 ? options_.counts_per_force : options_.counts_per_torque)));
+        rec.counts[i] = static_cast<std::int32_t>(
+            std::lround(wrench_[i] * (i < 3 ? options_.counts_per_force : options_.counts_per_torque)));
     }
     const auto bytes = encode(rec);
     ::sendto(socket_, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&client), sizeof client);

@@ -13,12 +13,12 @@ namespace wysiwyf::robot::rdt {
 class Emulator {
  public:
   struct Options {
-    std::uint16_t port = 0;           // 0: any free port (see port())
-    double rate_hz = 1000;            // records per second while streaming
+    std::uint16_t port = 0;  // 0: any free port (see port())
+    double rate_hz = 1000;   // records per second while streaming
     double counts_per_force = 1e6;
     double counts_per_torque = 1e6;
-    int drop_every = 0;               // skip every n-th record (0: none)
-    bool bad_status = false;          // report a sensor error in every record
+    int drop_every = 0;       // skip every n-th record (0: none)
+    bool bad_status = false;  // report a sensor error in every record
   };
   explicit Emulator(Options options);
   ~Emulator();

@@ -28,8 +28,8 @@ struct Request {
 struct Record {
   std::uint32_t rdt_sequence = 0;
   std::uint32_t ft_sequence = 0;
-  std::uint32_t status = 0;                 // 0: healthy; otherwise the sensor's error bits
-  std::array<std::int32_t, 6> counts{};     // Fx Fy Fz Tx Ty Tz
+  std::uint32_t status = 0;              // 0: healthy; otherwise the sensor's error bits
+  std::array<std::int32_t, 6> counts{};  // Fx Fy Fz Tx Ty Tz
 };
 
 enum class ParseError { kNone, kShort, kLong, kWrongHeader, kUnknownCommand, kStatusError, kOutOfRange };
@@ -52,8 +52,6 @@ struct RecordResult {
 RecordResult parse_record(const std::uint8_t* data, std::size_t size, std::int64_t max_counts);
 
 // Samples lost between two rdt_sequence numbers (wrapping at 2^32).
-inline std::uint32_t dropped_between(std::uint32_t previous, std::uint32_t current) {
-  return current - previous - 1u;
-}
+inline std::uint32_t dropped_between(std::uint32_t previous, std::uint32_t current) { return current - previous - 1u; }
 
 }  // namespace wysiwyf::robot::rdt

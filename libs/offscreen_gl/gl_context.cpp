@@ -21,9 +21,11 @@ std::string egl_error(const char* what) {
 // The first EGL device that initialises (a GPU), else the surfaceless Mesa display.
 EGLDisplay open_display(std::string& platform) {
   auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (!get_display) throw std::runtime_error("EGL: eglGetPlatformDisplayEXT is missing; install libegl1 and libegl-mesa0");
+  if (!get_display)
+    throw std::runtime_error("EGL: eglGetPlatformDisplayEXT is missing; install libegl1 and libegl-mesa0");
   auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-  auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  auto query_device_string =
+      reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
   if (query_devices) {
     EGLDeviceEXT devices[8];
     EGLint count = 0;
@@ -56,8 +58,9 @@ GlContext::GlContext() {
   EGLDisplay display = open_display(platform_);
   display_ = display;
   if (!eglBindAPI(EGL_OPENGL_API)) throw std::runtime_error(egl_error("eglBindAPI(OpenGL)"));
-  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLint attributes[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   // Rendering goes to framebuffer objects: no config and no surface are needed.
   EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
   if (context == EGL_NO_CONTEXT) throw std::runtime_error(egl_error("creating an OpenGL 3.3 core context"));

@@ -5,8 +5,8 @@
 namespace wysiwyf::render {
 
 namespace {
-void quad(Mesh& m, const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c, const Eigen::Vector3f& d,
-          const Eigen::Vector3f& n) {
+void quad(Mesh& m, const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
+          const Eigen::Vector3f& d, const Eigen::Vector3f& n) {
   for (const auto* p : {&a, &b, &c, &a, &c, &d}) {
     m.positions.push_back(*p);
     m.normals.push_back(n);

@@ -82,7 +82,8 @@ OffscreenRenderer::OffscreenRenderer(GlContext& context, const Pinhole& camera, 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glGenRenderbuffers(1, &color);
     glBindRenderbuffer(GL_RENDERBUFFER, color);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA8, camera_.width, camera_.height);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA8, camera_.width,
+                                     camera_.height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
     glGenRenderbuffers(1, &depth);
     glBindRenderbuffer(GL_RENDERBUFFER, depth);
@@ -119,12 +120,14 @@ int OffscreenRenderer::add_mesh(const Mesh& mesh) {
   std::vector<float> interleaved;
   interleaved.reserve(mesh.positions.size() * 6);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    for (const auto* v : {&mesh.positions[i], &mesh.normals[i]}) interleaved.insert(interleaved.end(), v->data(), v->data() + 3);
+    for (const auto* v : {&mesh.positions[i], &mesh.normals[i]})
+      interleaved.insert(interleaved.end(), v->data(), v->data() + 3);
   glGenVertexArrays(1, &g.vao);
   glBindVertexArray(g.vao);
   glGenBuffers(1, &g.vbo);
   glBindBuffer(GL_ARRAY_BUFFER, g.vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data(),
+               GL_STATIC_DRAW);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
@@ -151,7 +154,8 @@ void OffscreenRenderer::set_light(const Eigen::Vector3f& direction, float ambien
   glUniform1f(loc_ambient_, ambient);
 }
 
-void OffscreenRenderer::draw(int mesh, const Eigen::Isometry3d& camera_T_object, const Eigen::Vector4f& rgba, bool lit) {
+void OffscreenRenderer::draw(int mesh, const Eigen::Isometry3d& camera_T_object, const Eigen::Vector4f& rgba,
+                             bool lit) {
   const GpuMesh& g = meshes_.at(static_cast<std::size_t>(mesh));
   // Composed in double, handed to GL in float: sub-millimetre at metres.
   const Eigen::Matrix4f clip = (camera_.clip_from_camera().cast<double>() * camera_T_object.matrix()).cast<float>();
@@ -168,8 +172,10 @@ void OffscreenRenderer::resolve() {
   if (samples_ > 1 && !resolved_) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved_fbo_);
-    glBlitFramebuffer(0, 0, camera_.width, camera_.height, 0, 0, camera_.width, camera_.height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-    glBlitFramebuffer(0, 0, camera_.width, camera_.height, 0, 0, camera_.width, camera_.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(0, 0, camera_.width, camera_.height, 0, 0, camera_.width, camera_.height, GL_COLOR_BUFFER_BIT,
+                      GL_LINEAR);
+    glBlitFramebuffer(0, 0, camera_.width, camera_.height, 0, 0, camera_.width, camera_.height, GL_DEPTH_BUFFER_BIT,
+                      GL_NEAREST);
   }
   resolved_ = true;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, samples_ > 1 ? resolved_fbo_ : fbo_);

@@ -30,8 +30,8 @@ class OffscreenRenderer {
   // camera_T_object: the object's pose in the camera (OpenCV) frame. unlit: flat colour.
   void draw(int mesh, const Eigen::Isometry3d& camera_T_object, const Eigen::Vector4f& rgba, bool lit = true);
   // After the draws of a frame.
-  void read_rgb(std::vector<std::uint8_t>& rgb);    // width * height * 3
-  void read_depth(std::vector<float>& metres);      // width * height; 0 where nothing was drawn
+  void read_rgb(std::vector<std::uint8_t>& rgb);  // width * height * 3
+  void read_depth(std::vector<float>& metres);    // width * height; 0 where nothing was drawn
 
  private:
   void resolve();
@@ -40,7 +40,7 @@ class OffscreenRenderer {
   Pinhole camera_;
   int samples_;
   unsigned program_ = 0;
-  unsigned fbo_ = 0, color_ = 0, depth_ = 0;            // drawn into (multisampled when samples_ > 1)
+  unsigned fbo_ = 0, color_ = 0, depth_ = 0;  // drawn into (multisampled when samples_ > 1)
   unsigned resolved_fbo_ = 0, resolved_color_ = 0, resolved_depth_ = 0;
   int loc_clip_ = -1, loc_normal_ = -1, loc_color_ = -1, loc_light_ = -1, loc_ambient_ = -1, loc_lit_ = -1;
   struct GpuMesh {

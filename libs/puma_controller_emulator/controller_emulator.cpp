@@ -63,7 +63,8 @@ struct ControllerEmulator::Impl {
         servo(model, drive, options.servo, options.initial_q),
         arm(model, drive, options.encoder_counts, options.servo.coulomb_smoothing) {
     if (!model.limits().within(options.initial_q))
-      throw std::runtime_error("puma-link emulator: the initial joint angles are outside the limits of " + options.urdf);
+      throw std::runtime_error("puma-link emulator: the initial joint angles are outside the limits of " +
+                               options.urdf);
     if (!(options.period > 0.0) || options.substeps < 1 || options.timeout_periods < 1)
       throw std::runtime_error("puma-link emulator: period, substeps and timeout_periods must be positive");
     arm.reset(options.initial_q);
@@ -170,7 +171,8 @@ struct ControllerEmulator::Impl {
       ++counters.dropped_damaged;
       return false;
     }
-    const bool new_client = !have_client || from.sin_port != client.sin_port || from.sin_addr.s_addr != client.sin_addr.s_addr;
+    const bool new_client =
+        !have_client || from.sin_port != client.sin_port || from.sin_addr.s_addr != client.sin_addr.s_addr;
     // A new host (or the same one restarted) starts its own sequence: accept it.
     if (!new_client && have_command && !newer(c.sequence, last_command)) {
       ++counters.dropped_stale;
@@ -245,7 +247,8 @@ ControllerEmulator::ControllerEmulator(Options options) : impl_(std::make_unique
   if (::bind(m.socket, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
     const std::string why = std::strerror(errno);
     ::close(m.socket);
-    throw std::runtime_error("puma-link emulator: cannot bind 127.0.0.1:" + std::to_string(m.options.port) + ": " + why);
+    throw std::runtime_error("puma-link emulator: cannot bind 127.0.0.1:" + std::to_string(m.options.port) + ": " +
+                             why);
   }
   socklen_t len = sizeof addr;
   ::getsockname(m.socket, reinterpret_cast<sockaddr*>(&addr), &len);

@@ -46,8 +46,6 @@ DecodeError decode(const std::uint8_t* data, std::size_t size, Command& out);
 DecodeError decode(const std::uint8_t* data, std::size_t size, State& out);
 
 // True when `sequence` is newer than `last` (modulo 2^32, within half the range).
-inline bool newer(std::uint32_t sequence, std::uint32_t last) {
-  return static_cast<std::int32_t>(sequence - last) > 0;
-}
+inline bool newer(std::uint32_t sequence, std::uint32_t last) { return static_cast<std::int32_t>(sequence - last) > 0; }
 
 }  // namespace wysiwyf::robot::link

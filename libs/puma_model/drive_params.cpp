@@ -92,8 +92,8 @@ DriveParams load_drive_params(const std::string& path) {
     if (d.gear_ratio[k] == 0.0) fail(path, "joints[" + std::to_string(i) + "].gear_ratio is 0");
     if (d.motor_inertia[k] < 0.0 || d.viscous_friction[k] < 0.0 || d.coulomb_positive[k] < 0.0 ||
         d.coulomb_negative[k] > 0.0)
-      fail(path, "joints[" + std::to_string(i) +
-                     "]: need motor_inertia >= 0, viscous_friction >= 0, Tc+ >= 0 and Tc- <= 0");
+      fail(path,
+           "joints[" + std::to_string(i) + "]: need motor_inertia >= 0, viscous_friction >= 0, Tc+ >= 0 and Tc- <= 0");
   }
   return d;
 }

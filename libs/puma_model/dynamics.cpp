@@ -12,9 +12,9 @@ Vector6d PumaModel::rnea(const Vector6d& q, const Vector6d& qd, const Vector6d& 
                          const Eigen::Vector3d& gravity) const {
   std::array<Eigen::Matrix3d, kDof> parent_R;  // parent_R_body
   std::array<Eigen::Vector3d, kDof> force, moment;
-  Eigen::Vector3d w = Eigen::Vector3d::Zero();   // of the parent, in the parent's frame
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();  // of the parent, in the parent's frame
   Eigen::Vector3d wd = Eigen::Vector3d::Zero();
-  Eigen::Vector3d a = -gravity;                  // origin acceleration, gravity folded in
+  Eigen::Vector3d a = -gravity;  // origin acceleration, gravity folded in
 
   for (int j = 0; j < kDof; ++j) {
     const JointOrigin& o = joints_[static_cast<std::size_t>(j)];
@@ -78,8 +78,8 @@ Matrix6d PumaModel::mass_matrix(const Vector6d& q) const {
     const Eigen::Vector3d c = p + R * b.com;
     mass[k] = b.mass;
     first_moment[k] = b.mass * c;
-    inertia[k] = R * b.inertia * R.transpose() +
-                 b.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    inertia[k] =
+        R * b.inertia * R.transpose() + b.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   }
 
   Matrix6d M;

@@ -8,12 +8,12 @@ namespace wysiwyf::robot {
 
 enum class IkStatus {
   kOk,
-  kInvalidInput,           // a non-finite pose or joint vector
-  kOutOfReach,             // the wrist centre is farther than the stretched arm, or nearer
-                           // than the folded arm, from the shoulder
-  kInsideShoulderCylinder, // the wrist centre is nearer to the joint-1 axis than the shoulder
-                           // offset (d2 + d3)
-  kJointLimits,            // reachable, but every solution violates a joint limit
+  kInvalidInput,            // a non-finite pose or joint vector
+  kOutOfReach,              // the wrist centre is farther than the stretched arm, or nearer
+                            // than the folded arm, from the shoulder
+  kInsideShoulderCylinder,  // the wrist centre is nearer to the joint-1 axis than the shoulder
+                            // offset (d2 + d3)
+  kJointLimits,             // reachable, but every solution violates a joint limit
 };
 
 const char* to_string(IkStatus status);
@@ -23,12 +23,12 @@ const char* to_string(IkStatus status);
 // (choosing the representative nearest the reference configuration), else into (-pi, pi].
 struct IkSolution {
   Vector6d q = Vector6d::Zero();
-  bool valid = false;          // the position is reachable on this shoulder/elbow branch
-  bool within_limits = false;  // valid and every joint inside its limits
-  bool left_arm = false;       // wrist centre behind the shoulder (Paul's "lefty")
-  bool elbow_up = false;       // elbow above the shoulder-to-wrist line
-  bool wrist_flip = false;     // theta5 <= 0 branch
-  bool wrist_singular = false; // theta5 ~ 0: theta4 was kept at the reference value
+  bool valid = false;           // the position is reachable on this shoulder/elbow branch
+  bool within_limits = false;   // valid and every joint inside its limits
+  bool left_arm = false;        // wrist centre behind the shoulder (Paul's "lefty")
+  bool elbow_up = false;        // elbow above the shoulder-to-wrist line
+  bool wrist_flip = false;      // theta5 <= 0 branch
+  bool wrist_singular = false;  // theta5 ~ 0: theta4 was kept at the reference value
 };
 
 struct IkSolutions {

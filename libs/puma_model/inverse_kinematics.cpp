@@ -123,9 +123,7 @@ IkSolutions PumaModel::ik(const Eigen::Isometry3d& base_T_frame, const Vector6d&
       const double c3 = k * cb + spsi * sb, s3 = spsi * cb - k * sb;
       const double c23 = c2 * c3 - s2 * s3, s23 = s2 * c3 + c2 * s3;
       Eigen::Matrix3d R03;
-      R03 << c1 * c23, -s1, -c1 * s23,
-             s1 * c23,  c1, -s1 * s23,
-             s23,      0.0,  c23;
+      R03 << c1 * c23, -s1, -c1 * s23, s1 * c23, c1, -s1 * s23, s23, 0.0, c23;
       const Eigen::Matrix3d R36 = R03.transpose() * Rw;
 
       const double s5 = std::sqrt(R36(0, 2) * R36(0, 2) + R36(1, 2) * R36(1, 2));

@@ -66,8 +66,7 @@ class PumaModel {
   Vector6d dls_step(const Vector6d& q, const Eigen::Isometry3d& base_T_target, double lambda) const {
     return dls_step(q, base_T_target, lambda, tip_);
   }
-  Vector6d dls_step(const Vector6d& q, const Eigen::Isometry3d& base_T_target, double lambda,
-                    FrameId f) const;
+  Vector6d dls_step(const Vector6d& q, const Eigen::Isometry3d& base_T_target, double lambda, FrameId f) const;
 
   // ---- dynamics (gravity: acceleration of gravity in base coordinates)
   // Recursive Newton-Euler: joint torques for q, qd, qdd (plus rotor_inertia .* qdd).
@@ -91,8 +90,8 @@ class PumaModel {
  private:
   struct Frame {
     std::string name;
-    int body = 0;                                      // 0 = base, k = moving link k
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();   // body_T_frame
+    int body = 0;                                     // 0 = base, k = moving link k
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  // body_T_frame
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
   };
   // Joint j's frame relative to the frame of body j (its parent), before the joint's rotation.

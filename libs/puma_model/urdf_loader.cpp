@@ -19,9 +19,7 @@ Eigen::Matrix3d rotation_of(const urdf::Pose& pose) {
   return Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
 }
 
-Eigen::Vector3d position_of(const urdf::Pose& pose) {
-  return {pose.position.x, pose.position.y, pose.position.z};
-}
+Eigen::Vector3d position_of(const urdf::Pose& pose) { return {pose.position.x, pose.position.y, pose.position.z}; }
 
 const char* type_name(int type) {
   switch (type) {
@@ -126,12 +124,11 @@ void PumaModel::load(const std::string& tip, const std::string& base) {
     joint_names_[j] = joint.name;
     const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
     if ((axis - Eigen::Vector3d::UnitZ()).norm() > 1e-12)
-      fail("joint '" + joint.name + "' has axis (" + std::to_string(axis.x()) + " " + std::to_string(axis.y()) +
-           " " + std::to_string(axis.z()) + "); every joint axis must be local z (0 0 1), DH style");
+      fail("joint '" + joint.name + "' has axis (" + std::to_string(axis.x()) + " " + std::to_string(axis.y()) + " " +
+           std::to_string(axis.z()) + "); every joint axis must be local z (0 0 1), DH style");
     if (!joint.limits) fail("joint '" + joint.name + "' has no <limit>");
     const auto& lim = *joint.limits;
-    if (!(lim.lower < lim.upper))
-      fail("joint '" + joint.name + "' has lower limit >= upper limit");
+    if (!(lim.lower < lim.upper)) fail("joint '" + joint.name + "' has lower limit >= upper limit");
     if (!(lim.velocity > 0.0) || !(lim.effort > 0.0))
       fail("joint '" + joint.name + "' needs velocity and effort limits > 0");
     limits_.lower[j] = lim.lower;

@@ -8,14 +8,17 @@ namespace wysiwyf::haptics {
 
 namespace {
 
-Vec3 corner_world(const BodyModel& m, const Pose& s, int i) { return s.x + s.R * BoxTopology::corner(m.half_extents, i); }
+Vec3 corner_world(const BodyModel& m, const Pose& s, int i) {
+  return s.x + s.R * BoxTopology::corner(m.half_extents, i);
+}
 
 // All eight, from the three half-edge vectors (corner_world's order: x fastest, then y, z).
 std::array<Vec3, 8> corners_world(const BodyModel& m, const Pose& s) {
   const Vec3 hx = m.half_extents.x() * s.R.col(0), hy = m.half_extents.y() * s.R.col(1),
              hz = m.half_extents.z() * s.R.col(2);
   std::array<Vec3, 8> c;
-  for (int i = 0; i < 8; ++i) c[i] = s.x + ((i & 1) ? hx : Vec3(-hx)) + ((i & 2) ? hy : Vec3(-hy)) + ((i & 4) ? hz : Vec3(-hz));
+  for (int i = 0; i < 8; ++i)
+    c[i] = s.x + ((i & 1) ? hx : Vec3(-hx)) + ((i & 2) ? hy : Vec3(-hy)) + ((i & 4) ? hz : Vec3(-hz));
   return c;
 }
 
@@ -72,8 +75,8 @@ ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& mod
                                             : edge_edge(f, ma, poses[f.a], mb, poses[f.b], slack);
 }
 
-void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
-                     double margin, std::vector<ContactFeature>& out) {
+void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses, double margin,
+                     std::vector<ContactFeature>& out) {
   const auto& ma = models[a];
   const auto& mb = models[b];
   const double reach = ma.half_extents.norm() + mb.half_extents.norm() + margin;
@@ -105,7 +108,8 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
         if (std::abs(local[j]) > other.half_extents[j] || std::abs(local[k]) > other.half_extents[k]) continue;
         for (int side = 0; side < 2; ++side) {
           const double gap = (side ? local[axis] : -local[axis]) - other.half_extents[axis];
-          if (gap < margin && gap > -depth) out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, 2 * axis + side, 1});
+          if (gap < margin && gap > -depth)
+            out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, 2 * axis + side, 1});
         }
       }
     }

@@ -13,21 +13,21 @@ enum class ContactKind { kVertexFace, kEdgeEdge };
 
 struct ContactFeature {
   ContactKind kind = ContactKind::kVertexFace;
-  int a = 0, b = 0;           // body indices
-  int feature_a = 0;          // vertex (vertex-face) or edge (edge-edge) of a
-  int feature_b = 0;          // face 0..5 = -x, +x, -y, +y, -z, +z (vertex-face) or edge of b
-  double sign = 1;            // edge-edge: orientation of e_a x e_b that points out of b
+  int a = 0, b = 0;   // body indices
+  int feature_a = 0;  // vertex (vertex-face) or edge (edge-edge) of a
+  int feature_b = 0;  // face 0..5 = -x, +x, -y, +y, -z, +z (vertex-face) or edge of b
+  double sign = 1;    // edge-edge: orientation of e_a x e_b that points out of b
   bool operator==(const ContactFeature& o) const {
     return kind == o.kind && a == o.a && b == o.b && feature_a == o.feature_a && feature_b == o.feature_b;
   }
 };
 
 struct ContactPoint {
-  Vec3 p = Vec3::Zero();      // world point where the forces act
-  Vec3 n = Vec3::UnitZ();     // unit normal, from b to a
-  Vec3 ndot = Vec3::Zero();   // dn/dt
+  Vec3 p = Vec3::Zero();     // world point where the forces act
+  Vec3 n = Vec3::UnitZ();    // unit normal, from b to a
+  Vec3 ndot = Vec3::Zero();  // dn/dt
   double gap = 0;
-  bool valid = false;         // the features still face each other
+  bool valid = false;  // the features still face each other
 };
 
 // The world pose of each body, enough to evaluate features.
@@ -35,15 +35,15 @@ struct Pose {
   Vec3 x;
   Mat3 R;
   Vec3 v, omega;
-  double inv_mass = 0;                 // 0 for static bodies
-  Mat3 inv_inertia = Mat3::Zero();     // world frame; 0 for static bodies
+  double inv_mass = 0;              // 0 for static bodies
+  Mat3 inv_inertia = Mat3::Zero();  // world frame; 0 for static bodies
 };
 
 ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
                       double slack = 1e-9);
 
 // Every feature pair between body a (dynamic) and body b closer than `margin`.
-void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
-                     double margin, std::vector<ContactFeature>& out);
+void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses, double margin,
+                     std::vector<ContactFeature>& out);
 
 }  // namespace wysiwyf::haptics

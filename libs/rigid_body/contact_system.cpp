@@ -56,7 +56,8 @@ bool ContactSystem::friction_coefficients(const ActiveContact* contacts, std::si
   mu.resize(static_cast<Eigen::Index>(count));
   bool any = false;
   for (std::size_t i = 0; i < count; ++i) {
-    const double m = std::max(model.bodies[contacts[i].feature.a].friction, model.bodies[contacts[i].feature.b].friction);
+    const double m =
+        std::max(model.bodies[contacts[i].feature.a].friction, model.bodies[contacts[i].feature.b].friction);
     mu[static_cast<Eigen::Index>(i)] = m;
     any = any || m > 0;
   }

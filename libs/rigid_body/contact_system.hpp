@@ -54,7 +54,8 @@ struct ContactSystem {
 
   // A = J M^-1 J^T over the first `count` of `contacts`: their normal rows, then (with_tangents)
   // two tangent rows per contact along `tangents`. The rows of J are kept in `rows`.
-  void build(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses, bool with_tangents = false);
+  void build(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
+             bool with_tangents = false);
   // The contacts' friction coefficients into mu; true if any is > 0.
   bool friction_coefficients(const ActiveContact* contacts, std::size_t count);
   // force, torque: gravity and the user's wrench, plus (with_friction) the friction that the
@@ -75,9 +76,9 @@ struct ContactSystem {
   std::vector<JacobianRow> rows;
   std::vector<std::array<Vec3, 2>> tangents;  // per contact: the orthonormal pair of its tangent rows
   Eigen::MatrixXd A;
-  Eigen::VectorXd b, b_free;  // with and without the gap feedback
-  Eigen::VectorXd bt, vt, mu;  // tangent rows' free terms and sliding velocities, friction coefficients
-  std::vector<Vec3> force, torque;          // per body: the applied loads
+  Eigen::VectorXd b, b_free;        // with and without the gap feedback
+  Eigen::VectorXd bt, vt, mu;       // tangent rows' free terms and sliding velocities, friction coefficients
+  std::vector<Vec3> force, torque;  // per body: the applied loads
   std::vector<std::pair<Vec3, Vec3>> body_acc;  // per body: linear and angular acceleration under them
 };
 

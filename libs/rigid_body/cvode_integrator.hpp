@@ -66,8 +66,8 @@ class CvodeIntegrator {
   CvodeIntegrator(int size, const CvodeOptions& options, void* system, CVRhsFn rhs, CVRootFn roots);
   template <class System>
   static int call_rhs(sunrealtype, N_Vector y, N_Vector ydot, void* self) {
-    static_cast<System*>(static_cast<CvodeIntegrator*>(self)->system_)->rhs(N_VGetArrayPointer(y),
-                                                                             N_VGetArrayPointer(ydot));
+    static_cast<System*>(static_cast<CvodeIntegrator*>(self)->system_)
+        ->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     return 0;
   }
   template <class System>

@@ -23,7 +23,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     const Eigen::Vector2d v = vt.segment<2>(2 * i);
     if (mu[i] <= 0.0 || v.norm() > sliding_speed) {
       moving[static_cast<std::size_t>(i)] = true;  // (a frictionless contact: a slider with no force)
-      against[static_cast<std::size_t>(i)] = v.norm() > 0.0 ? Eigen::Vector2d(-v.normalized()) : Eigen::Vector2d::Zero();
+      against[static_cast<std::size_t>(i)] =
+          v.norm() > 0.0 ? Eigen::Vector2d(-v.normalized()) : Eigen::Vector2d::Zero();
     }
   }
   // Convergence is judged on what the forces do, A [fn; ft] (contact-space accelerations or
@@ -106,7 +107,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         const double bound = mu[i] * r.fn[i];
         if (need.norm() > bound * (1 + 1e-12) + 1e-300) {  // it cannot stick: it starts to slide
           sliding[static_cast<std::size_t>(i)] = true;
-          direction[static_cast<std::size_t>(i)] = need.norm() > 0.0 ? Eigen::Vector2d(need.normalized()) : Eigen::Vector2d::Zero();
+          direction[static_cast<std::size_t>(i)] =
+              need.norm() > 0.0 ? Eigen::Vector2d(need.normalized()) : Eigen::Vector2d::Zero();
           changed = true;
         }
       }

@@ -53,7 +53,7 @@ LcpVector solve_clamped(const LcpMatrix& Acc, const LcpVector& rhs) {
   }
   return ok ? x : LcpVector(Acc.completeOrthogonalDecomposition().solve(rhs));
 }
-}
+}  // namespace
 
 double LcpResult::residual() const {
   double r = 0;
@@ -103,7 +103,7 @@ void check_size(Eigen::Index n) {
     throw std::length_error("LCP with " + std::to_string(n) + " contacts; at most " + std::to_string(kMaxLcpSize) +
                             " are supported");
 }
-}
+}  // namespace
 
 LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
   check_size(b.size());

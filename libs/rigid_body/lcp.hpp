@@ -21,12 +21,12 @@ using LcpMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxL
 using LcpIndices = Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
 
 struct LcpResult {
-  LcpVector f;     // the forces (or impulses), >= 0
-  LcpVector a;     // A f + b, >= 0
+  LcpVector f;         // the forces (or impulses), >= 0
+  LcpVector a;         // A f + b, >= 0
   LcpIndices clamped;  // the final clamped set C: a warm start for a nearby problem
   int pivots = 0;
-  bool warm = false;     // solved on the warm start's clamped set, without pivoting
-  bool ok = false;       // false: no solution within the pivot limit (A not PSD, or degenerate cycling)
+  bool warm = false;  // solved on the warm start's clamped set, without pivoting
+  bool ok = false;    // false: no solution within the pivot limit (A not PSD, or degenerate cycling)
   // The natural complementarity residual max_i |min(f_i, a_i)|: 0 exactly at a solution.
   double residual() const;
 };
@@ -57,8 +57,8 @@ class LcpSolver {
   void polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
 
   double tol_;
-  std::vector<int> clamped_;      // C, in insertion order
-  std::vector<char> state_;       // per contact: 0 unset, 1 clamped, 2 not clamped
+  std::vector<int> clamped_;  // C, in insertion order
+  std::vector<char> state_;   // per contact: 0 unset, 1 clamped, 2 not clamped
 };
 
 }  // namespace wysiwyf::haptics

@@ -156,7 +156,7 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
     const double v_rel = contact.point.n.dot(v);
     double e = std::min(model_.bodies[contact.feature.a].restitution, model_.bodies[contact.feature.b].restitution);
     if (v_rel > -model_.params.resting_speed) e = 0;  // a slow approach ends the bounce sequence
-    c[i] = (1 + e) * v_rel;                     // eq. (14): v+ + e v- >= 0
+    c[i] = (1 + e) * v_rel;                           // eq. (14): v+ + e v- >= 0
     if (friction)  // target: no tangential velocity after the impact (within mu times the normal impulse)
       for (int k = 0; k < 2; ++k)
         ct[2 * i + k] = cs.tangents[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].dot(v);
@@ -279,7 +279,8 @@ StepReport World::step(double dt) {
     ++report_.collisions;
     state_.resting = std::move(contacts);
     state_.watched = std::move(still_watched);
-    if (report_.collisions >= model_.params.max_collisions_per_step) state_.watched.clear();  // no more events this step
+    if (report_.collisions >= model_.params.max_collisions_per_step)
+      state_.watched.clear();  // no more events this step
     pack_state(state_.bodies, model_.dynamic, y);
     cv.restart(state_.t);
     watch_roots();

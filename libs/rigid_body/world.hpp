@@ -40,10 +40,10 @@ namespace wysiwyf::haptics {
 constexpr double kHapticRtol = 1e-7;
 
 struct StepReport {
-  int collisions = 0;       // impact events (roots) inside the step
+  int collisions = 0;  // impact events (roots) inside the step
   int rhs_evaluations = 0;
-  int integrator_steps = 0;      // CVODE's internal steps
-  int error_test_failures = 0;   // CVODE's rejected steps
+  int integrator_steps = 0;     // CVODE's internal steps
+  int error_test_failures = 0;  // CVODE's rejected steps
   int lcp_failures = 0;
   int friction_unconverged = 0;  // friction rounds that did not settle (forces still bounded)
   int friction_rounds = 0;       // staggered rounds of the step's friction solve

@@ -14,8 +14,8 @@ namespace wysiwyf::haptics {
 struct ActiveContact {
   ContactFeature feature;
   ContactPoint point;
-  double force = 0;                 // N, normal, from the last LCP
-  Vec3 friction = Vec3::Zero();     // N, tangential force on body a (world frame)
+  double force = 0;              // N, normal, from the last LCP
+  Vec3 friction = Vec3::Zero();  // N, tangential force on body a (world frame)
 };
 
 struct WorldState {
@@ -32,12 +32,12 @@ struct WorldState {
 
   double t = 0;
   std::vector<BodyState> bodies;
-  std::vector<Pose> static_poses;            // every body's pose at its last set state; static ones stay so
-  std::vector<Vec3> ext_force, ext_torque;   // the user's wrenches, held until changed
-  std::vector<ActiveContact> resting;        // their last normal forces and the friction held for the step
-  std::vector<ContactFeature> watched;       // root functions
-  bool restart = true;                       // CVODE must be (re)initialised before integrating
-  bool roots_changed = true;                 // CVodeRootInit must be called again
+  std::vector<Pose> static_poses;           // every body's pose at its last set state; static ones stay so
+  std::vector<Vec3> ext_force, ext_torque;  // the user's wrenches, held until changed
+  std::vector<ActiveContact> resting;       // their last normal forces and the friction held for the step
+  std::vector<ContactFeature> watched;      // root functions
+  bool restart = true;                      // CVODE must be (re)initialised before integrating
+  bool roots_changed = true;                // CVodeRootInit must be called again
   // The last right-hand side's clamped contacts (indices into resting): the next one's warm
   // start. It picks the LCP's solution path, so it belongs with the state that repeats a run.
   LcpIndices rhs_clamped;

@@ -62,12 +62,8 @@ SafetyGate::SafetyGate(const SafetyConfig& config) : config_(config) {
   state_ = SafetyState::kFault;  // nothing moves before reset()
 }
 
-Vector6d SafetyGate::reference_lower() const {
-  return config_.limits.lower.array() + config_.position_margin;
-}
-Vector6d SafetyGate::reference_upper() const {
-  return config_.limits.upper.array() - config_.position_margin;
-}
+Vector6d SafetyGate::reference_lower() const { return config_.limits.lower.array() + config_.position_margin; }
+Vector6d SafetyGate::reference_upper() const { return config_.limits.upper.array() - config_.position_margin; }
 
 double SafetyGate::braking_speed(int j, double distance) const {
   if (!(distance > 0.0)) return 0.0;
@@ -142,8 +138,8 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
   const char* from_what = following ? "previous setpoint" : "arm's position";
   const double step = (candidate.translation() - from.translation()).norm();
   if (step > config_.max_setpoint_step) {
-    fault(std::string("setpoint rejected: ") +
-          format("%.4f m from the ", step) + from_what + format(" (limit %.4f m)", config_.max_setpoint_step));
+    fault(std::string("setpoint rejected: ") + format("%.4f m from the ", step) + from_what +
+          format(" (limit %.4f m)", config_.max_setpoint_step));
     return false;
   }
   const double turn = Eigen::AngleAxisd(Eigen::Matrix3d(candidate.linear() * from.linear().transpose())).angle();
@@ -219,7 +215,8 @@ void SafetyGate::check_wrench(const Eigen::Vector3d& force, const Eigen::Vector3
     fault(format("measured force %.2f N above the limit %.2f N", force.norm(), config_.max_force));
     return;
   }
-  if (torque.norm() > config_.max_torque) fault(format("measured torque %.3f N m above the limit %.3f N m", torque.norm(), config_.max_torque));
+  if (torque.norm() > config_.max_torque)
+    fault(format("measured torque %.3f N m above the limit %.3f N m", torque.norm(), config_.max_torque));
 }
 
 const JointReference& SafetyGate::step(std::int64_t now_ns) {

@@ -33,22 +33,22 @@
 namespace wysiwyf::robot {
 
 struct SafetyConfig {
-  JointLimits limits;                         // hard position and velocity limits (effort unused)
+  JointLimits limits;                                    // hard position and velocity limits (effort unused)
   Vector6d max_acceleration = Vector6d::Constant(10.0);  // hard acceleration limits [rad/s^2]
-  double position_margin = 0.02;              // rad kept between the reference and each limit
-  double velocity_fraction = 0.9;             // of the velocity limits, for the reference
-  double acceleration_fraction = 0.8;         // of the acceleration limits, for the reference
-  double approach_rate = 50.0;                // 1/s: first-order rate of the final approach
-  double dt = 1e-3;                           // servo period [s]
-  double setpoint_timeout = 0.06;             // s without a setpoint before braking to a hold
-  double max_setpoint_step = 0.1;             // m between consecutive setpoints
-  double max_setpoint_rotation = 0.5;         // rad between consecutive setpoints
-  double max_setpoint_speed = 2.0;            // m/s in a setpoint's twist
-  double max_setpoint_angular_speed = 6.0;    // rad/s in a setpoint's twist
-  double max_joint_target_step = 0.2;         // rad per servo period (an IK branch change)
-  double max_following_error = 0.1;           // rad between the reference and the measurement
-  double max_force = 100.0;                   // N, norm of the measured force
-  double max_torque = 10.0;                   // N m, norm of the measured torque
+  double position_margin = 0.02;                         // rad kept between the reference and each limit
+  double velocity_fraction = 0.9;                        // of the velocity limits, for the reference
+  double acceleration_fraction = 0.8;                    // of the acceleration limits, for the reference
+  double approach_rate = 50.0;                           // 1/s: first-order rate of the final approach
+  double dt = 1e-3;                                      // servo period [s]
+  double setpoint_timeout = 0.06;                        // s without a setpoint before braking to a hold
+  double max_setpoint_step = 0.1;                        // m between consecutive setpoints
+  double max_setpoint_rotation = 0.5;                    // rad between consecutive setpoints
+  double max_setpoint_speed = 2.0;                       // m/s in a setpoint's twist
+  double max_setpoint_angular_speed = 6.0;               // rad/s in a setpoint's twist
+  double max_joint_target_step = 0.2;                    // rad per servo period (an IK branch change)
+  double max_following_error = 0.1;                      // rad between the reference and the measurement
+  double max_force = 100.0;                              // N, norm of the measured force
+  double max_torque = 10.0;                              // N m, norm of the measured torque
 
   // Throws std::invalid_argument naming the first value that does not fit.
   void validate() const;

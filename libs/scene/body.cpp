@@ -32,8 +32,8 @@ const std::array<Vec3, 8>& BoxTopology::corner_signs() {
 
 const std::array<std::array<int, 2>, 12>& BoxTopology::edges() {
   // Corners differing in one sign: along x (0-1, 2-3, 4-5, 6-7), y (0-2, 1-3, 4-6, 5-7), z (0-4, 1-5, 2-6, 3-7).
-  static const std::array<std::array<int, 2>, 12> e = {{{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
-                                                        {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+  static const std::array<std::array<int, 2>, 12> e = {
+      {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
   return e;
 }
 

@@ -14,12 +14,12 @@ using Quat = Eigen::Quaterniond;
 
 struct BodyModel {
   std::string name;
-  bool dynamic = true;         // false: fixed in the world (table, walls)
+  bool dynamic = true;  // false: fixed in the world (table, walls)
   Vec3 half_extents{0.1, 0.1, 0.1};
-  double mass = 1.0;           // kg
+  double mass = 1.0;                     // kg
   Mat3 inertia_body = Mat3::Identity();  // about the centre of mass, body axes
-  double restitution = 0.0;    // Newton's coefficient, eq. (12)
-  double friction = 0.0;       // Coulomb coefficient; a contact uses the larger of its two bodies'
+  double restitution = 0.0;              // Newton's coefficient, eq. (12)
+  double friction = 0.0;                 // Coulomb coefficient; a contact uses the larger of its two bodies'
 
   // Solid box of uniform density.
   static Mat3 box_inertia(double mass, const Vec3& half_extents);

@@ -16,7 +16,8 @@ class Reader {
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& what) const {
     const YAML::Mark m = n.Mark();
-    throw std::runtime_error(file_ + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1) + ": " + what);
+    throw std::runtime_error(file_ + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1) + ": " +
+                             what);
   }
   double number(const YAML::Node& n, const std::string& what) const {
     try {
@@ -84,7 +85,9 @@ Scene parse(const YAML::Node& root, const Reader& r) {
     const YAML::Node b = it->second;
     const std::string name = it->first.Scalar();
     if (!b.IsMap()) r.fail(b, "body '" + name + "': expected a map");
-    r.keys(b, {"static", "size", "mass", "position", "orientation_rpy", "velocity", "angular_velocity", "restitution", "friction"},
+    r.keys(b,
+           {"static", "size", "mass", "position", "orientation_rpy", "velocity", "angular_velocity", "restitution",
+            "friction"},
            "body '" + name + "'");
     BodyModel m;
     m.name = name;
@@ -100,7 +103,8 @@ Scene parse(const YAML::Node& root, const Reader& r) {
     }
     if (b["restitution"]) {
       m.restitution = r.number(b["restitution"], "body '" + name + "' restitution");
-      if (m.restitution < 0 || m.restitution > 1) r.fail(b["restitution"], "body '" + name + "' restitution: expected a value in [0, 1]");
+      if (m.restitution < 0 || m.restitution > 1)
+        r.fail(b["restitution"], "body '" + name + "' restitution: expected a value in [0, 1]");
     }
     if (b["friction"]) {
       m.friction = r.number(b["friction"], "body '" + name + "' friction");
@@ -115,7 +119,8 @@ Scene parse(const YAML::Node& root, const Reader& r) {
     if (b["angular_velocity"])
       st.L = st.q.toRotationMatrix() * m.inertia_body * st.q.toRotationMatrix().transpose() *
              r.vec3(b["angular_velocity"], "body '" + name + "' angular_velocity");
-    if (!m.dynamic && (b["velocity"] || b["angular_velocity"])) r.fail(b, "body '" + name + "': a static body cannot move");
+    if (!m.dynamic && (b["velocity"] || b["angular_velocity"]))
+      r.fail(b, "body '" + name + "': a static body cannot move");
     s.models.push_back(m);
     s.initial.push_back(st);
   }

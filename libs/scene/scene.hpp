@@ -10,13 +10,13 @@
 namespace wysiwyf::haptics {
 
 struct DeviceAttachment {
-  int body = -1;                                 // the dynamic body the plate is a face of
-  std::string face = "+z";                       // +x -x +y -y +z -z
+  int body = -1;                                                   // the dynamic body the plate is a face of
+  std::string face = "+z";                                         // +x -x +y -y +z -z
   Eigen::Isometry3d obj_T_dev = Eigen::Isometry3d::Identity();     // plate frame: z out of the face
   Eigen::Isometry3d dev_T_sensor = Eigen::Isometry3d::Identity();  // F/T sensor frame
-  Vec3 knob_offset = Vec3::Zero();               // knob tip in the plate frame
-  double tool_mass = 0;                          // kg carried by the sensor (plate, knob)
-  Vec3 tool_com = Vec3::Zero();                  // in the sensor frame
+  Vec3 knob_offset = Vec3::Zero();                                 // knob tip in the plate frame
+  double tool_mass = 0;                                            // kg carried by the sensor (plate, knob)
+  Vec3 tool_com = Vec3::Zero();                                    // in the sensor frame
 };
 
 struct Scene {

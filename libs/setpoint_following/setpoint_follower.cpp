@@ -13,7 +13,8 @@ SetpointFollower::SetpointFollower(const PumaModel& model, std::string tip_name,
 void SetpointFollower::take(const msg::CartesianSetpoint& m, std::int64_t now_ns) {
   const std::string frame = m.header().frame_id().c_str(), child = m.child_frame_id().c_str();
   if ((!frame.empty() && frame != "base" && frame != "base_link") || (!child.empty() && child != tip_name_)) {
-    gate_.fault("setpoint rejected: it places '" + child + "' in '" + frame + "'; this arm follows base_T_" + tip_name_);
+    gate_.fault("setpoint rejected: it places '" + child + "' in '" + frame + "'; this arm follows base_T_" +
+                tip_name_);
     return;
   }
   // The quaternion as sent, not normalised: the gate refuses unnormalised ones.

@@ -19,15 +19,18 @@ class TestProbe final : public wysiwyf::Component {
     gain_ = ctx.param<double>("gain", 0.5, "out.position[0] = t + gain * (sum of inputs)", wysiwyf::Range{-10, 10});
     fail_phase_ = ctx.param_choice("fail_phase", "none", "lifecycle phase that throws on purpose",
                                    {"none", "configure", "activate", "tick", "deactivate"});
-    fail_tick_ = ctx.param<int>("fail_tick", 0, "with fail_phase tick: the tick index that throws", wysiwyf::Range{0, 1e9});
+    fail_tick_ =
+        ctx.param<int>("fail_tick", 0, "with fail_phase tick: the tick index that throws", wysiwyf::Range{0, 1e9});
     record_ = ctx.param<std::string>("record", "", "file receiving every input sample (hex floats) at deactivate");
     lifecycle_log_ = ctx.param<std::string>("lifecycle_log", "", "file to append lifecycle events to");
     stop_after_ = ctx.param<int>("stop_after_received", 0, "ask the pipeline to stop after this many inputs (0: never)",
                                  wysiwyf::Range{0, 1e9});
-    tick_sleep_us_ = ctx.param<int>("tick_sleep_us", 0, "sleep this long in every tick (overrun tests)", wysiwyf::Range{0, 1e6});
+    tick_sleep_us_ =
+        ctx.param<int>("tick_sleep_us", 0, "sleep this long in every tick (overrun tests)", wysiwyf::Range{0, 1e6});
     emit_nan_ = ctx.param<bool>("emit_nan", false, "write NaN in out.position[0] (bad-input tests)");
     // Parameter shapes and a relation between two parameters, for the validator's tests.
-    weights_ = ctx.param<std::array<double, 3>>("weights", {1, 0, 0}, "three weights (a fixed-size list)", wysiwyf::Range{-1, 1});
+    weights_ = ctx.param<std::array<double, 3>>("weights", {1, 0, 0}, "three weights (a fixed-size list)",
+                                                wysiwyf::Range{-1, 1});
     window_ = ctx.param<std::vector<double>>("window", {}, "rows of [start s, end s]", std::nullopt,
                                              wysiwyf::Length::rows_of(2));
     const double lo = ctx.param<double>("lo", 0, "lower bound (with hi)");

@@ -64,12 +64,14 @@ TEST(Scene, MistakesAreReportedWithTheirLine) {
     load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: -0.4}\n", "f.yaml");
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), "f.yaml:3:52: body 'cube' friction: found -0.4; expected a Coulomb coefficient in [0, 2]");
+    EXPECT_EQ(std::string(e.what()),
+              "f.yaml:3:52: body 'cube' friction: found -0.4; expected a Coulomb coefficient in [0, 2]");
   }
-  EXPECT_EQ(load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: 0.4}\n", "f.yaml")
-                .models.front()
-                .friction,
-            0.4);
+  EXPECT_EQ(
+      load_scene_from_string("scene: 1\nbodies:\n  cube: {size: [0.2, 0.2, 0.2], mass: 1, friction: 0.4}\n", "f.yaml")
+          .models.front()
+          .friction,
+      0.4);
 }
 
 constexpr std::int64_t kMs = 1'000'000;

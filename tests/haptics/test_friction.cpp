@@ -109,11 +109,10 @@ struct Slope {
   World w;
   Vec3 down;  // down the slope
   Slope(double slope, double mu)
-      : w({cube(1.0, mu), floor_box()},
-          {at(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(0, 0, 0.1 + 1e-7), Vec3::Zero(), 1.0,
-              Quat(Eigen::AngleAxisd(slope, Vec3::UnitY()))),
-           at(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(0, 0, -0.05), Vec3::Zero(), 1.0,
-              Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())))}),
+      : w({cube(1.0, mu), floor_box()}, {at(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(0, 0, 0.1 + 1e-7),
+                                            Vec3::Zero(), 1.0, Quat(Eigen::AngleAxisd(slope, Vec3::UnitY()))),
+                                         at(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(0, 0, -0.05),
+                                            Vec3::Zero(), 1.0, Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())))}),
         down(Quat(Eigen::AngleAxisd(slope, Vec3::UnitY())) * Vec3(1, 0, 0)) {}
 };
 

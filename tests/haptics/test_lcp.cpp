@@ -76,7 +76,7 @@ TEST(Lcp, SolvesTenThousandRandomAndDegenerateProblemsToComplementarity) {
     switch (trial % 4) {
       case 0: p = contact_problem(rng, 1 + trial % 12, 3); break;  // mostly regular
       case 1: p = contact_problem(rng, 8 + trial % 9, 1); break;   // more contacts than DOF: singular
-      case 2: {                                                     // coplanar, redundant, under gravity and a random push
+      case 2: {  // coplanar, redundant, under gravity and a random push
         p.A = resting_cube_matrix(trial % 8 == 2);
         const Eigen::Vector3d push(u(rng), u(rng), 5 * u(rng));
         p.b = Eigen::VectorXd::Constant(p.A.rows(), -9.81 + push.z());
@@ -89,7 +89,10 @@ TEST(Lcp, SolvesTenThousandRandomAndDegenerateProblemsToComplementarity) {
     const LcpResult r = solver.solve(A, b);
     if (!r.ok) {
       ++failures;
-      if (failures <= 8) ADD_FAILURE() << "trial " << trial << " (kind " << trial % 4 << ", " << b.size() << " contacts): no solution after " << r.pivots << " pivots, min a " << r.a.minCoeff() << ", max f " << r.f.maxCoeff();
+      if (failures <= 8)
+        ADD_FAILURE() << "trial " << trial << " (kind " << trial % 4 << ", " << b.size()
+                      << " contacts): no solution after " << r.pivots << " pivots, min a " << r.a.minCoeff()
+                      << ", max f " << r.f.maxCoeff();
       continue;
     }
     EXPECT_LE((A * r.f + b - r.a).cwiseAbs().maxCoeff(), 1e-9);

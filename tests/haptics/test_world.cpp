@@ -84,7 +84,8 @@ TEST(World, ATorqueFreeTumblingBoxConservesEnergyAndAngularMomentum) {
 double lowest_corner(const World& w) {
   const auto k = w.kinematics(0);
   double z = 1e9;
-  for (int i = 0; i < 8; ++i) z = std::min(z, (w.state(0).x + k.R * BoxTopology::corner(w.model(0).half_extents, i)).z());
+  for (int i = 0; i < 8; ++i)
+    z = std::min(z, (w.state(0).x + k.R * BoxTopology::corner(w.model(0).half_extents, i)).z());
   return z;
 }
 

@@ -19,7 +19,8 @@ Eigen::Quaterniond orientation(const msg::CartesianSetpoint& s) {
 }
 
 TEST(SetpointScript, PassesThroughEachWaypointAtItsTimeAndHoldsAfterTheLast) {
-  Harness h("setpoint_script", "{waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0.1, 0.3, 0, 0, 1.5,  3, 0.6, 0.1, 0.5, 0.3, 0, 1.5]}");
+  Harness h("setpoint_script",
+            "{waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0.1, 0.3, 0, 0, 1.5,  3, 0.6, 0.1, 0.5, 0.3, 0, 1.5]}");
   auto out = h.watch<msg::CartesianSetpoint>("setpoint");
   h.activate();
   msg::CartesianSetpoint s;
@@ -29,7 +30,8 @@ TEST(SetpointScript, PassesThroughEachWaypointAtItsTimeAndHoldsAfterTheLast) {
   }
   // The last two: at and after the final waypoint.
   EXPECT_NEAR((position(s) - Eigen::Vector3d(0.6, 0.1, 0.5)).norm(), 0, 1e-12);
-  const Eigen::Quaterniond expected = Eigen::AngleAxisd(1.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX());
+  const Eigen::Quaterniond expected =
+      Eigen::AngleAxisd(1.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX());
   EXPECT_NEAR(orientation(s).angularDistance(expected), 0, 1e-12);
   EXPECT_EQ(s.twist().linear().z(), 0.0);
   EXPECT_EQ(std::string(s.header().frame_id().c_str()), "base");
@@ -37,7 +39,8 @@ TEST(SetpointScript, PassesThroughEachWaypointAtItsTimeAndHoldsAfterTheLast) {
 }
 
 TEST(SetpointScript, TwistIsTheDerivativeOfThePoseAndVelocityIsContinuous) {
-  Harness h("setpoint_script", "{waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0.1, 0.3, 0.4, -0.2, 1.0,  2.5, 0.4, 0.2, 0.45, 0, 0, 0]}");
+  Harness h("setpoint_script",
+            "{waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0.1, 0.3, 0.4, -0.2, 1.0,  2.5, 0.4, 0.2, 0.45, 0, 0, 0]}");
   auto out = h.watch<msg::CartesianSetpoint>("setpoint");
   h.activate();
   std::vector<msg::CartesianSetpoint> samples;
@@ -57,11 +60,12 @@ TEST(SetpointScript, TwistIsTheDerivativeOfThePoseAndVelocityIsContinuous) {
     const auto& a = samples[i].twist().angular();
     worst_angular = std::max(worst_angular, (w_fd - Eigen::Vector3d(a.x(), a.y(), a.z())).norm());
     const auto& prev = samples[i - 1].twist().linear();
-    worst_jump = std::max(worst_jump, (Eigen::Vector3d(l.x(), l.y(), l.z()) - Eigen::Vector3d(prev.x(), prev.y(), prev.z())).norm());
+    worst_jump = std::max(
+        worst_jump, (Eigen::Vector3d(l.x(), l.y(), l.z()) - Eigen::Vector3d(prev.x(), prev.y(), prev.z())).norm());
   }
-  EXPECT_LT(worst_linear, 1e-5);   // central difference error of a quintic at 1 ms
+  EXPECT_LT(worst_linear, 1e-5);  // central difference error of a quintic at 1 ms
   EXPECT_LT(worst_angular, 1e-4);
-  EXPECT_LT(worst_jump, 1e-3);     // no step in velocity from one ms to the next (peak accel < 1 m/s^2)
+  EXPECT_LT(worst_jump, 1e-3);  // no step in velocity from one ms to the next (peak accel < 1 m/s^2)
 }
 
 TEST(SetpointScript, LoopsWhenAsked) {

@@ -53,7 +53,8 @@ TEST(Video, AMissingCameraSourceIsAClearErrorAtActivation) {
     cam.activate();
     FAIL() << "opened";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot open camera source '/nonexistent/clip.mp4'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot open camera source '/nonexistent/clip.mp4'"), std::string::npos)
+        << e.what();
   }
 }
 

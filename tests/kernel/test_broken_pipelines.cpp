@@ -49,12 +49,15 @@ TEST_P(BrokenPipeline, GivesTheExpectedErrorsAtTheirLines) {
   for (const auto& w : wanted) {
     const std::string where_file = w.file_suffix.empty() ? file.string() : w.file_suffix;
     const bool found = std::any_of(errors.begin(), errors.end(), [&](const ConfigIssue& e) {
-      const bool file_ok = e.where.file.size() >= where_file.size() &&
-                           e.where.file.compare(e.where.file.size() - where_file.size(), where_file.size(), where_file) == 0;
-      return file_ok && e.where.line == w.line && e.where.column == w.column && e.message.find(w.text) != std::string::npos;
+      const bool file_ok =
+          e.where.file.size() >= where_file.size() &&
+          e.where.file.compare(e.where.file.size() - where_file.size(), where_file.size(), where_file) == 0;
+      return file_ok && e.where.line == w.line && e.where.column == w.column &&
+             e.message.find(w.text) != std::string::npos;
     });
     EXPECT_TRUE(found) << "expected at " << where_file << ":" << w.line << ":" << w.column << ": " << w.text
-                       << "\ngot:\n" << got;
+                       << "\ngot:\n"
+                       << got;
   }
 }
 

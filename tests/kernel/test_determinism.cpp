@@ -8,9 +8,11 @@ std::string loop_pipeline(const std::filesystem::path& dir, int domain) {
   return "wysiwyf: 1\ndomain: " + std::to_string(domain) +
          "\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 2s}\ncomponents:\n"
          "  a: {type: test_probe, rate: 1000, topics: {in: c_out, out: a_out}, params: {gain: 0.7, record: " +
-         (dir / "a.txt").string() + "}}\n"
+         (dir / "a.txt").string() +
+         "}}\n"
          "  b: {type: test_probe, rate: 500, topics: {in: a_out, out: b_out}, params: {gain: -1.3, record: " +
-         (dir / "b.txt").string() + "}}\n"
+         (dir / "b.txt").string() +
+         "}}\n"
          "  c: {type: test_probe, rate: 200, topics: {in: b_out, out: c_out}, params: {gain: 2.1, record: " +
          (dir / "c.txt").string() + "}}\n";
 }

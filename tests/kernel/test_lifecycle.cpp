@@ -7,9 +7,14 @@ std::string three_probes(const std::filesystem::path& log, const std::string& b_
   return "wysiwyf: 1\nname: lifecycle\ndomain: " + std::to_string(domain) +
          "\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 50ms}\n"
          "components:\n"
-         "  a: {type: test_probe, rate: 100, params: {lifecycle_log: " + log.string() + "}}\n"
-         "  b: {type: test_probe, rate: 100, params: {lifecycle_log: " + log.string() + ", " + b_params + "}}\n"
-         "  c: {type: test_probe, rate: 100, params: {lifecycle_log: " + log.string() + "}}\n";
+         "  a: {type: test_probe, rate: 100, params: {lifecycle_log: " +
+         log.string() +
+         "}}\n"
+         "  b: {type: test_probe, rate: 100, params: {lifecycle_log: " +
+         log.string() + ", " + b_params +
+         "}}\n"
+         "  c: {type: test_probe, rate: 100, params: {lifecycle_log: " +
+         log.string() + "}}\n";
 }
 
 TEST(Lifecycle, ConfiguresAndActivatesInOrderAndDeactivatesInReverse) {
@@ -48,8 +53,9 @@ TEST(Lifecycle, AConfigureExceptionStopsBeforeAnythingIsActivated) {
   // The validator runs configure() too and reports the failure before anything starts.
   const auto v = validate_pipeline(spec, loader);
   ASSERT_EQ(v.errors.size(), 1u);
-  EXPECT_NE(v.errors[0].message.find("component 'b' (test_probe) rejected its configuration: configure failed on purpose"),
-            std::string::npos)
+  EXPECT_NE(
+      v.errors[0].message.find("component 'b' (test_probe) rejected its configuration: configure failed on purpose"),
+      std::string::npos)
       << v.errors[0].message;
   std::filesystem::remove(log);
   std::ostringstream out;
@@ -64,7 +70,8 @@ TEST(Lifecycle, AnActivateExceptionDeactivatesOnlyTheActivatedInReverse) {
   const auto log = scratch_dir() / "events.txt";
   const RunResult r = run_pipeline(three_probes(log, "fail_phase: activate", 44));
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("component 'b' (test_probe) failed in activate: activate failed on purpose"), std::string::npos)
+  EXPECT_NE(r.error.find("component 'b' (test_probe) failed in activate: activate failed on purpose"),
+            std::string::npos)
       << r.error;
   EXPECT_EQ(read_file(log),
             "a configure\nb configure\nc configure\n"
@@ -112,10 +119,12 @@ TEST(BadInput, RejectedSamplesAreCountedAndWarnedOnce) {
   EXPECT_EQ(r.components[1].warnings, 50u);
   EXPECT_EQ(r.components[0].rejected_samples, 0u);
   std::size_t lines = 0;
-  for (std::size_t at = log.find("rejected a sample"); at != std::string::npos; at = log.find("rejected a sample", at + 1))
+  for (std::size_t at = log.find("rejected a sample"); at != std::string::npos;
+       at = log.find("rejected a sample", at + 1))
     ++lines;
   EXPECT_EQ(lines, 1u) << log;
-  EXPECT_NE(log.find("[sink] warning: input 'in': rejected a sample: position[0] is not finite"), std::string::npos) << log;
+  EXPECT_NE(log.find("[sink] warning: input 'in': rejected a sample: position[0] is not finite"), std::string::npos)
+      << log;
 }
 
 }  // namespace wysiwyf::test

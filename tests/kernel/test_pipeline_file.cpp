@@ -27,7 +27,8 @@ TEST(PipelineFile, IncludeThenOverrideThenSet) {
                                      "  a: {params: {gain: 2}}\n"
                                      "  b: {enabled: false}\n"
                                      "  c: {type: test_probe, rate: 10}\n";
-  const PipelineSpec spec = load_pipeline((dir / "top.yaml").string(), {"a.params.gain=3", "clock.duration=250ms", "domain=9"});
+  const PipelineSpec spec =
+      load_pipeline((dir / "top.yaml").string(), {"a.params.gain=3", "clock.duration=250ms", "domain=9"});
   EXPECT_EQ(spec.name.value, "top");
   EXPECT_EQ(spec.domain_id(), 9);
   EXPECT_EQ(spec.duration_ns(), 250'000'000);
@@ -76,7 +77,8 @@ TEST(PipelineFile, KeysAndParametersReadScalarsAlike) {
     EXPECT_THROW(load_pipeline_from_string(yaml, "bad.yaml"), ConfigError) << bad;
   }
   // An integer parameter refuses a fraction and reads a leading zero as decimal (YAML 1.2).
-  for (const auto& [text, ok] : std::vector<std::pair<std::string, bool>>{{"1.5", false}, {"010", true}, {"0x1G", false}}) {
+  for (const auto& [text, ok] :
+       std::vector<std::pair<std::string, bool>>{{"1.5", false}, {"010", true}, {"0x1G", false}}) {
     const PipelineSpec s = load_pipeline_from_string(
         "wysiwyf: 1\ncomponents:\n  a: {type: test_probe, rate: 100, params: {fail_tick: " + text + "}}\n", "int.yaml");
     EXPECT_EQ(validate_pipeline(s, loader).ok(), ok) << text;

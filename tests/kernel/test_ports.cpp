@@ -24,21 +24,22 @@ TEST(Ports, TheBusRefusesASecondTypeOnATopic) {
     bus.channel<msg::PoseStamped>("t", "b.in");
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_STREQ(e.what(), "topic 't': port b.in carries wysiwyf::msg::PoseStamped but port a.out carries "
-                           "wysiwyf::msg::JointState");
+    EXPECT_STREQ(e.what(),
+                 "topic 't': port b.in carries wysiwyf::msg::PoseStamped but port a.out carries "
+                 "wysiwyf::msg::JointState");
   }
 }
 
 TEST(Ports, UnmappedPortsUseInstanceSlashPort) {
-  const PipelineSpec spec =
-      load_pipeline_from_string("wysiwyf: 1\ncomponents:\n  probe: {type: test_probe, rate: 100, topics: {in: x}}\n", "p");
+  const PipelineSpec spec = load_pipeline_from_string(
+      "wysiwyf: 1\ncomponents:\n  probe: {type: test_probe, rate: 100, topics: {in: x}}\n", "p");
   EXPECT_EQ(spec.find("probe")->topic_for("in"), "x");
   EXPECT_EQ(spec.find("probe")->topic_for("out"), "probe/out");
 }
 
 TEST(Ports, AnInputWithNoProducerIsAWarningNotAnError) {
-  const PipelineSpec spec =
-      load_pipeline_from_string("wysiwyf: 1\ncomponents:\n  probe: {type: test_probe, rate: 100, topics: {in: x}}\n", "p");
+  const PipelineSpec spec = load_pipeline_from_string(
+      "wysiwyf: 1\ncomponents:\n  probe: {type: test_probe, rate: 100, topics: {in: x}}\n", "p");
   Loader loader(test_search_dirs());
   const auto v = validate_pipeline(spec, loader);
   EXPECT_TRUE(v.ok());

@@ -9,7 +9,8 @@ TEST(RealClock, TicksEveryComponentOnItsOwnThreadUntilTheDuration) {
   const RunResult r = run_pipeline(
       "wysiwyf: 1\ndomain: 51\ndds: {transport: local}\nclock: {mode: real, duration: 300ms}\ncomponents:\n"
       "  src: {type: test_probe, rate: 200, topics: {out: x}}\n"
-      "  sink: {type: test_probe, rate: 100, topics: {in: x}, params: {record: " + (dir / "r.txt").string() + "}}\n");
+      "  sink: {type: test_probe, rate: 100, topics: {in: x}, params: {record: " +
+      (dir / "r.txt").string() + "}}\n");
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.stop_reason, "duration reached");
   ASSERT_EQ(r.components.size(), 2u);
@@ -71,9 +72,10 @@ TEST(DdsSetup, AFastDdsXmlParticipantProfileCanBeNamed) {
   </profiles>
 </dds>
 )";
-  std::ofstream(dir / "p.yaml") << "wysiwyf: 1\ndomain: 53\ndds: {profiles: profiles.xml, participant_profile: wysiwyf_test_shm}\n"
-                                   "clock: {mode: sim, step: 1ms, duration: 20ms}\ncomponents:\n"
-                                   "  a: {type: test_probe, rate: 1000}\n";
+  std::ofstream(dir / "p.yaml")
+      << "wysiwyf: 1\ndomain: 53\ndds: {profiles: profiles.xml, participant_profile: wysiwyf_test_shm}\n"
+         "clock: {mode: sim, step: 1ms, duration: 20ms}\ncomponents:\n"
+         "  a: {type: test_probe, rate: 1000}\n";
   Loader loader(test_search_dirs());
   const PipelineSpec spec = load_pipeline((dir / "p.yaml").string());
   EXPECT_TRUE(validate_pipeline(spec, loader).ok());
@@ -93,13 +95,15 @@ TEST(DdsSetup, AnUnknownProfileNameFailsTheRunWithAClearError) {
 )";
   std::ofstream(dir / "p.yaml") << "wysiwyf: 1\ndomain: 54\ndds: {profiles: profiles.xml, participant_profile: nope}\n"
                                    "clock: {mode: sim, step: 1ms, duration: 20ms}\ncomponents:\n"
-                                   "  a: {type: test_probe, rate: 1000, params: {lifecycle_log: " + (dir / "log").string() + "}}\n";
+                                   "  a: {type: test_probe, rate: 1000, params: {lifecycle_log: " +
+                                       (dir / "log").string() + "}}\n";
   Loader loader(test_search_dirs());
   std::ostringstream log;
   Runtime runtime(load_pipeline((dir / "p.yaml").string()), loader, RunOptions{"", false, &log});
   const RunResult r = runtime.run();
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("cannot create a DDS participant on domain 54 with profile 'nope'"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("cannot create a DDS participant on domain 54 with profile 'nope'"), std::string::npos)
+      << r.error;
   EXPECT_FALSE(std::filesystem::exists(dir / "log"));  // nothing was configured
 }
 

@@ -52,10 +52,12 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
                              "components:\n"
                              "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing}}\n"
                              "  sink: {type: test_probe, rate: 100, process: consumer, topics: {in: crossing},\n"
-                             "         params: {stop_after_received: 20, record: " << (dir / "received.txt").string()
-                          << "}}\n";
-  const pid_t producer = spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "producer.log");
-  const pid_t consumer = spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
+                             "         params: {stop_after_received: 20, record: "
+                          << (dir / "received.txt").string() << "}}\n";
+  const pid_t producer =
+      spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "producer.log");
+  const pid_t consumer =
+      spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
 
   EXPECT_EQ(wait_exit(consumer, std::chrono::seconds(60)), 0) << read_file(dir / "consumer.log");
   EXPECT_NE(read_file(dir / "consumer.log").find("stopped: stopped by sink: received 20"), std::string::npos)
@@ -66,7 +68,8 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   // number of times, until the topics are listed.)
   std::string topics;
   for (int attempt = 0; attempt < 8 && topics.find("wysiwyf/diagnostics") == std::string::npos; ++attempt) {
-    const pid_t list = spawn_cli({"topic", "list", "--domain", "50", "--transport", "local", "--wait", "2"}, dir / "list.log");
+    const pid_t list =
+        spawn_cli({"topic", "list", "--domain", "50", "--transport", "local", "--wait", "2"}, dir / "list.log");
     EXPECT_EQ(wait_exit(list, std::chrono::seconds(30)), 0);
     topics = read_file(dir / "list.log");
   }
@@ -81,8 +84,9 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   EXPECT_NE(echoed.find("position: ["), std::string::npos) << echoed;
 
   // Its diagnostics are on the domain too (transient local: the latest state of each component).
-  const pid_t diag = spawn_cli({"topic", "echo", "wysiwyf/diagnostics", "--domain", "50", "--transport", "local",
-                                "--count", "1"}, dir / "diag.log");
+  const pid_t diag =
+      spawn_cli({"topic", "echo", "wysiwyf/diagnostics", "--domain", "50", "--transport", "local", "--count", "1"},
+                dir / "diag.log");
   EXPECT_EQ(wait_exit(diag, std::chrono::seconds(30)), 0) << read_file(dir / "diag.log");
   const std::string diagnostics = read_file(dir / "diag.log");
   EXPECT_NE(diagnostics.find("instance: \"src\""), std::string::npos) << diagnostics;
@@ -92,7 +96,8 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   // SIGTERM stops the producer cleanly.
   kill(producer, SIGTERM);
   EXPECT_EQ(wait_exit(producer, std::chrono::seconds(30)), 0) << read_file(dir / "producer.log");
-  EXPECT_NE(read_file(dir / "producer.log").find("stopped: signal"), std::string::npos) << read_file(dir / "producer.log");
+  EXPECT_NE(read_file(dir / "producer.log").find("stopped: signal"), std::string::npos)
+      << read_file(dir / "producer.log");
 
   // 20 samples, consecutive, intact: the source writes position[0] = its stamp in seconds.
   std::istringstream lines(read_file(dir / "received.txt"));
@@ -121,8 +126,8 @@ TEST(TopicTools, EchoEndsWhenTheWriterLeaves) {
                              "clock: {mode: sim, step: 1ms, duration: 4s, pace: 1}\n"
                              "components:\n  src: {type: test_probe, rate: 50, topics: {out: leaving}}\n";
   const pid_t source = spawn_cli({"run", pipeline.string(), "--no-progress"}, dir / "source.log");
-  const pid_t echo = spawn_cli({"topic", "echo", "leaving", "--domain", "57", "--transport", "local", "--timeout", "30"},
-                               dir / "echo.log");
+  const pid_t echo = spawn_cli(
+      {"topic", "echo", "leaving", "--domain", "57", "--transport", "local", "--timeout", "30"}, dir / "echo.log");
   EXPECT_EQ(wait_exit(source, std::chrono::seconds(60)), 0) << read_file(dir / "source.log");
   EXPECT_EQ(wait_exit(echo, std::chrono::seconds(60)), 0) << read_file(dir / "echo.log");  // -1: still waiting
   const std::string echoed = read_file(dir / "echo.log");
@@ -131,7 +136,8 @@ TEST(TopicTools, EchoEndsWhenTheWriterLeaves) {
 
   const pid_t bad = spawn_cli({"topic", "echo", "leaving", "--domain", "57", "--count", "2.5"}, dir / "bad.log");
   EXPECT_EQ(wait_exit(bad, std::chrono::seconds(30)), 2) << read_file(dir / "bad.log");
-  EXPECT_NE(read_file(dir / "bad.log").find("--count: found '2.5'; expected a whole number of samples"), std::string::npos)
+  EXPECT_NE(read_file(dir / "bad.log").find("--count: found '2.5'; expected a whole number of samples"),
+            std::string::npos)
       << read_file(dir / "bad.log");
 }
 

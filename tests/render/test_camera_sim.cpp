@@ -88,8 +88,9 @@ TEST(CameraSim, ItsHandMaskAgreesWithItsImageAndItsPosesWithTheModel) {
 TEST(CameraSim, AnExposureAveragesTheSceneOverItsSampleTimes) {
   const robot::PumaModel model(std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf", "flange");
   const robot::Vector6d q = ready_pose(model);
-  const std::string common = "intrinsics: [600, 600, 319.5, 239.5], look_at: [0.6, 0.0, 0.45], noise: 0, blur: 0, "
-                             "light_variation: 0, spill: 0";
+  const std::string common =
+      "intrinsics: [600, 600, 319.5, 239.5], look_at: [0.6, 0.0, 0.45], noise: 0, blur: 0, "
+      "light_variation: 0, spill: 0";
   msg::JointState js;
   for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
   Eigen::Isometry3d start = model.fk(q, model.frame("dev"));
@@ -143,9 +144,10 @@ TEST(CameraSim, AnExposureAveragesTheSceneOverItsSampleTimes) {
   cv::absdiff(smeared, last, d_last);
   const double worst = cv::norm(d_mean, cv::NORM_INF);
   const int smeared_pixels = cv::countNonZero(d_last.reshape(1) > 20);
-  std::printf("[measured] exposure 16 ms, 8 samples: worst difference to the mean of the instantaneous images %.0f "
-              "grey levels; %d channel values differ by > 20 from the instantaneous frame\n",
-              worst, smeared_pixels);
+  std::printf(
+      "[measured] exposure 16 ms, 8 samples: worst difference to the mean of the instantaneous images %.0f "
+      "grey levels; %d channel values differ by > 20 from the instantaneous frame\n",
+      worst, smeared_pixels);
   EXPECT_LE(worst, 1.0);
   EXPECT_GT(smeared_pixels, 500) << "the moving hand must smear";
 }

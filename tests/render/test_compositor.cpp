@@ -15,7 +15,9 @@ msg::Image image(int w, int h, const char* encoding, int channels_bytes) {
   m.data().assign(static_cast<std::size_t>(w) * h * channels_bytes, 0);
   return m;
 }
-void set_depth(msg::Image& d, int u, int v, float z) { std::memcpy(&d.data()[(static_cast<std::size_t>(v) * d.width() + u) * 4], &z, 4); }
+void set_depth(msg::Image& d, int u, int v, float z) {
+  std::memcpy(&d.data()[(static_cast<std::size_t>(v) * d.width() + u) * 4], &z, 4);
+}
 
 TEST(Compositor, BlendsThePremultipliedHandOverTheScene) {
   Harness h("compositor", "{}", 60);
@@ -51,11 +53,12 @@ TEST(Compositor, ZKeyingHidesTheHandBehindTheVirtualObject) {
   auto real_depth = h.feed<msg::Image>("real_depth");
   auto out = h.watch<msg::Image>("composite");
   h.activate();
-  msg::Image s = image(3, 1, "rgb8", 3), sd = image(3, 1, "32FC1", 4), k = image(3, 1, "rgba8", 4), rd = image(3, 1, "32FC1", 4);
+  msg::Image s = image(3, 1, "rgb8", 3), sd = image(3, 1, "32FC1", 4), k = image(3, 1, "rgba8", 4),
+             rd = image(3, 1, "32FC1", 4);
   for (int u = 0; u < 3; ++u) {
-    s.data()[u * 3] = 200;                                    // the virtual object: red
-    k.data()[u * 4 + 1] = 255, k.data()[u * 4 + 3] = 255;    // the hand: opaque green
-    set_depth(rd, u, 0, 0.5f);                                // the hand is 0.5 m away
+    s.data()[u * 3] = 200;                                 // the virtual object: red
+    k.data()[u * 4 + 1] = 255, k.data()[u * 4 + 3] = 255;  // the hand: opaque green
+    set_depth(rd, u, 0, 0.5f);                             // the hand is 0.5 m away
   }
   set_depth(sd, 0, 0, 0.4f);  // the virtual surface in front of the hand: the hand is hidden
   set_depth(sd, 1, 0, 0.6f);  // behind the hand: the hand shows
@@ -170,7 +173,7 @@ TEST(Compositor, TakesTheHandFromACameraImageAndAMask) {
   h.activate();
   msg::Image s = image(2, 1, "rgb8", 3), c = image(2, 1, "rgb8", 3), m = image(2, 1, "mono8", 1);
   for (int u = 0; u < 2; ++u) s.data()[u * 3 + 2] = 200, c.data()[u * 3] = 180;  // blue scene, red camera
-  m.data()[1] = 255;                                                               // the hand is pixel 1
+  m.data()[1] = 255;                                                             // the hand is pixel 1
   scene.write(s), camera.write(c), mask.write(m);
   h.tick(Time{0});
   msg::Image r;

@@ -36,7 +36,8 @@ const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urd
 constexpr std::int64_t kMs = 1'000'000;
 constexpr double kPi = 3.14159265358979323846;
 // puma_sim's and the emulator's default start: the ready pose.
-const Vector6d kReady = (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
+const Vector6d kReady =
+    (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
 
 const PumaModel& model() {
   static const PumaModel m(kUrdf, "dev");
@@ -148,9 +149,10 @@ Difference run_both(int ms, int period_ms) {
     travel = std::max(travel, (sim.q[i] - sim.q[0]).cwiseAbs().maxCoeff());
   }
   EXPECT_GT(travel, 0.02) << "the arm should have moved";
-  std::printf("[measured] %d ms of setpoints every %d ms: puma_sim vs puma_driver + emulator, largest difference "
-              "%.3g rad, %.3g rad/s, %.3g N m (joint travel %.3f rad)\n",
-              ms, period_ms, d.q, d.qd, d.effort, travel);
+  std::printf(
+      "[measured] %d ms of setpoints every %d ms: puma_sim vs puma_driver + emulator, largest difference "
+      "%.3g rad, %.3g rad/s, %.3g N m (joint travel %.3f rad)\n",
+      ms, period_ms, d.q, d.qd, d.effort, travel);
   return d;
 }
 
@@ -168,8 +170,7 @@ TEST(PumaDriver, FollowsTheSameJointTrajectoryAsPumaSim) {
 
 TEST(PumaDriver, ALostLinkHoldsAndFaultsAndARestoredOneHoldsAtTheArm) {
   ControllerEmulator controller(lockstep_options());
-  Arm driver("puma_driver",
-             "{lockstep: true, reply_timeout: 0.02, port: " + std::to_string(controller.port()) + "}");
+  Arm driver("puma_driver", "{lockstep: true, reply_timeout: 0.02, port: " + std::to_string(controller.port()) + "}");
   msg::CartesianSetpoint s;
   for (int i = 0; i < 1500; ++i) driver.tick(setpoint_at(i, 20, s) ? &s : nullptr);
   ASSERT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
@@ -299,7 +300,8 @@ struct RawHost {
     for (;;) {
       const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
       if (n <= 0) return false;
-      if (robot::link::decode(buffer, static_cast<std::size_t>(n), st) == robot::link::DecodeError::kNone && st.ack == ack)
+      if (robot::link::decode(buffer, static_cast<std::size_t>(n), st) == robot::link::DecodeError::kNone &&
+          st.ack == ack)
         return true;
     }
   }

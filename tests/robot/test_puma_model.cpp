@@ -200,8 +200,7 @@ TEST_F(PumaTest, InverseKinematicsOfAnotherToolFrame) {
     EXPECT_LE(position_error(model.fk(r.q, knob), base_T_knob), 1e-9);
     EXPECT_LE(rotation_error(model.fk(r.q, knob), base_T_knob), 1e-9);
   }
-  EXPECT_THROW(model.ik(Eigen::Isometry3d::Identity(), Vector6d::Zero(), model.frame("link3")),
-               std::invalid_argument);
+  EXPECT_THROW(model.ik(Eigen::Isometry3d::Identity(), Vector6d::Zero(), model.frame("link3")), std::invalid_argument);
 }
 
 TEST_F(PumaTest, ConfigurationFlagsMeanWhatTheySay) {
@@ -357,10 +356,10 @@ TEST_F(PumaTest, MassMatrixIsSymmetricPositiveDefiniteAndMatchesRnea) {
 // The paper's inertial parameters, typed in here in DH frames (not the URDF's link frames),
 // and the tool side's bodies on DH frame 6.
 struct DhBody {
-  int frame;              // DH frame 1..6 the values are given in
-  double m;               // kg
-  Eigen::Vector3d r;      // centre of mass in that frame
-  Eigen::Vector3d I;      // principal inertia about the COM, along that frame's axes
+  int frame;          // DH frame 1..6 the values are given in
+  double m;           // kg
+  Eigen::Vector3d r;  // centre of mass in that frame
+  Eigen::Vector3d I;  // principal inertia about the COM, along that frame's axes
 };
 const DhBody kBodies[] = {
     {1, 13.0, {0, 0, 0}, {0.175, 0.35, 0.175}},  // y1 is the joint-1 axis: 0.35 (paper); m, x, z assumed
@@ -369,8 +368,8 @@ const DhBody kBodies[] = {
     {4, 0.82, {0, 0.019, 0}, {1.8e-3, 1.3e-3, 1.8e-3}},
     {5, 0.34, {0, 0, 0}, {0.3e-3, 0.4e-3, 0.3e-3}},
     {6, 0.09, {0, 0, 0.032}, {0.15e-3, 0.15e-3, 0.04e-3}},
-    {6, 0.4, {0, 0, kFlange + 0.02}, {2.1333e-4, 2.1333e-4, 3.2e-4}},    // F/T sensor
-    {6, 1.08, {0, 0, kFlange + 0.045}, {3.609e-3, 3.609e-3, 7.2e-3}},    // plate
+    {6, 0.4, {0, 0, kFlange + 0.02}, {2.1333e-4, 2.1333e-4, 3.2e-4}},       // F/T sensor
+    {6, 1.08, {0, 0, kFlange + 0.045}, {3.609e-3, 3.609e-3, 7.2e-3}},       // plate
     {6, 0.0763, {0, 0, kFlange + 0.07}, {1.4466e-5, 1.4466e-5, 8.584e-6}},  // knob
 };
 
@@ -447,22 +446,22 @@ TEST_F(PumaTest, GravityTorquesOfTheStretchedArmByHand) {
     double m, x;
   };
   const Mass arm[] = {
-      {17.4, a2 - 0.3638},       // link 2, r2 = (-0.3638, 0.006, 0.2275)
-      {4.8, a2 + 0.070},         // link 3, r3 = (-0.0203, -0.0141, 0.070)
-      {0.82, a2 + d4 + 0.019},   // link 4, r4 = (0, 0.019, 0)
-      {0.34, a2 + d4},           // link 5, r5 = 0
-      {0.09, a2 + d4 + 0.032},   // link 6, r6 = (0, 0, 0.032)
+      {17.4, a2 - 0.3638},      // link 2, r2 = (-0.3638, 0.006, 0.2275)
+      {4.8, a2 + 0.070},        // link 3, r3 = (-0.0203, -0.0141, 0.070)
+      {0.82, a2 + d4 + 0.019},  // link 4, r4 = (0, 0.019, 0)
+      {0.34, a2 + d4},          // link 5, r5 = 0
+      {0.09, a2 + d4 + 0.032},  // link 6, r6 = (0, 0, 0.032)
   };
   const double wc = a2 + d4 + kFlange;  // the flange face
   const Mass tool[] = {
-      {0.4, wc + 0.02},      // F/T sensor body, centred 0.02 beyond the flange
-      {1.08, wc + 0.045},    // plate, 0.04 .. 0.05 beyond the flange
-      {0.0763, wc + 0.07},   // knob, 0.05 .. 0.09 beyond the flange
+      {0.4, wc + 0.02},     // F/T sensor body, centred 0.02 beyond the flange
+      {1.08, wc + 0.045},   // plate, 0.04 .. 0.05 beyond the flange
+      {0.0763, wc + 0.07},  // knob, 0.05 .. 0.09 beyond the flange
   };
   double arm2 = 0, arm3 = 0;
   for (int i = 0; i < 5; ++i) {
-    arm2 += arm[i].m * g * arm[i].x;                      // joint 2 carries links 2..6
-    if (i >= 1) arm3 += arm[i].m * g * (arm[i].x - a2);   // joint 3 carries links 3..6
+    arm2 += arm[i].m * g * arm[i].x;                     // joint 2 carries links 2..6
+    if (i >= 1) arm3 += arm[i].m * g * (arm[i].x - a2);  // joint 3 carries links 3..6
   }
   double tau2 = arm2, tau3 = arm3;
   double tau5 = 0.09 * g * 0.032;  // joint 5 carries link 5 (COM on its axis) and link 6
@@ -519,8 +518,9 @@ std::string read_file(const std::string& path) {
 struct TempFile {
   std::string path;
   TempFile(const std::string& name, const std::string& text)
-      : path((std::filesystem::temp_directory_path() /
-              ("wysiwyf_test_robot_" + std::to_string(::getpid()) + "_" + name)).string()) {
+      : path(
+            (std::filesystem::temp_directory_path() / ("wysiwyf_test_robot_" + std::to_string(::getpid()) + "_" + name))
+                .string()) {
     std::ofstream(path) << text;
   }
   ~TempFile() { std::filesystem::remove(path); }
@@ -551,11 +551,9 @@ TEST(PumaModelLoad, ErrorsNameTheFileAndTheProblem) {
   expect_load_error(kUrdf, "link4", "found 4 revolute joints");
   const TempFile axis("axis.urdf", edit("<joint name=\"joint3\"", "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 1 0\"/>"));
   expect_load_error(axis.path, "flange", "joint 'joint3' has axis");
-  const TempFile twist("twist.urdf",
-                       edit("<joint name=\"joint5\"", "rpy=\"1.5707963267948966 0 0\"", "rpy=\"0 0 0\""));
+  const TempFile twist("twist.urdf", edit("<joint name=\"joint5\"", "rpy=\"1.5707963267948966 0 0\"", "rpy=\"0 0 0\""));
   expect_load_error(twist.path, "flange", "alpha4");
-  const TempFile prismatic("prismatic.urdf",
-                           edit("<joint name=\"joint2\"", "type=\"revolute\"", "type=\"prismatic\""));
+  const TempFile prismatic("prismatic.urdf", edit("<joint name=\"joint2\"", "type=\"revolute\"", "type=\"prismatic\""));
   expect_load_error(prismatic.path, "flange", "joint 'joint2' is prismatic");
   const TempFile broken("broken.urdf", "<robot name=\"x\"><link name=\"a\"></robot>");
   expect_load_error(broken.path, "flange", "not a valid URDF");
@@ -573,7 +571,8 @@ TEST(PumaModelLoad, AnotherMountAndPedestal) {
   const PumaModel model(file.path);
   EXPECT_NEAR(model.dh().d[0], 0.8, 1e-12);
   Eigen::Isometry3d base_T_dh0 = translation(0.1, -0.2, 0.05);
-  base_T_dh0.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.01, Eigen::Vector3d::UnitY()) *
+  base_T_dh0.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+                    Eigen::AngleAxisd(-0.01, Eigen::Vector3d::UnitY()) *
                     Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitX()));
   std::mt19937_64 rng(5);
   for (int n = 0; n < 500; ++n) {

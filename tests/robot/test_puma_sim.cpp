@@ -27,7 +27,8 @@ constexpr double kDt = 1e-3;
 constexpr double kPi = 3.14159265358979323846;
 // puma_sim's defaults, restated (the test must fail if they drift): the ready pose, the hard
 // acceleration limits and the reference's share of the limits.
-const Vector6d kReady = (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
+const Vector6d kReady =
+    (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
 const Vector6d kAccelLimit = (Vector6d() << 8, 8, 10, 30, 30, 30).finished();
 constexpr double kPositionMargin = 0.02;
 
@@ -171,8 +172,8 @@ TEST(PumaSim, HoldsStillUnderGravityAtTheReadyPose) {
     speed = std::max(speed, max_abs_velocity(s));
     cart = std::max(cart, (s.dev.translation() - p0).norm());
   }
-  std::printf("[measured] at rest for 3 s: joint drift %.3g rad, speed %.3g rad/s, plate drift %.3g m\n", drift,
-              speed, cart);
+  std::printf("[measured] at rest for 3 s: joint drift %.3g rad, speed %.3g rad/s, plate drift %.3g m\n", drift, speed,
+              cart);
   EXPECT_LT(drift, 2e-4);  // about two encoder counts of joint 1
   EXPECT_LT(speed, 1e-3);
   EXPECT_LT(cart, 1e-4);
@@ -194,9 +195,10 @@ TEST_P(JointStep, StaysWithinEveryLimitAtEverySampleAndSettles) {
   const LimitUse use = check_limits(sim.samples);
   const double error = (sim.last().q - goal).cwiseAbs().maxCoeff();
   const double cart = (sim.last().dev.translation() - model().fk(goal).translation()).norm();
-  std::printf("[measured] joint %d step %.2f rad: peak share of velocity limit %.3f, of acceleration limit %.3f, "
-              "position limit distance %.3f rad; after 2.5 s joint error %.2g rad, plate error %.2g m\n",
-              joint + 1, delta, use.velocity, use.acceleration, use.position_margin_left, error, cart);
+  std::printf(
+      "[measured] joint %d step %.2f rad: peak share of velocity limit %.3f, of acceleration limit %.3f, "
+      "position limit distance %.3f rad; after 2.5 s joint error %.2g rad, plate error %.2g m\n",
+      joint + 1, delta, use.velocity, use.acceleration, use.position_margin_left, error, cart);
   EXPECT_LT(error, 3e-4);  // settled: within three counts of joint 1's encoder
   EXPECT_LT(cart, 2e-4);
   EXPECT_LT(max_abs_velocity(sim.last()), 1e-3);
@@ -204,11 +206,12 @@ TEST_P(JointStep, StaysWithinEveryLimitAtEverySampleAndSettles) {
 }
 
 INSTANTIATE_TEST_SUITE_P(PumaSim, JointStep,
-                         ::testing::Values(std::pair{0, 0.4}, std::pair{1, -0.3}, std::pair{2, 0.4},
-                                           std::pair{3, 1.2}, std::pair{4, -0.8}, std::pair{5, 1.4}));
+                         ::testing::Values(std::pair{0, 0.4}, std::pair{1, -0.3}, std::pair{2, 0.4}, std::pair{3, 1.2},
+                                           std::pair{4, -0.8}, std::pair{5, 1.4}));
 
 TEST(PumaSim, CartesianStepOf5cmStaysWithinLimitsAndSettles) {
-  for (const Eigen::Vector3d& step : {Eigen::Vector3d(-0.05, 0, 0), Eigen::Vector3d(0, 0.05, 0), Eigen::Vector3d(0, 0, 0.05)}) {
+  for (const Eigen::Vector3d& step :
+       {Eigen::Vector3d(-0.05, 0, 0), Eigen::Vector3d(0, 0.05, 0), Eigen::Vector3d(0, 0, 0.05)}) {
     Sim sim;
     const Eigen::Isometry3d start = model().fk(kReady);
     Eigen::Isometry3d goal = start;
@@ -224,12 +227,15 @@ TEST(PumaSim, CartesianStepOf5cmStaysWithinLimitsAndSettles) {
     for (std::size_t i = 100; i < sim.samples.size(); ++i) {
       const Eigen::Vector3d e = sim.samples[i].dev.translation() - goal.translation();
       overshoot = std::max(overshoot, e.dot(step.normalized()));
-      if (e.norm() > 5e-4) settle_ms = -1;
-      else if (settle_ms < 0) settle_ms = static_cast<int>(i) - 100;
+      if (e.norm() > 5e-4)
+        settle_ms = -1;
+      else if (settle_ms < 0)
+        settle_ms = static_cast<int>(i) - 100;
     }
-    std::printf("[measured] Cartesian step (%.2f %.2f %.2f) m: share of velocity limit %.3f, of acceleration "
-                "limit %.3f; settled within 0.5 mm after %d ms, overshoot %.2g m; after 1.5 s error %.2g m, %.2g rad\n",
-                step.x(), step.y(), step.z(), use.velocity, use.acceleration, settle_ms, overshoot, cart, turn);
+    std::printf(
+        "[measured] Cartesian step (%.2f %.2f %.2f) m: share of velocity limit %.3f, of acceleration "
+        "limit %.3f; settled within 0.5 mm after %d ms, overshoot %.2g m; after 1.5 s error %.2g m, %.2g rad\n",
+        step.x(), step.y(), step.z(), use.velocity, use.acceleration, settle_ms, overshoot, cart, turn);
     EXPECT_LT(cart, 2e-4);
     EXPECT_LT(turn, 1e-3);
     EXPECT_GT(settle_ms, 0);
@@ -279,9 +285,10 @@ TEST(PumaSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
   double braking_ms = 0;
   for (int j = 0; j < 6; ++j)
     braking_ms = std::max(braking_ms, std::abs(sim.samples[stop - 1].qd[j]) / (0.8 * kAccelLimit[j]) * 1e3);
-  std::printf("[measured] watchdog: speed %.3f rad/s when the setpoints stopped; still (< 1 mrad/s) %.0f ms after "
-              "the last setpoint (bound %.0f ms)\n",
-              v0, stopped_ms, 60 + braking_ms + 100);
+  std::printf(
+      "[measured] watchdog: speed %.3f rad/s when the setpoints stopped; still (< 1 mrad/s) %.0f ms after "
+      "the last setpoint (bound %.0f ms)\n",
+      v0, stopped_ms, 60 + braking_ms + 100);
   EXPECT_LT(stopped_ms, 60 + braking_ms + 100);
   EXPECT_EQ(sim.state(), msg::ARM_HOLDING);
   EXPECT_NE(sim.reason().find("no setpoint for"), std::string::npos) << sim.reason();
@@ -340,9 +347,10 @@ TEST(PumaSim, CommandingAPoseBeyondAJointLimitNeverExceedsIt) {
     peak = std::max(peak, sim.last().q[4]);
   }
   check_limits(sim.samples);
-  std::printf("[measured] joint 5 driven to %.3f rad: peak %.4f rad (limit %.4f, reference stops at %.4f); "
-              "status '%s'\n",
-              q[4], peak, lim.upper[4], lim.upper[4] - kPositionMargin, sim.reason().c_str());
+  std::printf(
+      "[measured] joint 5 driven to %.3f rad: peak %.4f rad (limit %.4f, reference stops at %.4f); "
+      "status '%s'\n",
+      q[4], peak, lim.upper[4], lim.upper[4] - kPositionMargin, sim.reason().c_str());
   EXPECT_LE(peak, lim.upper[4] - kPositionMargin + 1e-3);
   EXPECT_GT(peak, lim.upper[4] - kPositionMargin - 0.05);  // it did go up to the limit
   EXPECT_EQ(sim.state(), msg::ARM_FAULT);
@@ -389,11 +397,12 @@ CircleRuns run_circles(const std::string& params) {
     out.track20 = std::max(out.track20, (slow.samples[i].dev.translation() - path).norm());
     out.track1 = std::max(out.track1, (fast.samples[i].dev.translation() - path).norm());
   }
-  std::printf("[measured] circle r 3 cm at 0.5 Hz, %s: peak joint acceleration %.3f / %.3f rad/s^2 (20 ms / 1 ms "
-              "setpoints), largest 1-ms change of acceleration %.3f / %.3f rad/s^2; joint traces %.3g rad apart; "
-              "path error %.3g / %.3g m\n",
-              params.c_str(), out.s20.max_accel, out.s1.max_accel, out.s20.max_accel_step, out.s1.max_accel_step,
-              out.apart, out.track20, out.track1);
+  std::printf(
+      "[measured] circle r 3 cm at 0.5 Hz, %s: peak joint acceleration %.3f / %.3f rad/s^2 (20 ms / 1 ms "
+      "setpoints), largest 1-ms change of acceleration %.3f / %.3f rad/s^2; joint traces %.3g rad apart; "
+      "path error %.3g / %.3g m\n",
+      params.c_str(), out.s20.max_accel, out.s1.max_accel, out.s20.max_accel_step, out.s1.max_accel_step, out.apart,
+      out.track20, out.track1);
   return out;
 }
 
@@ -466,11 +475,12 @@ TEST(PumaSim, TheHandPushingThePlateIsMeasuredAndStoppedByIt) {
       Rt * ((contact - sensor.translation()).cross(push) + (com - sensor.translation()).cross(weight));
   const Eigen::Vector3d in_dev = sim.last().dev.inverse() * hand;
   const double penetration = radius - in_dev.z();
-  std::printf("[measured] hand push: contact force %.3f N; sensor force error %.3g N, torque error %.3g N m; "
-              "penetration at rest %.3g m (push / k_contact = %.3g m), deepest %.3g m; hand speed %.3g m/s\n",
-              push.norm(), (force - expected_force).norm(), (torque - expected_torque).norm(), penetration,
-              push.norm() / k_contact, deepest, (sim.samples.back().hand.translation() -
-              sim.samples[sim.samples.size() - 2].hand.translation()).norm() / kDt);
+  std::printf(
+      "[measured] hand push: contact force %.3f N; sensor force error %.3g N, torque error %.3g N m; "
+      "penetration at rest %.3g m (push / k_contact = %.3g m), deepest %.3g m; hand speed %.3g m/s\n",
+      push.norm(), (force - expected_force).norm(), (torque - expected_torque).norm(), penetration,
+      push.norm() / k_contact, deepest,
+      (sim.samples.back().hand.translation() - sim.samples[sim.samples.size() - 2].hand.translation()).norm() / kDt);
   EXPECT_GT(push.dot(-n), 15.0);  // it does push: 500 N/m * (3 cm + 1 cm radius - what the plate gives)
   EXPECT_LT((force - expected_force).norm(), 0.05);
   EXPECT_LT((torque - expected_torque).norm(), 5e-3);
@@ -488,7 +498,8 @@ TEST(PumaSim, AHardBlowTripsTheForceLimit) {
   const Eigen::Vector3d n = ready.linear().col(2);
   const Eigen::Vector3d park = ready * Eigen::Vector3d(0.05, 0.04, 0.0) + 0.02 * n;
   char params[256];
-  std::snprintf(params, sizeof params, "{hand_park: [%.9f, %.9f, %.9f], force_limit: 40}", park.x(), park.y(), park.z());
+  std::snprintf(params, sizeof params, "{hand_park: [%.9f, %.9f, %.9f], force_limit: 40}", park.x(), park.y(),
+                park.z());
   Sim sim(params);
   sim.hold_pose(ready, 100);
   sim.send_hand(park - 0.2 * n);  // 100 N of impedance force

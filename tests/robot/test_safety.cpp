@@ -195,7 +195,8 @@ TEST_F(SafetyGateTest, WatchdogBrakesWithinTheBrakingBoundAndHoldsThenResumes) {
   EXPECT_LE(check.worst_acceleration, 1.0 + 1e-9);
   EXPECT_NE(gate.reason().find("no setpoint"), std::string::npos) << gate.reason();
   // Timeout, then braking at the reference acceleration limit: v0 / a + one period.
-  const double bound_ms = config.setpoint_timeout * 1e3 + 20 + std::abs(v0) / gate.reference_acceleration_limit()[3] * 1e3 + 1;
+  const double bound_ms =
+      config.setpoint_timeout * 1e3 + 20 + std::abs(v0) / gate.reference_acceleration_limit()[3] * 1e3 + 1;
   ASSERT_GT(stopped_at, 0);
   EXPECT_LE(stopped_at, bound_ms);
   // A fresh setpoint near where the arm stopped resumes.
@@ -255,8 +256,10 @@ TEST_F(SafetyGateTest, MalformedSetpointsFaultWithTheirReason) {
       {"linear speed", [](SetpointInput& s) { s.linear_velocity.x() = 3.0; }},
       {"angular speed", [](SetpointInput& s) { s.angular_velocity.y() = -7.0; }},
       {"m from the arm", [](SetpointInput& s) { s.position.z() += 0.15; }},
-      {"turned", [](SetpointInput& s) {
-         const Eigen::Quaterniond q(s.quaternion_xyzw[3], s.quaternion_xyzw[0], s.quaternion_xyzw[1], s.quaternion_xyzw[2]);
+      {"turned",
+       [](SetpointInput& s) {
+         const Eigen::Quaterniond q(s.quaternion_xyzw[3], s.quaternion_xyzw[0], s.quaternion_xyzw[1],
+                                    s.quaternion_xyzw[2]);
          const Eigen::Quaterniond r = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()) * q;
          s.quaternion_xyzw = Eigen::Vector4d(r.x(), r.y(), r.z(), r.w());
        }},
@@ -285,8 +288,8 @@ TEST_F(SafetyGateTest, MalformedSetpointsFaultWithTheirReason) {
 }
 
 TEST_F(SafetyGateTest, UnreachableOrJumpingIkTargetsFault) {
-  for (IkStatus status : {IkStatus::kOutOfReach, IkStatus::kInsideShoulderCylinder, IkStatus::kJointLimits,
-                          IkStatus::kInvalidInput}) {
+  for (IkStatus status :
+       {IkStatus::kOutOfReach, IkStatus::kInsideShoulderCylinder, IkStatus::kJointLimits, IkStatus::kInvalidInput}) {
     SafetyGate gate(config);
     start(gate, q0);
     follow(gate, q0);

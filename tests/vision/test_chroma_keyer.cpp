@@ -27,7 +27,9 @@ TEST(ChromaKeyer, MatchesTheTrueHandMask) {
   for (double x : {0.55, 0.7, 0.85})
     for (double angle : {0.0, 0.8, -1.2}) {
       Eigen::Isometry3d base_T_hand = Eigen::Isometry3d::Identity();
-      base_T_hand.linear() = (Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitX())).toRotationMatrix();
+      base_T_hand.linear() =
+          (Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitX()))
+              .toRotationMatrix();
       base_T_hand.translation() = Eigen::Vector3d(x, -0.05, 0.35);
       msg::PoseStamped p;
       msgs::to_msg(base_T_hand, p.pose());
@@ -74,10 +76,10 @@ TEST(ChromaKeyer, SuppressesBlueSpillOnWhatItKeeps) {
   msg::Image out;
   ASSERT_TRUE(hand.take_latest(out));
   ASSERT_EQ(out.data().size(), 8u);
-  EXPECT_EQ(out.data()[3], 255);                                   // opaque
+  EXPECT_EQ(out.data()[3], 255);  // opaque
   EXPECT_EQ((std::vector<int>{out.data()[0], out.data()[1], out.data()[2]}), (std::vector<int>{200, 150, 120}));
   EXPECT_EQ(out.data()[7], 255);
-  EXPECT_EQ(out.data()[6], 180);                                   // blue 190 -> 180
+  EXPECT_EQ(out.data()[6], 180);  // blue 190 -> 180
 }
 
 }  // namespace wysiwyf::vision

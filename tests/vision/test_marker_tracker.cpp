@@ -151,9 +151,9 @@ class Rig {
 
 std::string camera_params(const std::string& extra = "") {
   std::ostringstream s;
-  s << "{intrinsics: [600, 600, 319.5, 239.5], noise: 2.0, blur: 0.7, light_variation: 0.04, seed: 11, eye: [" << kEye.x()
-    << ", " << kEye.y() << ", " << kEye.z() << "], look_at: [" << kPlate.x() << ", " << kPlate.y() << ", " << kPlate.z() << "]"
-    << extra << "}";
+  s << "{intrinsics: [600, 600, 319.5, 239.5], noise: 2.0, blur: 0.7, light_variation: 0.04, seed: 11, eye: ["
+    << kEye.x() << ", " << kEye.y() << ", " << kEye.z() << "], look_at: [" << kPlate.x() << ", " << kPlate.y() << ", "
+    << kPlate.z() << "]" << extra << "}";
   return s.str();
 }
 
@@ -177,8 +177,8 @@ struct Errors {
   }
 };
 std::ostream& operator<<(std::ostream& o, const Errors& e) {
-  return o << "eye_T_dev " << e.dev_mm << " mm, " << e.dev_deg << " deg; eye_T_base " << e.base_mm << " mm, " << e.base_deg
-           << " deg";
+  return o << "eye_T_dev " << e.dev_mm << " mm, " << e.dev_deg << " deg; eye_T_base " << e.base_mm << " mm, "
+           << e.base_deg << " deg";
 }
 
 }  // namespace
@@ -262,7 +262,8 @@ TEST(MarkerTracker, BackgroundStaysStillWhileTheRobotMovesUnlikeWithTheDeviceInT
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const auto& x : p) mean += x / static_cast<double>(p.size());
     Spread s;
-    for (const auto& x : p) s.rms += (x - mean).squaredNorm() / static_cast<double>(p.size()), s.max = std::max(s.max, (x - mean).norm());
+    for (const auto& x : p)
+      s.rms += (x - mean).squaredNorm() / static_cast<double>(p.size()), s.max = std::max(s.max, (x - mean).norm());
     s.rms = std::sqrt(s.rms);
     return s;
   };
@@ -271,10 +272,10 @@ TEST(MarkerTracker, BackgroundStaysStillWhileTheRobotMovesUnlikeWithTheDeviceInT
   std::cout << "background jitter, still camera, robot moving, " << origin[0].size() << " frames (rms / max, mm):\n";
   const char* name[2] = {"device motion as input", "device motion in state"};
   for (int m = 0; m < 2; ++m)
-    std::cout << "  " << name[m] << ": eye_T_base translation " << 1e3 * o[m].rms << " / " << 1e3 * o[m].max << ", workspace point "
-              << 1e3 * w[m].rms << " / " << 1e3 * w[m].max << " (" << errors[m] << ")\n";
-  std::cout << "  ratio state / input: translation " << o[1].rms / o[0].rms << " / " << o[1].max / o[0].max << ", workspace "
-            << w[1].rms / w[0].rms << " / " << w[1].max / w[0].max << "\n";
+    std::cout << "  " << name[m] << ": eye_T_base translation " << 1e3 * o[m].rms << " / " << 1e3 * o[m].max
+              << ", workspace point " << 1e3 * w[m].rms << " / " << 1e3 * w[m].max << " (" << errors[m] << ")\n";
+  std::cout << "  ratio state / input: translation " << o[1].rms / o[0].rms << " / " << o[1].max / o[0].max
+            << ", workspace " << w[1].rms / w[0].rms << " / " << w[1].max / w[0].max << "\n";
   EXPECT_LE(o[0].rms, 0.1e-3);
   EXPECT_LE(w[0].max, 0.1e-3);
   EXPECT_GE(o[1].rms, 5 * o[0].rms);
@@ -283,7 +284,8 @@ TEST(MarkerTracker, BackgroundStaysStillWhileTheRobotMovesUnlikeWithTheDeviceInT
 
 TEST(MarkerTracker, ReacquiresWithinThreeFramesAfterAllLampsReappear) {
   // All four lamps off from 1.0 s to 2.0 s.
-  Rig rig(camera_params(", hidden_markers: [1.0, 2.0, 0,  1.0, 2.0, 1,  1.0, 2.0, 2,  1.0, 2.0, 3]"), {"{lost_after: 5}"});
+  Rig rig(camera_params(", hidden_markers: [1.0, 2.0, 0,  1.0, 2.0, 1,  1.0, 2.0, 2,  1.0, 2.0, 3]"),
+          {"{lost_after: 5}"});
   const robot::Vector6d q0 = facing_pose(rig.model(), kPlate + 0.6 * Eigen::Vector3d(0.9, -0.2, 0.2).normalized());
   bool lost = false;
   int reappeared = -1, reacquired = -1;
@@ -307,9 +309,9 @@ TEST(MarkerTracker, ReacquiresWithinThreeFramesAfterAllLampsReappear) {
 TEST(MarkerTracker, StartsFromTwoLampsGivenTheSetUpsRoughPose) {
   // Two lamps are never seen (under the table, as in the demo): no PnP fix is possible. A rough
   // camera pose (1 cm and about 1 degree off) and the arm's known motion are enough.
-  Rig rig(camera_params(", hidden_markers: [0, 100, 2,  0, 100, 3]"), {"{prior_eye: [" + std::to_string(kEye.x() + 0.01) + ", " +
-                                                                        std::to_string(kEye.y()) + ", " + std::to_string(kEye.z()) +
-                                                                        "], prior_look_at: [0.6, 0.01, 0.5]}"});
+  Rig rig(camera_params(", hidden_markers: [0, 100, 2,  0, 100, 3]"),
+          {"{prior_eye: [" + std::to_string(kEye.x() + 0.01) + ", " + std::to_string(kEye.y()) + ", " +
+           std::to_string(kEye.z()) + "], prior_look_at: [0.6, 0.01, 0.5]}"});
   const robot::Vector6d q0 = facing_pose(rig.model(), kPlate + 0.6 * Eigen::Vector3d(0.9, -0.2, 0.2).normalized());
   Errors start, end;
   for (int k = 0; k < 100; ++k) {
@@ -340,16 +342,16 @@ TEST(MarkerTracker, GateRefusesABrightBlobWhereAHiddenLampShouldBe) {
       if (t < 1.0) return;
       // Where lamp 0 would be in this image (ground truth), 5 px to the right.
       const cv::Point2d p = rig.true_pixel(q, 0) + cv::Point2d(5, 0);
-      cv::circle(rgb, cv::Point(static_cast<int>(std::lround(p.x * 16)), static_cast<int>(std::lround(p.y * 16))), 5 * 16,
-                 cv::Scalar(255, 250, 230), cv::FILLED, cv::LINE_AA, 4);
+      cv::circle(rgb, cv::Point(static_cast<int>(std::lround(p.x * 16)), static_cast<int>(std::lround(p.y * 16))),
+                 5 * 16, cv::Scalar(255, 250, 230), cv::FILLED, cv::LINE_AA, 4);
     });
     if (t < 1.2) continue;
     refused += static_cast<int>(rig.tracker(0).obs.rejected());
     gated.add(rig.tracker(0), rig);
     ungated.add(rig.tracker(1), rig);
   }
-  std::cout << "false blob 5 px off a hidden lamp: gated " << gated << " (" << refused << " refusals); without the gate "
-            << ungated << "\n";
+  std::cout << "false blob 5 px off a hidden lamp: gated " << gated << " (" << refused
+            << " refusals); without the gate " << ungated << "\n";
   EXPECT_GT(refused, 0) << "the blob was inside the search window and refused";
   EXPECT_LE(gated.dev_mm, 2.0);
   EXPECT_GT(ungated.dev_mm, 2 * gated.dev_mm) << "without the gate the blob pulls the estimate";

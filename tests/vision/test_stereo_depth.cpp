@@ -59,8 +59,9 @@ Eigen::Vector3d true_hand_point(msg::Image& mask, msg::Image& depth, double near
   EXPECT_GT(points.size(), 1000u) << "the hand is not in view";
   std::sort(points.begin(), points.end(), [](const auto& p, const auto& q) { return p.z() < q.z(); });
   const double median = points[points.size() / 2].z();
-  points.erase(std::remove_if(points.begin(), points.end(), [&](const auto& p) { return std::abs(p.z() - median) > 0.08; }),
-               points.end());
+  points.erase(
+      std::remove_if(points.begin(), points.end(), [&](const auto& p) { return std::abs(p.z() - median) > 0.08; }),
+      points.end());
   if (nearest > 0) {
     points.resize(static_cast<std::size_t>(std::ceil(nearest * static_cast<double>(points.size()))));
   }
@@ -89,14 +90,18 @@ DepthErrors depth_errors(msg::Image& estimate, msg::Image& truth, const cv::Mat&
   for (double x : signed_err) err.push_back(std::abs(x));
   std::sort(err.begin(), err.end());
   std::sort(signed_err.begin(), signed_err.end());
-  return {err[err.size() / 2], err[err.size() * 9 / 10], static_cast<double>(err.size()) / truths, signed_err[signed_err.size() / 2]};
+  return {err[err.size() / 2], err[err.size() * 9 / 10], static_cast<double>(err.size()) / truths,
+          signed_err[signed_err.size() / 2]};
 }
 
 // camera_sim (stereo) -> chroma_keyer -> stereo_depth, driven frame by frame on the sim clock.
 class StereoRig {
  public:
   explicit StereoRig(const std::string& stereo_params, const std::string& more_camera_params = "")
-      : cam_("camera_sim", "{stereo_baseline: " + std::to_string(kBaseline) + ", noise: 2.0, spill: 0.3, seed: 7" + more_camera_params + "}", 25),
+      : cam_("camera_sim",
+             "{stereo_baseline: " + std::to_string(kBaseline) + ", noise: 2.0, spill: 0.3, seed: 7" +
+                 more_camera_params + "}",
+             25),
         keyer_("chroma_keyer", "{min_luma: 45}", 25),  // as demo-sim keys: the arm's shaded side is cloth too
         stereo_("stereo_depth", stereo_params, 25) {
     hand_in_ = cam_.feed<msg::PoseStamped>("hand_pose");
@@ -151,8 +156,10 @@ class StereoRig {
     }
     stereo_.tick(t);
     ASSERT_TRUE(depth_.take_latest(depth)) << "no depth for this frame";
-    if (in_view) ASSERT_TRUE(hand_out_.take_latest(hand)) << "no hand position for this frame";
-    else ASSERT_FALSE(hand_out_.take_latest(hand)) << "a hand position with no hand in view";
+    if (in_view)
+      ASSERT_TRUE(hand_out_.take_latest(hand)) << "no hand position for this frame";
+    else
+      ASSERT_FALSE(hand_out_.take_latest(hand)) << "a hand position with no hand in view";
   }
 
   msg::Image true_mask, true_depth, depth;
@@ -181,7 +188,8 @@ void dump_depth_error(const std::string& dir, int shot, StereoRig& rig) {
     for (int u = 0; u < e.cols; ++u) {
       if (!m.at<std::uint8_t>(v, u)) continue;
       const float err = e.at<float>(v, u) - t.at<float>(v, u);
-      out.at<cv::Vec3b>(v, u) = e.at<float>(v, u) > 0 ? cv::Vec3b(0, cv::saturate_cast<std::uint8_t>(-err * 6400), cv::saturate_cast<std::uint8_t>(err * 6400))
+      out.at<cv::Vec3b>(v, u) = e.at<float>(v, u) > 0 ? cv::Vec3b(0, cv::saturate_cast<std::uint8_t>(-err * 6400),
+                                                                  cv::saturate_cast<std::uint8_t>(err * 6400))
                                                       : cv::Vec3b(128, 128, 128);
     }
   cv::imwrite(dir + "/stereo_error_" + std::to_string(shot) + ".png", out);
@@ -199,8 +207,11 @@ TEST(StereoDepth, HandPositionWithinACentimetreAtSixtyCentimetres) {
   DepthErrors worst_hand;
   worst_hand.coverage = 1;
   int shots = 0;
-  for (const auto& [a, b, roll, tilt] : std::vector<std::array<double, 4>>{
-           {0, 0, 0, 0}, {0.15, -0.1, 0.8, 0.3}, {-0.2, 0.1, -1.2, -0.4}, {0.1, 0.2, 2.0, 0.5}, {-0.1, -0.2, 0.4, -0.6}}) {
+  for (const auto& [a, b, roll, tilt] : std::vector<std::array<double, 4>>{{0, 0, 0, 0},
+                                                                           {0.15, -0.1, 0.8, 0.3},
+                                                                           {-0.2, 0.1, -1.2, -0.4},
+                                                                           {0.1, 0.2, 2.0, 0.5},
+                                                                           {-0.1, -0.2, 0.4, -0.6}}) {
     rig.shoot(hand_in_view(0.6, a, b, roll, tilt));
     if (::testing::Test::HasFatalFailure()) return;
     EXPECT_EQ(std::string(rig.hand.header().frame_id().c_str()), "eye");
@@ -212,15 +223,16 @@ TEST(StereoDepth, HandPositionWithinACentimetreAtSixtyCentimetres) {
     const DepthErrors all = depth_errors(rig.depth, rig.true_depth, cv::Mat(480, 640, CV_8UC1, cv::Scalar(255)));
     std::cout << "hand at " << truth.transpose() << " m (eye): error " << error * 1000 << " mm ("
               << (position(rig.hand) - truth).transpose() * 1000 << "); depth |error| on the hand median "
-              << hand.median * 1000 << " mm (bias " << hand.bias * 1000 << " mm), p90 " << hand.p90 * 1000 << " mm, coverage " << hand.coverage
-              << "; whole image median " << all.median * 1000 << " mm, p90 " << all.p90 * 1000 << " mm, coverage " << all.coverage
-              << "\n";
+              << hand.median * 1000 << " mm (bias " << hand.bias * 1000 << " mm), p90 " << hand.p90 * 1000
+              << " mm, coverage " << hand.coverage << "; whole image median " << all.median * 1000 << " mm, p90 "
+              << all.p90 * 1000 << " mm, coverage " << all.coverage << "\n";
     worst_hand.median = std::max(worst_hand.median, hand.median), worst_hand.p90 = std::max(worst_hand.p90, hand.p90);
     worst_hand.coverage = std::min(worst_hand.coverage, hand.coverage);
     ++shots;
   }
-  std::cout << "worst of " << shots << " shots: hand position error " << worst * 1000 << " mm; depth on the hand: median |error| "
-            << worst_hand.median * 1000 << " mm, p90 " << worst_hand.p90 * 1000 << " mm, coverage " << worst_hand.coverage << "\n";
+  std::cout << "worst of " << shots << " shots: hand position error " << worst * 1000
+            << " mm; depth on the hand: median |error| " << worst_hand.median * 1000 << " mm, p90 "
+            << worst_hand.p90 * 1000 << " mm, coverage " << worst_hand.coverage << "\n";
   EXPECT_LE(worst, 0.01);
   // At 0.6 m one pixel of disparity is 1 cm of depth (Z^2 / (fx B)): the hand's depth within a
   // pixel of disparity for most of it. The cloth (uniform blue, independent noise in the two
@@ -279,8 +291,8 @@ TEST(StereoDepth, LeavesTheKeyedPlateOutOfTheHandGivenEyeTDev) {
   // The camera 0.7 m from the plate, the hand 0.1 m in front of it, palm toward it: 0.6 m away.
   const Eigen::Vector3d plate = base_T_dev.translation(), eye = plate + 0.7 * (kEye - plate).normalized();
   std::ostringstream camera;
-  camera << ", eye: [" << eye.x() << ", " << eye.y() << ", " << eye.z() << "], look_at: [" << plate.x() << ", " << plate.y()
-         << ", " << plate.z() << "]";
+  camera << ", eye: [" << eye.x() << ", " << eye.y() << ", " << eye.z() << "], look_at: [" << plate.x() << ", "
+         << plate.y() << ", " << plate.z() << "]";
   Eigen::Isometry3d base_T_hand = base_T_dev;
   base_T_hand.translate(Eigen::Vector3d(0.02, 0.0, 0.10));
   base_T_hand.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
@@ -292,8 +304,8 @@ TEST(StereoDepth, LeavesTheKeyedPlateOutOfTheHandGivenEyeTDev) {
     if (::testing::Test::HasFatalFailure()) return;
     error[with_dev] = (position(rig.hand) - true_hand_point(rig.true_mask, rig.true_depth)).norm();
   }
-  std::cout << "hand 10 cm in front of the plate: error " << error[1] * 1000 << " mm with eye_T_dev, " << error[0] * 1000
-            << " mm without\n";
+  std::cout << "hand 10 cm in front of the plate: error " << error[1] * 1000 << " mm with eye_T_dev, "
+            << error[0] * 1000 << " mm without\n";
   // The back of the hand, as textureless as the plate 10 cm behind it, takes some of the plate's
   // disparity at half size: 10.3 mm here (about 7 mm matching at full size, downscale: 1).
   EXPECT_LE(error[1], 0.015);
@@ -345,10 +357,11 @@ double median_depth(msg::Image& depth) {
 }  // namespace
 
 TEST(StereoDepth, DepthIsFocalLengthTimesBaselineOverDisparityForEveryMatcher) {
-  const std::vector<std::pair<std::string, int>> cases{{"{algorithm: sgbm, downscale: 1, baseline: 0.06}", 1},
-                                                       {"{algorithm: sgbm_3way, downscale: 1, baseline: 0.06}", 1},
-                                                       {"{algorithm: bm, block_size: 9, downscale: 1, baseline: 0.06}", 1},
-                                                       {"{algorithm: sgbm, downscale: 2, baseline: 0.06}", 2}};
+  const std::vector<std::pair<std::string, int>> cases{
+      {"{algorithm: sgbm, downscale: 1, baseline: 0.06}", 1},
+      {"{algorithm: sgbm_3way, downscale: 1, baseline: 0.06}", 1},
+      {"{algorithm: bm, block_size: 9, downscale: 1, baseline: 0.06}", 1},
+      {"{algorithm: sgbm, downscale: 2, baseline: 0.06}", 2}};
   for (const auto& [params, downscale] : cases) {
     Harness h("stereo_depth", params, 25);
     auto left = h.feed<msg::Image>("left");
@@ -417,7 +430,8 @@ TEST(StereoDepth, SkipsAndReportsBadInput) {
   // Wrong encoding.
   msg::Image bgra = l;
   bgra.encoding("bgra8");
-  EXPECT_NE(run(bgra, r).find("input 'left': rejected a sample: encoding 'bgra8', expected rgb8 or mono8"), std::string::npos);
+  EXPECT_NE(run(bgra, r).find("input 'left': rejected a sample: encoding 'bgra8', expected rgb8 or mono8"),
+            std::string::npos);
   EXPECT_EQ(h.rejected("left"), 1u);
   EXPECT_FALSE(depth.take_latest(d));
   // Sizes that differ.

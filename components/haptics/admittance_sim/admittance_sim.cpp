@@ -19,8 +19,9 @@ class AdmittanceSim final : public Component {
  public:
   void configure(Context& ctx) override {
     ctx.summary("admittance display: rigid bodies with contact LCP on CVODE, driven by the user's wrench");
-    scene_path_ = ctx.param<std::string>("scene", "scenes/cube_on_table.yaml",
-                                         "scene file; relative paths are tried from the working directory, then config/");
+    scene_path_ =
+        ctx.param<std::string>("scene", "scenes/cube_on_table.yaml",
+                               "scene file; relative paths are tried from the working directory, then config/");
     max_force_ = ctx.param<double>("max_user_force", 200.0, "user forces above this are clipped (N)", Range{1, 2000});
     rtol_ = ctx.param<double>("rtol", kHapticRtol,
                               "CVODE relative tolerance (absolute: 1e-2 of it); 1e-7 keeps a pushed cube within 5 um "
@@ -28,13 +29,15 @@ class AdmittanceSim final : public Component {
                               Range{1e-14, 1e-3});
     wrench_ = ctx.input<msg::WrenchStamped>("wrench", "the wrist F/T sensor: user push plus tool weight, sensor frame",
                                             Qos::sensor(8));
-    device_pose_ = ctx.input<msg::PoseStamped>("device_pose",
-                                               "measured base_T_dev (optional): where the sensor really is, for removing the "
-                                               "tool's weight; without it, where the object says the device should be",
-                                               Qos::sensor(4));
-    setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist for the robot (source admittance)");
-    objects_ = ctx.output<msg::ObjectState>("objects", "pose, twist and contacts of every dynamic body",
-                                            Qos::reliable(16));
+    device_pose_ =
+        ctx.input<msg::PoseStamped>("device_pose",
+                                    "measured base_T_dev (optional): where the sensor really is, for removing the "
+                                    "tool's weight; without it, where the object says the device should be",
+                                    Qos::sensor(4));
+    setpoint_ =
+        ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist for the robot (source admittance)");
+    objects_ =
+        ctx.output<msg::ObjectState>("objects", "pose, twist and contacts of every dynamic body", Qos::reliable(16));
     dt_ = ctx.period_ns() > 0 ? static_cast<double>(ctx.period_ns()) * 1e-9 : 1e-3;
     try {
       scene_ = load_scene(find_config_file(scene_path_));  // reported with the scene file's line before anything starts
@@ -66,23 +69,28 @@ class AdmittanceSim final : public Component {
     }
     while (device_pose_.take(device_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
-      if (T.matrix().allFinite()) measured_base_T_dev_ = T, have_device_pose_ = true;
-      else reject(device_pose_, "a non-finite pose");
+      if (T.matrix().allFinite())
+        measured_base_T_dev_ = T, have_device_pose_ = true;
+      else
+        reject(device_pose_, "a non-finite pose");
     }
     const int body = scene_.device.body;
     const Eigen::Isometry3d base_T_obj = pose_of(body);
     // The sensor is where the robot holds it; if the robot lags or holds, that is not where the
     // object says, and the tool's weight must be removed in the sensor's true orientation.
-    const Eigen::Isometry3d base_T_dev = have_device_pose_ ? measured_base_T_dev_ : base_T_obj * scene_.device.obj_T_dev;
+    const Eigen::Isometry3d base_T_dev =
+        have_device_pose_ ? measured_base_T_dev_ : base_T_obj * scene_.device.obj_T_dev;
     const Eigen::Isometry3d base_T_sensor = base_T_dev * scene_.device.dev_T_sensor;
     // Until the sensor has said anything, nobody pushes (a zero reading would be minus the tool's weight).
-    const BodyWrench user = have_reading_ ? user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
-                                                                scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
-                                          : BodyWrench{};
+    const BodyWrench user = have_reading_
+                                ? user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
+                                                      scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
+                                : BodyWrench{};
     world_->set_external_wrench(body, user.force, user.torque);
     // STEP 2-6.
     const StepReport report = world_->step(dt_);
-    if (report.lcp_failures > 0) log("contact LCP found no solution in this step (" + std::to_string(report.lcp_failures) + " time(s))");
+    if (report.lcp_failures > 0)
+      log("contact LCP found no solution in this step (" + std::to_string(report.lcp_failures) + " time(s))");
     // STEP 7: the motion command.
     publish(now);
   }

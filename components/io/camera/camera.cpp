@@ -19,9 +19,11 @@ class Camera final : public Component {
     ctx.summary("a camera, video file or GStreamer pipeline through OpenCV VideoCapture");
     source_ = ctx.param<std::string>("source", "0", "device index or path, video file, or GStreamer pipeline");
     backend_ = ctx.param_choice("backend", "any", "VideoCapture API", {"any", "v4l2", "ffmpeg", "gstreamer"});
-    calibration_ = ctx.param<std::string>("calibration", "", "OpenCV calibration YAML (camera_matrix, distortion_coefficients)");
+    calibration_ =
+        ctx.param<std::string>("calibration", "", "OpenCV calibration YAML (camera_matrix, distortion_coefficients)");
     at_end_ = ctx.param_choice("at_end", "stop", "when a file ends", {"stop", "loop", "hold"});
-    reopen_s_ = ctx.param<double>("reopen_after", 1.0, "seconds without frames before reopening a lost source", Range{0.05, 60});
+    reopen_s_ = ctx.param<double>("reopen_after", 1.0, "seconds without frames before reopening a lost source",
+                                  Range{0.05, 60});
     image_ = ctx.output<msg::Image>("image", "frames, rgb8", Qos::sensor(2));
     info_ = ctx.output<msg::CameraInfo>("camera_info", "the calibration, with every frame", Qos::sensor(2));
     if (!calibration_.empty()) load_calibration();
@@ -68,8 +70,10 @@ class Camera final : public Component {
 
  private:
   bool open() {
-    const int api = backend_ == "v4l2" ? cv::CAP_V4L2 : backend_ == "ffmpeg" ? cv::CAP_FFMPEG
-                  : backend_ == "gstreamer" ? cv::CAP_GSTREAMER : cv::CAP_ANY;
+    const int api = backend_ == "v4l2"        ? cv::CAP_V4L2
+                    : backend_ == "ffmpeg"    ? cv::CAP_FFMPEG
+                    : backend_ == "gstreamer" ? cv::CAP_GSTREAMER
+                                              : cv::CAP_ANY;
     const bool index = !source_.empty() && source_.find_first_not_of("0123456789") == std::string::npos;
     is_file_ = !index && source_.find('!') == std::string::npos && source_.rfind("/dev/", 0) != 0;
     return index ? capture_.open(std::stoi(source_), api) : capture_.open(source_, api);
@@ -92,7 +96,8 @@ class Camera final : public Component {
     for (int i = 0; i < static_cast<int>(D.total()) && i < 14; ++i) info_msg_.d().push_back(D.at<double>(i));
     for (int i = 0; i < 9; ++i) info_msg_.k()[i] = K.at<double>(i / 3, i % 3);
     info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    info_msg_.p() = {K.at<double>(0, 0), 0, K.at<double>(0, 2), 0, 0, K.at<double>(1, 1), K.at<double>(1, 2), 0, 0, 0, 1, 0};
+    info_msg_.p() = {
+        K.at<double>(0, 0), 0, K.at<double>(0, 2), 0, 0, K.at<double>(1, 1), K.at<double>(1, 2), 0, 0, 0, 1, 0};
   }
 
   std::string source_, backend_, calibration_, at_end_;

@@ -41,7 +41,7 @@ class SetpointScript final : public Component {
   void tick(Time now) override {
     const Keyframes::Segment seg = table_->at(time_.at(now.ns, table_->end_time(), loop_));
     const double tau = seg.tau, tau2 = tau * tau;
-    const double s = tau2 * tau * (10 - 15 * tau + 6 * tau2);                                // min-jerk
+    const double s = tau2 * tau * (10 - 15 * tau + 6 * tau2);                                  // min-jerk
     const double ds = seg.duration > 0 ? 30 * tau2 * (1 - 2 * tau + tau2) / seg.duration : 0;  // d s / d t
     const Eigen::Vector3d p = positions_[seg.from] + s * (positions_[seg.to] - positions_[seg.from]);
     const Eigen::Quaterniond q = rotations_[seg.from].slerp(s, rotations_[seg.to]);

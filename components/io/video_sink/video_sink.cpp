@@ -34,8 +34,10 @@ class VideoSink final : public Component {
         continue;
       }
       const cv::Mat view = image::view(frame_);
-      if (std::string_view(frame_.encoding().c_str()) == "rgb8") cv::cvtColor(view, bgr_, cv::COLOR_RGB2BGR);
-      else view.copyTo(bgr_);
+      if (std::string_view(frame_.encoding().c_str()) == "rgb8")
+        cv::cvtColor(view, bgr_, cv::COLOR_RGB2BGR);
+      else
+        view.copyTo(bgr_);
       write(bgr_);
     }
   }

@@ -47,22 +47,24 @@ class CameraSim final : public Component {
     urdf_ = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description (cwd, then config/)");
     camera_.width = ctx.param<int>("width", 640, "image width, px", Range{16, 1280});
     camera_.height = ctx.param<int>("height", 480, "image height, px", Range{16, 720});
-    const auto K = ctx.param<std::array<double, 4>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px",
-                                                    Range{0, 1e5});
+    const auto K =
+        ctx.param<std::array<double, 4>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px", Range{0, 1e5});
     const auto eye = ctx.param<std::array<double, 3>>("eye", {1.3, -0.5, 0.75}, "camera position in the base frame, m");
-    const auto target = ctx.param<std::array<double, 3>>("look_at", {0.55, 0.0, 0.35}, "where the camera looks, base frame, m");
-    path_ = ctx.param<std::vector<double>>("path", {}, "moving camera: rows [t s, eye x y z, look_at x y z], times from 0",
-                                           std::nullopt, Length::rows_of(7));
+    const auto target =
+        ctx.param<std::array<double, 3>>("look_at", {0.55, 0.0, 0.35}, "where the camera looks, base frame, m");
+    path_ =
+        ctx.param<std::vector<double>>("path", {}, "moving camera: rows [t s, eye x y z, look_at x y z], times from 0",
+                                       std::nullopt, Length::rows_of(7));
     noise_ = ctx.param<double>("noise", 2.0, "sensor noise, grey levels (sigma)", Range{0, 50});
     blur_ = ctx.param<double>("blur", 0.7, "optical blur, px (sigma; 0: none)", Range{0, 5});
     flicker_ = ctx.param<double>("light_variation", 0.04, "relative amplitude of slow lighting changes", Range{0, 0.5});
     spill_ = ctx.param<double>("spill", 0.3, "blue spill on the hand's edges, 0..1", Range{0, 1});
-    baseline_ = ctx.param<double>("stereo_baseline", 0.0, "0: mono; else also render a right camera this far along x, m",
-                                  Range{0, 1});
+    baseline_ = ctx.param<double>("stereo_baseline", 0.0,
+                                  "0: mono; else also render a right camera this far along x, m", Range{0, 1});
     seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
-    hidden_ = ctx.param<std::vector<double>>("hidden_markers", {},
-                                             "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]",
-                                             std::nullopt, Length::rows_of(3));
+    hidden_ = ctx.param<std::vector<double>>(
+        "hidden_markers", {}, "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]",
+        std::nullopt, Length::rows_of(3));
     exposure_ = ctx.param<double>("exposure", 0.0,
                                   "s the shutter stays open (0: instantaneous); moving things smear over it: the image "
                                   "is the mean of exposure_samples renders at the joint and hand states of their "
@@ -78,12 +80,14 @@ class CameraSim final : public Component {
     info_ = ctx.output<msg::CameraInfo>("camera_info", "intrinsics (no distortion)", Qos::sensor(2));
     true_eye_T_base_ = ctx.output<msg::PoseStamped>("true_eye_T_base", "ground truth", Qos::sensor(4));
     true_eye_T_dev_ = ctx.output<msg::PoseStamped>("true_eye_T_dev", "ground truth", Qos::sensor(4));
-    true_mask_ = ctx.output<msg::Image>("true_hand_mask", "ground truth: 255 where the hand is seen, mono8", Qos::sensor(2));
+    true_mask_ =
+        ctx.output<msg::Image>("true_hand_mask", "ground truth: 255 where the hand is seen, mono8", Qos::sensor(2));
     true_depth_ = ctx.output<msg::Image>("true_depth", "ground truth metric depth, 32FC1", Qos::sensor(2));
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
     if (eye == target) ctx.reject("look_at", "must differ from eye");
-    base_T_eye_ = frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
+    base_T_eye_ =
+        frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
     model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "flange");
   }
 
@@ -104,7 +108,8 @@ class CameraSim final : public Component {
     for (std::size_t i = 0; i + 1 < points.size(); ++i) {
       const double length = (points[i + 1] - points[i]).norm();
       const float radius = i == 0 ? 0.09f : i == 1 ? 0.07f : i == 2 ? 0.055f : 0.04f;
-      link_meshes_.push_back(length > 1e-3 ? renderer_->add_mesh(Mesh::capsule(radius, static_cast<float>(length / 2))) : -1);
+      link_meshes_.push_back(length > 1e-3 ? renderer_->add_mesh(Mesh::capsule(radius, static_cast<float>(length / 2)))
+                                           : -1);
     }
     rng_ = cv::RNG(static_cast<std::uint64_t>(seed_));
   }
@@ -183,7 +188,8 @@ class CameraSim final : public Component {
       true_eye_T_dev_.write(pose_msg_);
     }
     info_msg_.header() = pose_msg_.header();
-    info_msg_.width(static_cast<std::uint32_t>(camera_.width)), info_msg_.height(static_cast<std::uint32_t>(camera_.height));
+    info_msg_.width(static_cast<std::uint32_t>(camera_.width)),
+        info_msg_.height(static_cast<std::uint32_t>(camera_.height));
     info_msg_.distortion_model("plumb_bob");
     info_msg_.k() = {camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1};
     info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -200,7 +206,8 @@ class CameraSim final : public Component {
  private:
   std::vector<Eigen::Vector3d> arm_points(const robot::Vector6d& q) const {
     std::vector<Eigen::Vector3d> p{Eigen::Vector3d(0, 0, -0.6)};  // the pedestal's foot
-    for (const char* f : {"link1", "link3", "link4", "flange"}) p.push_back(model_->fk(q, model_->frame(f)).translation());
+    for (const char* f : {"link1", "link3", "link4", "flange"})
+      p.push_back(model_->fk(q, model_->frame(f)).translation());
     return p;
   }
 
@@ -217,7 +224,10 @@ class CameraSim final : public Component {
     const double* a = &path_[7 * i];
     const double* b = &path_[7 * std::min(i + 1, rows - 1)];
     const double s = (b[0] > a[0]) ? std::clamp((t - a[0]) / (b[0] - a[0]), 0.0, 1.0) : 0.0;
-    auto lerp = [&](int k) { return Eigen::Vector3d(a[k] + s * (b[k] - a[k]), a[k + 1] + s * (b[k + 1] - a[k + 1]), a[k + 2] + s * (b[k + 2] - a[k + 2])); };
+    auto lerp = [&](int k) {
+      return Eigen::Vector3d(a[k] + s * (b[k] - a[k]), a[k + 1] + s * (b[k + 1] - a[k + 1]),
+                             a[k + 2] + s * (b[k + 2] - a[k + 2]));
+    };
     return frames::look_at(lerp(1), lerp(4));
   }
 
@@ -235,7 +245,8 @@ class CameraSim final : public Component {
     if (have_joints_) {
       const auto p = arm_points(q_);
       for (std::size_t i = 0; i + 1 < p.size(); ++i)
-        if (link_meshes_[i] >= 0) renderer_->draw(link_meshes_[i], eye_T_base * segment_pose(p[i], p[i + 1]), color(kCloth, false), !mask_pass);
+        if (link_meshes_[i] >= 0)
+          renderer_->draw(link_meshes_[i], eye_T_base * segment_pose(p[i], p[i + 1]), color(kCloth, false), !mask_pass);
       const Eigen::Isometry3d base_T_dev = model_->fk(q_, model_->frame("dev"));
       Eigen::Isometry3d plate = base_T_dev;
       plate.translate(Eigen::Vector3d(0, 0, -0.005));  // the plate's front face is the dev frame's z = 0
@@ -245,7 +256,8 @@ class CameraSim final : public Component {
       renderer_->draw(knob_, eye_T_base * knob, color(kAluminium, false), !mask_pass);
       for (int m = 0; m < 4; ++m)
         if (!lamp_hidden(m))
-          renderer_->draw(lamp_, eye_T_base * model_->fk(q_, model_->frame("marker_" + std::to_string(m))), color(kLamp, false), false);
+          renderer_->draw(lamp_, eye_T_base * model_->fk(q_, model_->frame("marker_" + std::to_string(m))),
+                          color(kLamp, false), false);
     }
     if (have_hand_) {
       const Eigen::Isometry3d eye_T_hand = eye_T_base * base_T_hand_;
@@ -271,7 +283,8 @@ class CameraSim final : public Component {
       cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
       const cv::Mat edge = mask & ~inner;  // the hand's outer 2 px
       cv::Mat tinted;
-      cv::addWeighted(work_, 1.0 - spill_, cv::Mat(work_.size(), CV_32FC3, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)),
+      cv::addWeighted(work_, 1.0 - spill_,
+                      cv::Mat(work_.size(), CV_32FC3, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)),
                       spill_, 0, tinted);
       tinted.copyTo(work_, edge);
     }

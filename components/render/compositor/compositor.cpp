@@ -37,7 +37,8 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_d
       cv::v_uint16x8 s0, s1, i0, i1;
       cv::v_expand(s, s0, s1);
       cv::v_expand(inverse, i0, i1);
-      cv::v_uint16x8 v0 = cv::v_mul_wrap(s0, i0) + half, v1 = cv::v_mul_wrap(s1, i1) + half;  // (no overflow: 255 * 255 + 128)
+      cv::v_uint16x8 v0 = cv::v_mul_wrap(s0, i0) + half,
+                     v1 = cv::v_mul_wrap(s1, i1) + half;  // (no overflow: 255 * 255 + 128)
       v0 = (v0 + (v0 >> 8)) >> 8;
       v1 = (v1 + (v1 >> 8)) >> 8;
       return cv::v_pack(v0, v1);
@@ -98,7 +99,8 @@ class Compositor final : public Component {
     scene_in_ = ctx.input<msg::Image>("scene", "the rendered virtual scene, rgb8", Qos::sensor(2));
     scene_depth_in_ = ctx.input<msg::Image>("scene_depth", "its metric depth, 32FC1 (0: nothing)", Qos::sensor(2));
     hand_in_ = ctx.input<msg::Image>("hand", "the keyed hand, rgba8 premultiplied", Qos::sensor(2));
-    real_depth_in_ = ctx.input<msg::Image>("real_depth", "metric depth of the real scene, 32FC1 (0: unknown)", Qos::sensor(2));
+    real_depth_in_ =
+        ctx.input<msg::Image>("real_depth", "metric depth of the real scene, 32FC1 (0: unknown)", Qos::sensor(2));
     camera_in_ = ctx.input<msg::Image>("camera", "instead of hand: the camera image, rgb8 ...", Qos::sensor(2));
     mask_in_ = ctx.input<msg::Image>("hand_mask", "... and a hand mask, mono8 (a hardware keyer, or ground truth)",
                                      Qos::sensor(2));
@@ -118,8 +120,8 @@ class Compositor final : public Component {
     fill_header(out_msg_.header(), now.ns, seq_++, scene_.image.header().frame_id().c_str());
     const cv::Mat scene = image::view(scene_.image);
     if (same_size(hand_in_, hand_, w, h)) {
-      const bool z_key = use_depth_ && same_size(real_depth_in_, real_depth_, w, h) &&
-                         same_size(scene_depth_in_, scene_depth_, w, h);
+      const bool z_key =
+          use_depth_ && same_size(real_depth_in_, real_depth_, w, h) && same_size(scene_depth_in_, scene_depth_, w, h);
       blend(scene, image::view(hand_.image), z_key ? image::view(real_depth_.image) : cv::Mat(),
             z_key ? image::view(scene_depth_.image) : cv::Mat(), margin_, out);
     } else {

@@ -34,15 +34,19 @@ class Renderer final : public Component {
                                                     Range{0, 1e5});
     camera_.near_m = ctx.param<double>("near", 0.02, "near clipping distance, m", Range{1e-4, 10});
     camera_.far_m = ctx.param<double>("far", 20.0, "far clipping distance, m", Range{0.1, 1000});
-    samples_ = ctx.param<int>("samples", 1, "multisampling (anti-aliasing) samples; 4 costs 3.5x on llvmpipe", Range{1, 16});
-    background_ = ctx.param<std::array<double, 3>>("background", {0.08, 0.09, 0.12}, "background colour, RGB 0..1",
-                                                   Range{0, 1});
+    samples_ =
+        ctx.param<int>("samples", 1, "multisampling (anti-aliasing) samples; 4 costs 3.5x on llvmpipe", Range{1, 16});
+    background_ =
+        ctx.param<std::array<double, 3>>("background", {0.08, 0.09, 0.12}, "background colour, RGB 0..1", Range{0, 1});
     eye_T_base_in_ = ctx.input<msg::PoseStamped>("eye_T_base", "where the camera is (the tracker)", Qos::sensor(4));
-    objects_in_ = ctx.input<msg::ObjectState>("objects", "dynamic bodies of the virtual environment", Qos::reliable(64));
+    objects_in_ =
+        ctx.input<msg::ObjectState>("objects", "dynamic bodies of the virtual environment", Qos::reliable(64));
     color_out_ = ctx.output<msg::Image>("color", "the rendered scene, rgb8", Qos::sensor(2));
-    depth_out_ = ctx.output<msg::Image>("depth", "metric depth along the optical axis, 32FC1 (0: nothing)", Qos::sensor(2));
+    depth_out_ =
+        ctx.output<msg::Image>("depth", "metric depth along the optical axis, 32FC1 (0: nothing)", Qos::sensor(2));
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
-    if (camera_.near_m >= camera_.far_m) ctx.reject("far", "must be larger than near (" + std::to_string(camera_.near_m) + " m)");
+    if (camera_.near_m >= camera_.far_m)
+      ctx.reject("far", "must be larger than near (" + std::to_string(camera_.near_m) + " m)");
     try {
       scene_ = haptics::load_scene(find_config_file(scene_path_));
     } catch (const std::exception& e) {
@@ -67,20 +71,25 @@ class Renderer final : public Component {
   void tick(Time now) override {
     while (eye_T_base_in_.take(pose_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
-      if (finite(T)) eye_T_base_ = T, have_pose_ = true;
-      else reject(eye_T_base_in_, "a non-finite pose");
+      if (finite(T))
+        eye_T_base_ = T, have_pose_ = true;
+      else
+        reject(eye_T_base_in_, "a non-finite pose");
     }
     while (objects_in_.take(object_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(object_msg_.pose());
-      if (finite(T)) base_T_body_[object_msg_.child_frame_id().c_str()] = T;
-      else reject(objects_in_, "a non-finite pose");
+      if (finite(T))
+        base_T_body_[object_msg_.child_frame_id().c_str()] = T;
+      else
+        reject(objects_in_, "a non-finite pose");
     }
     if (!have_pose_) return;  // nothing to draw from yet
     renderer_->begin(Eigen::Vector4f(static_cast<float>(background_[0]), static_cast<float>(background_[1]),
                                      static_cast<float>(background_[2]), 1));
     for (std::size_t i = 0; i < scene_.models.size(); ++i) {
       const auto& m = scene_.models[i];
-      const Eigen::Vector4f color = m.dynamic ? Eigen::Vector4f(0.85f, 0.55f, 0.15f, 1) : Eigen::Vector4f(0.45f, 0.42f, 0.38f, 1);
+      const Eigen::Vector4f color =
+          m.dynamic ? Eigen::Vector4f(0.85f, 0.55f, 0.15f, 1) : Eigen::Vector4f(0.45f, 0.42f, 0.38f, 1);
       renderer_->draw(meshes_[i], eye_T_base_ * base_T_body_[m.name], color);
     }
     renderer_->read_rgb(rgb_);

@@ -23,15 +23,20 @@ class FtNetFt final : public Component {
     ctx.summary("ATI Net F/T force/torque sensor over UDP (RDT streaming)");
     host_ = ctx.param<std::string>("host", "192.168.1.1", "the sensor's IPv4 address");
     port_ = ctx.param<int>("port", rdt::kDefaultPort, "the sensor's RDT UDP port", Range{1, 65535});
-    counts_per_force_ = ctx.param<double>("counts_per_force", 1e6, "counts per N (the sensor's calibration)", Range{1, 1e9});
-    counts_per_torque_ = ctx.param<double>("counts_per_torque", 1e6, "counts per N.m (the sensor's calibration)", Range{1, 1e9});
+    counts_per_force_ =
+        ctx.param<double>("counts_per_force", 1e6, "counts per N (the sensor's calibration)", Range{1, 1e9});
+    counts_per_torque_ =
+        ctx.param<double>("counts_per_torque", 1e6, "counts per N.m (the sensor's calibration)", Range{1, 1e9});
     max_counts_ = static_cast<std::int64_t>(ctx.param<double>(
-        "max_counts", 2147483647.0, "readings beyond this many counts are rejected (the calibrated range)", Range{1, 2147483647.0}));
-    tare_samples_ = ctx.param<int>("tare_samples", 0, "average this many first samples as the bias (0: no tare)", Range{0, 100000});
-    silence_ms_ = ctx.param<int>("silence_ms", 100, "no record for this long: report it and ask the sensor to stream again",
-                                 Range{1, 60000});
+        "max_counts", 2147483647.0, "readings beyond this many counts are rejected (the calibrated range)",
+        Range{1, 2147483647.0}));
+    tare_samples_ =
+        ctx.param<int>("tare_samples", 0, "average this many first samples as the bias (0: no tare)", Range{0, 100000});
+    silence_ms_ = ctx.param<int>(
+        "silence_ms", 100, "no record for this long: report it and ask the sensor to stream again", Range{1, 60000});
     frame_id_ = ctx.param<std::string>("frame_id", "ft_sensor", "frame of the published wrench");
-    wrench_ = ctx.output<msg::WrenchStamped>("wrench", "every record, in the sensor frame, bias removed", Qos::sensor(16));
+    wrench_ =
+        ctx.output<msg::WrenchStamped>("wrench", "every record, in the sensor frame, bias removed", Qos::sensor(16));
     sockaddr_in probe{};
     if (::inet_pton(AF_INET, host_.c_str(), &probe.sin_addr) != 1)
       ctx.reject("host", "found '" + host_ + "'; expected an IPv4 address like 192.168.1.1");

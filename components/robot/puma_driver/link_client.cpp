@@ -80,7 +80,8 @@ bool LinkClient::wait_for_ack(std::uint32_t sequence, std::chrono::nanoseconds t
     const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return false;
     pollfd pfd{socket_, POLLIN, 0};
-    const timespec ts{static_cast<time_t>(left.count() / 1'000'000'000), static_cast<long>(left.count() % 1'000'000'000)};
+    const timespec ts{static_cast<time_t>(left.count() / 1'000'000'000),
+                      static_cast<long>(left.count() % 1'000'000'000)};
     if (::ppoll(&pfd, 1, &ts, nullptr) <= 0) continue;
     State s;
     if (!read_one(s)) continue;

@@ -43,21 +43,22 @@ const char* to_string(link::Fault f) {
 class PumaDriver final : public Component {
  public:
   void configure(Context& ctx) override {
-    ctx.summary("the real PUMA 560 over puma-link (UDP to its joint controller), behind the same safety gate and "
-                "setpoint following as puma_sim");
+    ctx.summary(
+        "the real PUMA 560 over puma-link (UDP to its joint controller), behind the same safety gate and "
+        "setpoint following as puma_sim");
     host_ = ctx.param<std::string>("host", "127.0.0.1", "the joint controller's IPv4 address");
     port_ = ctx.param<int>("port", link::kDefaultPort, "the controller's puma-link UDP port", Range{1, 65535});
     lockstep_ = ctx.param<bool>("lockstep", false,
                                 "wait each tick for the controller's answer (simulated clock, with puma-link-emulator "
                                 "--lockstep); off for a real controller on the real clock");
-    connect_timeout_ = ctx.param<double>("connect_timeout", 2.0, "s to wait for the controller's first state at activation",
-                                         Range{0.01, 60});
+    connect_timeout_ = ctx.param<double>("connect_timeout", 2.0,
+                                         "s to wait for the controller's first state at activation", Range{0.01, 60});
     reply_timeout_ = ctx.param<double>("reply_timeout", 0.5,
                                        "lockstep: s of wall time to wait for each answer before counting it missing",
                                        Range{0.001, 60});
-    link_timeout_ = ctx.param<int>("link_timeout_periods", 3,
-                                   "ticks without a valid state before the link counts as lost (the arm holds)",
-                                   Range{1, 1000});
+    link_timeout_ =
+        ctx.param<int>("link_timeout_periods", 3,
+                       "ticks without a valid state before the link counts as lost (the arm holds)", Range{1, 1000});
     // ---- the robot, the setpoint tracker and the safety gate (as puma_sim)
     arm_ = declare_arm_params(ctx);
 

@@ -51,8 +51,9 @@ Vector6d to_vector6(const std::array<double, kDof>& v) { return Eigen::Map<const
 class PumaSim final : public Component {
  public:
   void configure(Context& ctx) override {
-    ctx.summary("simulated PUMA 560: arm dynamics, 1 kHz joint servo behind the safety gate, Cartesian setpoint "
-                "tracking, wrist F/T sensor and the user's fingertip in contact with the plate");
+    ctx.summary(
+        "simulated PUMA 560: arm dynamics, 1 kHz joint servo behind the safety gate, Cartesian setpoint "
+        "tracking, wrist F/T sensor and the user's fingertip in contact with the plate");
     // ---- the robot, the setpoint tracker and the safety gate (as puma_driver)
     arm_ = declare_arm_params(ctx);
     drive_path_ = ctx.param<std::string>("drive", "robots/puma560_drive.yaml",
@@ -63,36 +64,42 @@ class PumaSim final : public Component {
         "joint angles at activation, rad (default: the ready pose, plate centre at (0.7, 0, 0.2) m facing +x)",
         Range{-10, 10});
     // ---- the servo
-    servo_config_.bandwidth_hz = ctx.param<double>("servo_bandwidth_hz", 10.0,
-                                  "PD gains from M(q0): kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this, Hz",
-                                  Range{0.1, 100});
-    servo_config_.damping = ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
-    servo_config_.kp = ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
-                                                      Range{0, 1e7}, Length::exactly_or_empty(kDof));
-    servo_config_.kd = ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
-                                                      Range{0, 1e6}, Length::exactly_or_empty(kDof));
-    servo_config_.accel_feedforward = ctx.param<double>("accel_feedforward", 1.0,
-                                  "share of the inverse-dynamics feedforward M(q) qdd_ref + C(q, qd) qd added to the "
-                                  "torque (0 with friction_feedforward 0: PD + gravity only, the Unimation servo)",
-                                  Range{0, 1});
-    servo_config_.friction_feedforward = ctx.param<double>("friction_feedforward", 1.0,
-                                     "share of the drive friction model at the measured velocity added to the torque while the "
-                                     "reference moves",
-                                     Range{0, 1});
+    servo_config_.bandwidth_hz =
+        ctx.param<double>("servo_bandwidth_hz", 10.0,
+                          "PD gains from M(q0): kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this, Hz", Range{0.1, 100});
+    servo_config_.damping =
+        ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
+    servo_config_.kp =
+        ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
+                                       Range{0, 1e7}, Length::exactly_or_empty(kDof));
+    servo_config_.kd =
+        ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
+                                       Range{0, 1e6}, Length::exactly_or_empty(kDof));
+    servo_config_.accel_feedforward =
+        ctx.param<double>("accel_feedforward", 1.0,
+                          "share of the inverse-dynamics feedforward M(q) qdd_ref + C(q, qd) qd added to the "
+                          "torque (0 with friction_feedforward 0: PD + gravity only, the Unimation servo)",
+                          Range{0, 1});
+    servo_config_.friction_feedforward =
+        ctx.param<double>("friction_feedforward", 1.0,
+                          "share of the drive friction model at the measured velocity added to the torque while the "
+                          "reference moves",
+                          Range{0, 1});
     substeps_ = ctx.param<int>("substeps", 4, "semi-implicit Euler steps of the arm and hand per tick", Range{1, 100});
     encoder_counts_ = ctx.param<int>("encoder_counts", 1000,
                                      "encoder counts per motor revolution after quadrature (0: no quantisation); joint "
                                      "quantum 2 pi / (counts |gear|)",
                                      Range{0, 10000000});
-    servo_config_.coulomb_smoothing = ctx.param<double>("coulomb_smoothing", 0.01,
-                                           "rad/s joint velocity over which Coulomb friction turns (tanh)", Range{1e-6, 1});
+    servo_config_.coulomb_smoothing = ctx.param<double>(
+        "coulomb_smoothing", 0.01, "rad/s joint velocity over which Coulomb friction turns (tanh)", Range{1e-6, 1});
     // ---- F/T sensor
-    noise_force_ = ctx.param<double>("ft_noise_force", 0.05, "N, sigma of the Gaussian noise per force axis", Range{0, 100});
-    noise_torque_ = ctx.param<double>("ft_noise_torque", 0.002, "N m, sigma of the Gaussian noise per torque axis",
-                                      Range{0, 10});
-    const auto bias = ctx.param<std::array<double, 6>>("ft_bias", {0, 0, 0, 0, 0, 0},
-                                                     "constant offset of the F/T reading: fx fy fz (N) tx ty tz (N m)",
-                                                     Range{-1000, 1000});
+    noise_force_ =
+        ctx.param<double>("ft_noise_force", 0.05, "N, sigma of the Gaussian noise per force axis", Range{0, 100});
+    noise_torque_ =
+        ctx.param<double>("ft_noise_torque", 0.002, "N m, sigma of the Gaussian noise per torque axis", Range{0, 10});
+    const auto bias = ctx.param<std::array<double, 6>>(
+        "ft_bias", {0, 0, 0, 0, 0, 0}, "constant offset of the F/T reading: fx fy fz (N) tx ty tz (N m)",
+        Range{-1000, 1000});
     seed_ = ctx.param<std::int64_t>("seed", 1, "seed of the sensor noise (runs are repeatable)");
     // ---- the user's fingertip
     hand_mass_ = ctx.param<double>("hand_mass", 0.5, "kg, the fingertip's moving mass", Range{0.01, 20});
@@ -103,16 +110,16 @@ class PumaSim final : public Component {
     const auto park = ctx.param<std::array<double, 3>>(
         "hand_park", {1.1, 0.0, 0.2}, "where the fingertip waits until a hand_target arrives, base frame, m",
         Range{-10, 10});
-    contact_k_ = ctx.param<double>("contact_stiffness", 20000.0, "N/m, penalty stiffness of fingertip contact",
-                                   Range{1, 1e7});
-    contact_d_ = ctx.param<double>("contact_damping", 100.0, "N s/m, penalty damping of fingertip contact (pushes only)",
-                                   Range{0, 1e5});
+    contact_k_ =
+        ctx.param<double>("contact_stiffness", 20000.0, "N/m, penalty stiffness of fingertip contact", Range{1, 1e7});
+    contact_d_ = ctx.param<double>("contact_damping", 100.0,
+                                   "N s/m, penalty damping of fingertip contact (pushes only)", Range{0, 1e5});
 
     ports_.declare(ctx);
     hand_in_ = ctx.input<msg::PoseStamped>("hand_target", "where the user's fingertip is driven (base frame)",
                                            Qos::reliable(4));
-    wrench_out_ = ctx.output<msg::WrenchStamped>("wrench", "wrist F/T sensor, frame ft_sensor, about its origin",
-                                                 Qos::sensor(8));
+    wrench_out_ =
+        ctx.output<msg::WrenchStamped>("wrench", "wrist F/T sensor, frame ft_sensor, about its origin", Qos::sensor(8));
     hand_out_ = ctx.output<msg::PoseStamped>("hand_pose", "the fingertip's true position (base frame)");
 
     q0_ = to_vector6(q0);
@@ -175,8 +182,10 @@ class PumaSim final : public Component {
     while (ports_.setpoint.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
     while (hand_in_.take(hand_msg_)) {
       const Eigen::Vector3d x = msgs::to_eigen(hand_msg_.pose().position());
-      if (x.allFinite()) hand_target_ = x;
-      else reject(hand_in_, "a non-finite position");
+      if (x.allFinite())
+        hand_target_ = x;
+      else
+        reject(hand_in_, "a non-finite position");
     }
     follower_->update(now.ns);
 
@@ -209,10 +218,10 @@ class PumaSim final : public Component {
 
  private:
   struct Contacts {
-    Eigen::Vector3d on_hand = Eigen::Vector3d::Zero();        // force on the fingertip, base frame
-    Vector6d joint_torque = Vector6d::Zero();                  // the reaction on the arm, at the joints
-    Eigen::Vector3d measured_force = Eigen::Vector3d::Zero();  // on the parts beyond the sensor, base frame
-    Eigen::Vector3d measured_torque = Eigen::Vector3d::Zero(); // about the sensor origin, base frame
+    Eigen::Vector3d on_hand = Eigen::Vector3d::Zero();          // force on the fingertip, base frame
+    Vector6d joint_torque = Vector6d::Zero();                   // the reaction on the arm, at the joints
+    Eigen::Vector3d measured_force = Eigen::Vector3d::Zero();   // on the parts beyond the sensor, base frame
+    Eigen::Vector3d measured_torque = Eigen::Vector3d::Zero();  // about the sensor origin, base frame
     Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
   };
 

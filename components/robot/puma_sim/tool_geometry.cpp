@@ -92,8 +92,7 @@ ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& m
           extent = s.radius;
           break;
         }
-        default:
-          continue;  // meshes: not simulated for contact
+        default: continue;  // meshes: not simulated for contact
       }
       tool.bounding_radius = std::max(tool.bounding_radius, s.sensor_T_shape.translation().norm() + extent);
       tool.shapes.push_back(s);
@@ -140,7 +139,8 @@ bool sphere_contact(const ContactShape& shape, const Eigen::Isometry3d& base_T_s
     case ContactShape::Kind::kCylinder: {
       const double rho = std::hypot(p.x(), p.y());
       const double hl = shape.half_length;
-      const Eigen::Vector2d radial = rho > 1e-12 ? Eigen::Vector2d(p.x() / rho, p.y() / rho) : Eigen::Vector2d(1.0, 0.0);
+      const Eigen::Vector2d radial =
+          rho > 1e-12 ? Eigen::Vector2d(p.x() / rho, p.y() / rho) : Eigen::Vector2d(1.0, 0.0);
       closest = Eigen::Vector3d(p.x(), p.y(), std::clamp(p.z(), -hl, hl));
       if (rho > shape.radius) closest.head<2>() = shape.radius * radial;
       if (rho <= shape.radius && std::abs(p.z()) <= hl) {  // inside: nearest of side and caps

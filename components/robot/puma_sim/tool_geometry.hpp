@@ -15,11 +15,11 @@ namespace wysiwyf::robot::sim {
 struct ContactShape {
   enum class Kind { kBox, kCylinder, kSphere };
   Kind kind = Kind::kBox;
-  std::string link;                                              // the URDF link it belongs to
+  std::string link;                                                  // the URDF link it belongs to
   Eigen::Isometry3d sensor_T_shape = Eigen::Isometry3d::Identity();  // centre and axes (cylinder: z)
-  Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();        // box
-  double radius = 0.0;                                           // cylinder, sphere
-  double half_length = 0.0;                                      // cylinder
+  Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();            // box
+  double radius = 0.0;                                               // cylinder, sphere
+  double half_length = 0.0;                                          // cylinder
   bool measured = false;  // beyond the F/T sensor: its contact forces pass through the sensor
 };
 
@@ -32,8 +32,7 @@ struct ToolGeometry {
 
 // Reads the URDF again (urdfdom) for what the model does not keep. `sensor_frame` must be fixed
 // to link 6. Throws std::runtime_error naming the file and what is wrong.
-ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& model,
-                                const std::string& sensor_frame);
+ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& model, const std::string& sensor_frame);
 
 // A sphere (centre c, radius r, base frame) against a shape placed at base_T_shape. On contact
 // returns true with the depth of penetration (> 0), the unit normal pointing out of the shape

@@ -21,8 +21,10 @@ class ChromaKeyer final : public Component {
  public:
   void configure(Context& ctx) override {
     ctx.summary("soft chroma key against the blue cloth: premultiplied RGBA hand, spill suppressed");
-    key_ = ctx.param<std::array<double, 3>>("key_color", {26, 41, 158}, "the cloth's colour, RGB 0..255", Range{0, 255});
-    inner_ = ctx.param<double>("inner", 22, "chroma distance (YCrCb, 0..255) up to which a pixel is cloth", Range{0, 255});
+    key_ =
+        ctx.param<std::array<double, 3>>("key_color", {26, 41, 158}, "the cloth's colour, RGB 0..255", Range{0, 255});
+    inner_ =
+        ctx.param<double>("inner", 22, "chroma distance (YCrCb, 0..255) up to which a pixel is cloth", Range{0, 255});
     outer_ = ctx.param<double>("outer", 40, "chroma distance from which a pixel is fully kept", Range{0, 255});
     min_luma_ = ctx.param<double>("min_luma", 12, "darker pixels count as cloth in shadow (Y, 0..255)", Range{0, 255});
     despill_ = ctx.param<bool>("despill", true, "limit blue to max(red, green) on kept pixels");
@@ -69,7 +71,8 @@ class ChromaKeyer final : public Component {
                             vluma = cv::v_setall_f32(min_luma), zero = cv::v_setall_f32(0.0f);
       // alpha of 4 pixels as int32
       auto alpha4 = [&](const cv::v_uint32x4& r, const cv::v_uint32x4& g, const cv::v_uint32x4& b) {
-        const cv::v_float32x4 fr = cv::v_cvt_f32(cv::v_reinterpret_as_s32(r)), fg = cv::v_cvt_f32(cv::v_reinterpret_as_s32(g)),
+        const cv::v_float32x4 fr = cv::v_cvt_f32(cv::v_reinterpret_as_s32(r)),
+                              fg = cv::v_cvt_f32(cv::v_reinterpret_as_s32(g)),
                               fb = cv::v_cvt_f32(cv::v_reinterpret_as_s32(b));
         const cv::v_float32x4 luma = fr * kr + fg * kg + fb * kb;
         const cv::v_float32x4 dcr = (fr - luma) * kcr + vcr0, dcb = (fb - luma) * kcb + vcb0;
@@ -120,7 +123,8 @@ class ChromaKeyer final : public Component {
         cv::v_uint16x8 c0, c1, a0, a1;
         cv::v_expand(c, c0, c1);
         cv::v_expand(a, a0, a1);
-        cv::v_uint16x8 v0 = cv::v_mul_wrap(c0, a0) + half, v1 = cv::v_mul_wrap(c1, a1) + half;  // (no overflow: 255 * 255 + 128)
+        cv::v_uint16x8 v0 = cv::v_mul_wrap(c0, a0) + half,
+                       v1 = cv::v_mul_wrap(c1, a1) + half;  // (no overflow: 255 * 255 + 128)
         return cv::v_pack((v0 + (v0 >> 8)) >> 8, (v1 + (v1 >> 8)) >> 8);
       };
       for (; x + 16 <= w; x += 16) {

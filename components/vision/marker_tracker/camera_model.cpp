@@ -11,10 +11,12 @@ CameraModel::CameraModel(double fx, double fy, double cx, double cy, std::vector
     : fx_(fx), fy_(fy), cx_(cx), cy_(cy) {
   if (!(fx > 0 && fy > 0 && std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy)))
     throw std::invalid_argument("camera intrinsics: expected finite fx, fy > 0, cx, cy; got fx " + std::to_string(fx) +
-                                ", fy " + std::to_string(fy) + ", cx " + std::to_string(cx) + ", cy " + std::to_string(cy));
+                                ", fy " + std::to_string(fy) + ", cx " + std::to_string(cx) + ", cy " +
+                                std::to_string(cy));
   const std::size_t n = distortion.size();
   if (n != 0 && n != 4 && n != 5 && n != 8 && n != 12 && n != 14)
-    throw std::invalid_argument("camera distortion: expected 0, 4, 5, 8, 12 or 14 coefficients, got " + std::to_string(n));
+    throw std::invalid_argument("camera distortion: expected 0, 4, 5, 8, 12 or 14 coefficients, got " +
+                                std::to_string(n));
   for (double d : distortion) {
     if (!std::isfinite(d)) throw std::invalid_argument("camera distortion: a coefficient is not finite");
     if (d != 0) distorted_ = true;

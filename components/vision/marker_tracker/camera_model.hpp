@@ -24,7 +24,9 @@ class CameraModel {
   bool distorted() const { return distorted_; }
 
   // Ideal pixel of a point in the camera frame (z > 0).
-  Eigen::Vector2d project(const Eigen::Vector3d& p) const { return {fx_ * p.x() / p.z() + cx_, fy_ * p.y() / p.z() + cy_}; }
+  Eigen::Vector2d project(const Eigen::Vector3d& p) const {
+    return {fx_ * p.x() / p.z() + cx_, fy_ * p.y() / p.z() + cy_};
+  }
   // Where an ideal pixel appears in the (distorted) image, and back.
   Eigen::Vector2d distort(const Eigen::Vector2d& ideal) const;
   Eigen::Vector2d undistort(const Eigen::Vector2d& measured) const;

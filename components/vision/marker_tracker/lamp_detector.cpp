@@ -12,8 +12,10 @@ constexpr int kRing = 2;  // px around a blob that its centroid includes
 double ring_mean(const cv::Mat& luma, const cv::Rect& r) {
   double sum = 0;
   int n = 0;
-  for (int x = r.x; x < r.x + r.width; ++x) sum += luma.at<std::uint8_t>(r.y, x) + luma.at<std::uint8_t>(r.y + r.height - 1, x), n += 2;
-  for (int y = r.y + 1; y < r.y + r.height - 1; ++y) sum += luma.at<std::uint8_t>(y, r.x) + luma.at<std::uint8_t>(y, r.x + r.width - 1), n += 2;
+  for (int x = r.x; x < r.x + r.width; ++x)
+    sum += luma.at<std::uint8_t>(r.y, x) + luma.at<std::uint8_t>(r.y + r.height - 1, x), n += 2;
+  for (int y = r.y + 1; y < r.y + r.height - 1; ++y)
+    sum += luma.at<std::uint8_t>(y, r.x) + luma.at<std::uint8_t>(y, r.x + r.width - 1), n += 2;
   return n ? sum / n : 0.0;
 }
 
@@ -47,7 +49,8 @@ int LampDetector::blobs_of(const cv::Mat& luma, cv::Point origin, std::vector<Bl
     // 2 px ring around it: all weights scale with the lighting, so the centroid does not move
     // when the lamp brightens or dims (a fixed threshold's crossing would, and a dome's outline
     // is not symmetric).
-    const cv::Rect region = (box + cv::Point(-kRing, -kRing) + cv::Size(2 * kRing, 2 * kRing)) & cv::Rect(0, 0, luma.cols, luma.rows);
+    const cv::Rect region =
+        (box + cv::Point(-kRing, -kRing) + cv::Size(2 * kRing, 2 * kRing)) & cv::Rect(0, 0, luma.cols, luma.rows);
     const double background = ring_mean(luma, region);
     double sw = 0, su = 0, sv = 0;
     for (int y = region.y; y < region.y + region.height; ++y) {

@@ -22,10 +22,10 @@ enum class PixelLayout { kRgb8, kBgr8, kMono8 };
 
 // What counts as a lamp.
 struct LampSettings {
-  int threshold = 215;   // luma a lamp pixel exceeds (the lit plate stays below ~195)
-  int min_area = 3;      // pixels; smaller blobs are noise
-  int max_area = 4000;   // pixels; larger ones are not lamps (glare, a white sheet)
-  double min_fill = 0.3; // area / bounding box area: rejects streaks and thin lines
+  int threshold = 215;    // luma a lamp pixel exceeds (the lit plate stays below ~195)
+  int min_area = 3;       // pixels; smaller blobs are noise
+  int max_area = 4000;    // pixels; larger ones are not lamps (glare, a white sheet)
+  double min_fill = 0.3;  // area / bounding box area: rejects streaks and thin lines
 };
 
 class LampDetector {

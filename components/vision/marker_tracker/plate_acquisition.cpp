@@ -36,15 +36,16 @@ std::vector<int> candidates(const std::vector<Blob>& blobs, int max_count) {
   for (const auto& b : blobs) areas.push_back(b.area);
   std::nth_element(areas.begin(), areas.begin() + static_cast<long>(areas.size() / 2), areas.end());
   const int median = areas[areas.size() / 2];
-  std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(blobs[a].area - median) < std::abs(blobs[b].area - median); });
+  std::sort(idx.begin(), idx.end(),
+            [&](int a, int b) { return std::abs(blobs[a].area - median) < std::abs(blobs[b].area - median); });
   idx.resize(static_cast<std::size_t>(max_count));
   return idx;
 }
 
 // Fits of one set of four blobs: every cyclic order around their centre, both directions, and
 // both IPPE solutions.
-void fit_four(const std::vector<Blob>& blobs, std::array<int, 4> four, const PlateMarkers& plate, const CameraModel& camera,
-              double max_rms, std::vector<Fit>& fits) {
+void fit_four(const std::vector<Blob>& blobs, std::array<int, 4> four, const PlateMarkers& plate,
+              const CameraModel& camera, double max_rms, std::vector<Fit>& fits) {
   double cu = 0, cv = 0;
   for (int i : four) cu += blobs[static_cast<std::size_t>(i)].u / 4, cv += blobs[static_cast<std::size_t>(i)].v / 4;
   std::sort(four.begin(), four.end(), [&](int a, int b) {
@@ -64,14 +65,16 @@ void fit_four(const std::vector<Blob>& blobs, std::array<int, 4> four, const Pla
         const Blob& b = blobs[static_cast<std::size_t>(order[static_cast<std::size_t>(m)])];
         image[static_cast<std::size_t>(m)] = cv::Point2d(b.u, b.v);
       }
-      const int n = cv::solvePnPGeneric(object, image, camera.matrix(), cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE,
-                                        cv::noArray(), cv::noArray(), errors);
+      const int n = cv::solvePnPGeneric(object, image, camera.matrix(), cv::noArray(), rvecs, tvecs, false,
+                                        cv::SOLVEPNP_IPPE, cv::noArray(), cv::noArray(), errors);
       for (int s = 0; s < n; ++s) {
         const double rms = errors.at<double>(s);
         if (!(rms <= max_rms)) continue;
-        const Eigen::Isometry3d eye_T_dev = to_isometry(rvecs[static_cast<std::size_t>(s)], tvecs[static_cast<std::size_t>(s)]);
+        const Eigen::Isometry3d eye_T_dev =
+            to_isometry(rvecs[static_cast<std::size_t>(s)], tvecs[static_cast<std::size_t>(s)]);
         if (eye_T_dev.translation().z() <= 0) continue;
-        if (PlateMarkers::facing(eye_T_dev.translation(), eye_T_dev.linear() * plate.dev_normal) < 0.05) continue;  // its back: lamps unseen
+        if (PlateMarkers::facing(eye_T_dev.translation(), eye_T_dev.linear() * plate.dev_normal) < 0.05)
+          continue;  // its back: lamps unseen
         fits.push_back(Fit{eye_T_dev, order, rms});
       }
     }
@@ -79,7 +82,8 @@ void fit_four(const std::vector<Blob>& blobs, std::array<int, 4> four, const Pla
 
 }  // namespace
 
-std::optional<PlateFix> acquire_plate(const std::vector<Blob>& blobs, const PlateMarkers& plate, const CameraModel& camera,
+std::optional<PlateFix> acquire_plate(const std::vector<Blob>& blobs, const PlateMarkers& plate,
+                                      const CameraModel& camera,
                                       const std::function<double(const Eigen::Isometry3d&, double)>& cost,
                                       const AcquisitionSettings& settings) {
   const std::vector<int> idx = candidates(blobs, settings.max_candidates);
@@ -90,8 +94,9 @@ std::optional<PlateFix> acquire_plate(const std::vector<Blob>& blobs, const Plat
     for (int b = a + 1; b < n; ++b)
       for (int c = b + 1; c < n; ++c)
         for (int d = c + 1; d < n; ++d)
-          fit_four(blobs, {idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)], idx[static_cast<std::size_t>(c)],
-                           idx[static_cast<std::size_t>(d)]},
+          fit_four(blobs,
+                   {idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)],
+                    idx[static_cast<std::size_t>(c)], idx[static_cast<std::size_t>(d)]},
                    plate, camera, settings.max_rms_px, fits);
   if (fits.empty()) return std::nullopt;
   double best_rms = fits.front().rms;

@@ -34,8 +34,9 @@ struct AcquisitionSettings {
 };
 
 // blobs: centroids in ideal (undistorted) pixels. Empty when no choice fits.
-std::optional<PlateFix> acquire_plate(const std::vector<Blob>& blobs, const PlateMarkers& plate, const CameraModel& camera,
-                                      const std::function<double(const Eigen::Isometry3d& eye_T_dev, double rms_px)>& cost,
-                                      const AcquisitionSettings& settings = {});
+std::optional<PlateFix> acquire_plate(
+    const std::vector<Blob>& blobs, const PlateMarkers& plate, const CameraModel& camera,
+    const std::function<double(const Eigen::Isometry3d& eye_T_dev, double rms_px)>& cost,
+    const AcquisitionSettings& settings = {});
 
 }  // namespace wysiwyf::vision

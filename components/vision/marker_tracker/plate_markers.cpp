@@ -17,7 +17,8 @@ PlateMarkers PlateMarkers::from_robot(const std::string& urdf_path, double lamp_
     const std::string name = "marker_" + std::to_string(i);
     m.dev_p[static_cast<std::size_t>(i)] = (dev_T_base * model.fk(q0, model.frame(name))).translation();
     if (std::abs(m.dev_p[static_cast<std::size_t>(i)].z()) > 1e-6)
-      throw std::invalid_argument(urdf_path + ": frame " + name + " lies " + std::to_string(m.dev_p[static_cast<std::size_t>(i)].z()) +
+      throw std::invalid_argument(urdf_path + ": frame " + name + " lies " +
+                                  std::to_string(m.dev_p[static_cast<std::size_t>(i)].z()) +
                                   " m off the plate's face (dev z = 0); the tracker expects the lamps on it");
   }
   return m;

@@ -13,7 +13,7 @@
 namespace wysiwyf::vision {
 
 struct PlateMarkers {
-  std::array<Eigen::Vector3d, 4> dev_p;                 // lamp centres in dev, m
+  std::array<Eigen::Vector3d, 4> dev_p;                   // lamp centres in dev, m
   Eigen::Vector3d dev_normal = Eigen::Vector3d::UnitZ();  // out of the plate's front face
   double lamp_radius = 0.006;                             // m; 0: point-like lamps
 

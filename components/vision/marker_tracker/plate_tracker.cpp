@@ -68,11 +68,12 @@ void PlateTracker::track(const cv::Mat& image, PixelLayout layout, const CameraM
     const double lamp_px = camera.fx() * plate_.lamp_radius / pred.depth;
     const double sigma = std::sqrt(std::max(pred.S(0, 0), pred.S(1, 1)));
     const double reach = std::ceil(3 * sigma + 1.5 * lamp_px + 2);
-    const int half = static_cast<int>(std::clamp(reach, static_cast<double>(s_.min_window), static_cast<double>(s_.max_window)));
+    const int half =
+        static_cast<int>(std::clamp(reach, static_cast<double>(s_.min_window), static_cast<double>(s_.max_window)));
     const Eigen::Vector2d centre = camera.distort(pred.pixel);
     if (!centre.allFinite() || std::abs(centre.x()) > 1e6 || std::abs(centre.y()) > 1e6) continue;
-    const cv::Rect window(static_cast<int>(std::lround(centre.x())) - half, static_cast<int>(std::lround(centre.y())) - half,
-                          2 * half + 1, 2 * half + 1);
+    const cv::Rect window(static_cast<int>(std::lround(centre.x())) - half,
+                          static_cast<int>(std::lround(centre.y())) - half, 2 * half + 1, 2 * half + 1);
     result_.windows.push_back(window);
     blobs_.clear();
     if (!detector_.detect_in(image, layout, window, blobs_)) continue;
@@ -81,7 +82,8 @@ void PlateTracker::track(const cv::Mat& image, PixelLayout layout, const CameraM
     double best_d2 = std::numeric_limits<double>::infinity();
     Eigen::Vector2d best_ideal;
     for (int b = 0; b < static_cast<int>(blobs_.size()); ++b) {
-      const Eigen::Vector2d ideal = camera.undistort({blobs_[static_cast<std::size_t>(b)].u, blobs_[static_cast<std::size_t>(b)].v});
+      const Eigen::Vector2d ideal =
+          camera.undistort({blobs_[static_cast<std::size_t>(b)].u, blobs_[static_cast<std::size_t>(b)].v});
       const double d2 = PoseEkf::mahalanobis2(pred, ideal);
       if (d2 < best_d2) best = b, best_d2 = d2, best_ideal = ideal;
     }
@@ -89,7 +91,8 @@ void PlateTracker::track(const cv::Mat& image, PixelLayout layout, const CameraM
       accepted_.push_back(pred);
       accepted_pixels_.push_back(best_ideal);
       accepted_ids_.push_back(i);
-      result_.matched.push_back(MatchedLamp{i, blobs_[static_cast<std::size_t>(best)].u, blobs_[static_cast<std::size_t>(best)].v});
+      result_.matched.push_back(
+          MatchedLamp{i, blobs_[static_cast<std::size_t>(best)].u, blobs_[static_cast<std::size_t>(best)].v});
       result_.rejected += static_cast<int>(blobs_.size()) - 1;
     } else {
       result_.rejected += static_cast<int>(blobs_.size());
@@ -167,7 +170,8 @@ bool PlateTracker::acquire_from_guess(const CameraModel& camera) {
       Eigen::Vector3d::Constant(s_.prior_sigma_rad * s_.prior_sigma_rad);
   // The guess is uncertain about the camera: its errors are those of eye_T_base, carried to x.
   const Eigen::Isometry3d base_T_x = x_T_base_.inverse();
-  ekf_.reset(guess * base_T_x, compose_covariance(cov, guess, base_T_x), s_.start_velocity_sigma, s_.start_angular_sigma);
+  ekf_.reset(guess * base_T_x, compose_covariance(cov, guess, base_T_x), s_.start_velocity_sigma,
+             s_.start_angular_sigma);
   match_blobs(camera);
   if (static_cast<int>(accepted_.size()) < std::max(2, s_.min_markers)) return false;
   ekf_.update(accepted_, accepted_pixels_);
@@ -198,7 +202,8 @@ void PlateTracker::match_blobs(const CameraModel& camera) {
     accepted_.push_back(pred);
     accepted_pixels_.push_back(best_ideal);
     accepted_ids_.push_back(i);
-    result_.matched.push_back(MatchedLamp{i, blobs_[static_cast<std::size_t>(best)].u, blobs_[static_cast<std::size_t>(best)].v});
+    result_.matched.push_back(
+        MatchedLamp{i, blobs_[static_cast<std::size_t>(best)].u, blobs_[static_cast<std::size_t>(best)].v});
   }
   result_.rejected = static_cast<int>(blobs_.size() - accepted_.size());
 }

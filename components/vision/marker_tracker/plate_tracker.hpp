@@ -36,10 +36,10 @@ struct TrackerSettings {
   PoseEkf::Noise noise;  // the camera's motion and the centroids' noise
   // kState only: the device's motion, which that filter must absorb as process noise too.
   double device_accel = 1.0, device_angular_accel = 2.0;
-  double gate = 13.8;     // chi-square, 2 degrees of freedom (99.9 %)
-  int min_markers = 2;    // lamps an image needs to update the filter
-  int lost_after = 5;     // images without enough lamps before the plate is lost
-  int min_window = 10;    // search window half size, px
+  double gate = 13.8;   // chi-square, 2 degrees of freedom (99.9 %)
+  int min_markers = 2;  // lamps an image needs to update the filter
+  int lost_after = 5;   // images without enough lamps before the plate is lost
+  int min_window = 10;  // search window half size, px
   int max_window = 80;
   Eigen::Vector3d up_in_base = Eigen::Vector3d::UnitZ();  // appears up in the image (first fix)
   double start_sigma_m = 0.01, start_sigma_rad = 0.01;    // the fix's uncertainty, in dev
@@ -79,8 +79,12 @@ class PlateTracker {
   // At the last image (valid while has_estimate()).
   Eigen::Isometry3d eye_T_base() const { return ekf_.pose() * x_T_base_; }
   Eigen::Isometry3d eye_T_dev() const { return ekf_.pose() * x_T_dev_; }
-  PoseEkf::Matrix6d eye_T_base_covariance() const { return compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_base_); }
-  PoseEkf::Matrix6d eye_T_dev_covariance() const { return compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_dev_); }
+  PoseEkf::Matrix6d eye_T_base_covariance() const {
+    return compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_base_);
+  }
+  PoseEkf::Matrix6d eye_T_dev_covariance() const {
+    return compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_dev_);
+  }
   const PoseEkf& filter() const { return ekf_; }
   const TrackerSettings& settings() const { return s_; }
 

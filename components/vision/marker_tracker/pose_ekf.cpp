@@ -100,8 +100,8 @@ void PoseEkf::update(const std::vector<Prediction>& predictions, const std::vect
   w_ += dx.segment<3>(9);
 }
 
-Eigen::Matrix<double, 6, 6> compose_covariance(const Eigen::Matrix<double, 6, 6>& eye_T_x_cov, const Eigen::Isometry3d& eye_T_x,
-                                               const Eigen::Isometry3d& x_T_y) {
+Eigen::Matrix<double, 6, 6> compose_covariance(const Eigen::Matrix<double, 6, 6>& eye_T_x_cov,
+                                               const Eigen::Isometry3d& eye_T_x, const Eigen::Isometry3d& x_T_y) {
   // eye_t_y = exp(dtheta) R x_t_y + t + dt: its error is dt - [R x_t_y]x dtheta; the rotation error
   // is the same.
   Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Identity();

@@ -11,9 +11,11 @@ DisparityDepth::DisparityDepth(StereoSettings settings) : s_(std::move(settings)
   if (s_.algorithm != "bm" && s_.algorithm != "sgbm" && s_.algorithm != "sgbm_3way")
     throw std::invalid_argument("stereo algorithm '" + s_.algorithm + "': expected bm, sgbm or sgbm_3way");
   if (s_.block_size % 2 == 0 || s_.block_size < (s_.algorithm == "bm" ? 5 : 1))
-    throw std::invalid_argument("block_size " + std::to_string(s_.block_size) + ": expected an odd number (at least 5 for bm)");
+    throw std::invalid_argument("block_size " + std::to_string(s_.block_size) +
+                                ": expected an odd number (at least 5 for bm)");
   if (s_.num_disparities % 16 != 0 || s_.num_disparities < 0)
-    throw std::invalid_argument("num_disparities " + std::to_string(s_.num_disparities) + ": expected 0 (from the depth range) or a multiple of 16");
+    throw std::invalid_argument("num_disparities " + std::to_string(s_.num_disparities) +
+                                ": expected 0 (from the depth range) or a multiple of 16");
   if (!(s_.min_depth > 0) || !(s_.max_depth > s_.min_depth))
     throw std::invalid_argument("depth range: expected 0 < min_depth < max_depth");
   if (s_.downscale < 1) throw std::invalid_argument("downscale: expected 1 or more");
@@ -38,10 +40,10 @@ void DisparityDepth::prepare(double fx_matched, double baseline) {
     matcher_ = bm;
   } else {
     const int area = s_.block_size * s_.block_size;  // P1, P2: OpenCV's recommended smoothness for one channel
-    matcher_ = cv::StereoSGBM::create(min_disparity_, num_disparities_, s_.block_size, 8 * area, 32 * area,
-                                      /*disp12MaxDiff=*/1, /*preFilterCap=*/31, s_.uniqueness_ratio, s_.speckle_window,
-                                      kSpeckleRangePx,
-                                      s_.algorithm == "sgbm" ? cv::StereoSGBM::MODE_SGBM : cv::StereoSGBM::MODE_SGBM_3WAY);
+    matcher_ = cv::StereoSGBM::create(
+        min_disparity_, num_disparities_, s_.block_size, 8 * area, 32 * area,
+        /*disp12MaxDiff=*/1, /*preFilterCap=*/31, s_.uniqueness_ratio, s_.speckle_window, kSpeckleRangePx,
+        s_.algorithm == "sgbm" ? cv::StereoSGBM::MODE_SGBM : cv::StereoSGBM::MODE_SGBM_3WAY);
   }
   prepared_for_ = fb;
 }

@@ -10,13 +10,13 @@
 namespace wysiwyf::vision {
 
 struct StereoSettings {
-  std::string algorithm = "sgbm";  // "bm", "sgbm" (5 paths) or "sgbm_3way"
-  int num_disparities = 0;         // at the matched resolution; 0: from min_depth and max_depth
-  int block_size = 5;              // odd
-  int downscale = 2;               // match on images this many times smaller
+  std::string algorithm = "sgbm";           // "bm", "sgbm" (5 paths) or "sgbm_3way"
+  int num_disparities = 0;                  // at the matched resolution; 0: from min_depth and max_depth
+  int block_size = 5;                       // odd
+  int downscale = 2;                        // match on images this many times smaller
   double min_depth = 0.3, max_depth = 3.0;  // m
-  int uniqueness_ratio = 10;       // percent by which the best match must beat the second
-  int speckle_window = 100;        // px at the matched resolution: smaller disparity blobs are dropped (0: keep)
+  int uniqueness_ratio = 10;                // percent by which the best match must beat the second
+  int speckle_window = 100;  // px at the matched resolution: smaller disparity blobs are dropped (0: keep)
 };
 
 class DisparityDepth {

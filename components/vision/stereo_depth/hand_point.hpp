@@ -18,11 +18,11 @@ struct Intrinsics {
 };
 
 struct HandPointOptions {
-  bool nearest = false;          // false: centroid of the inliers; true: centroid of their nearest fraction
+  bool nearest = false;  // false: centroid of the inliers; true: centroid of their nearest fraction
   double nearest_fraction = 0.1;
-  double band = 0.08;            // m either side of the median depth
-  int min_alpha = 128;           // 0..255: from this alpha a pixel is hand
-  int min_pixels = 300;          // fewer hand pixels with depth: no estimate
+  double band = 0.08;              // m either side of the median depth
+  int min_alpha = 128;             // 0..255: from this alpha a pixel is hand
+  int min_pixels = 300;            // fewer hand pixels with depth: no estimate
   Eigen::AlignedBox3d device_box;  // dev frame, m: what is in it is device, not hand
 };
 

@@ -23,52 +23,75 @@ class StereoDepth final : public Component {
   void configure(Context& ctx) override {
     ctx.summary("depth from a rectified stereo pair (z-keying) and the keyed hand's 3D position");
     StereoSettings s;
-    s.algorithm = ctx.param_choice("algorithm", "sgbm", "bm: block matching; sgbm: semi-global, 5 paths; sgbm_3way: 3 paths, threaded",
+    s.algorithm = ctx.param_choice("algorithm", "sgbm",
+                                   "bm: block matching; sgbm: semi-global, 5 paths; sgbm_3way: 3 paths, threaded",
                                    {"bm", "sgbm", "sgbm_3way"});
-    baseline_ = ctx.param<double>("baseline", 0.0, "distance of the right camera along +x of the left, m (0: from right_camera_info)",
+    baseline_ = ctx.param<double>("baseline", 0.0,
+                                  "distance of the right camera along +x of the left, m (0: from right_camera_info)",
                                   Range{0, 2});
-    s.num_disparities = ctx.param<int>("num_disparities", 0, "disparity search range at the matched size, a multiple of 16 (0: from the depth range)",
-                                       Range{0, 512});
+    s.num_disparities = ctx.param<int>(
+        "num_disparities", 0, "disparity search range at the matched size, a multiple of 16 (0: from the depth range)",
+        Range{0, 512});
     s.block_size = ctx.param<int>("block_size", 5, "matching window, px, odd (bm: at least 5)", Range{1, 31});
     // Half size by default: 5x faster than full size (20 vs 97 ms a 640x480 pair on one core), hand
     // position at 0.6 m 7.2 mm off at worst against 6.8 mm (scripts/bench vision, test_stereo_depth).
-    s.downscale = ctx.param<int>("downscale", 2, "match on images this many times smaller (speed), depth upsampled back", Range{1, 4});
+    s.downscale = ctx.param<int>("downscale", 2,
+                                 "match on images this many times smaller (speed), depth upsampled back", Range{1, 4});
     s.min_depth = ctx.param<double>("min_depth", 0.3, "nearest depth measured, m", Range{0.01, 100});
     s.max_depth = ctx.param<double>("max_depth", 3.0, "farthest depth measured, m", Range{0.01, 100});
-    s.uniqueness_ratio = ctx.param<int>("uniqueness_ratio", 10, "the best match must beat the second by this many percent", Range{0, 100});
-    s.speckle_window = ctx.param<int>("speckle_window", 100, "disparity blobs smaller than this (px, matched size) are dropped (0: none)",
-                                      Range{0, 10000});
-    hand_.nearest = ctx.param_choice("hand_point", "centroid", "centroid: centre of the hand's visible surface; nearest: of its part nearest the camera",
-                                     {"centroid", "nearest"}) == "nearest";
-    hand_.nearest_fraction = ctx.param<double>("nearest_fraction", 0.1, "hand_point nearest: this fraction of the hand's pixels", Range{0.001, 1});
-    hand_.band = ctx.param<double>("hand_band", 0.08, "hand pixels farther than this from their median depth are dropped, m", Range{0.001, 1});
-    hand_.min_alpha = ctx.param<int>("hand_alpha", 128, "alpha (0..255) from which a keyed pixel is hand", Range{1, 255});
+    s.uniqueness_ratio = ctx.param<int>("uniqueness_ratio", 10,
+                                        "the best match must beat the second by this many percent", Range{0, 100});
+    s.speckle_window =
+        ctx.param<int>("speckle_window", 100,
+                       "disparity blobs smaller than this (px, matched size) are dropped (0: none)", Range{0, 10000});
+    hand_.nearest =
+        ctx.param_choice("hand_point", "centroid",
+                         "centroid: centre of the hand's visible surface; nearest: of its part nearest the camera",
+                         {"centroid", "nearest"}) == "nearest";
+    hand_.nearest_fraction = ctx.param<double>(
+        "nearest_fraction", 0.1, "hand_point nearest: this fraction of the hand's pixels", Range{0.001, 1});
+    hand_.band = ctx.param<double>(
+        "hand_band", 0.08, "hand pixels farther than this from their median depth are dropped, m", Range{0.001, 1});
+    hand_.min_alpha =
+        ctx.param<int>("hand_alpha", 128, "alpha (0..255) from which a keyed pixel is hand", Range{1, 255});
     // A hand at max_depth (3 m) still covers about 600 px at fx 600; stray keyed specks (lamp glints,
     // the plate's rim) stay below 300 in demo-stereo.
-    hand_.min_pixels = ctx.param<int>("min_hand_pixels", 300, "fewer hand pixels with depth: no hand position", Range{1, 1e6});
+    hand_.min_pixels =
+        ctx.param<int>("min_hand_pixels", 300, "fewer hand pixels with depth: no hand position", Range{1, 1e6});
     // The plate (0.2 x 0.2 x 0.01 m behind dev's z = 0), its lamps and its 0.04 m knob (config/robots/puma560.urdf),
     // 1 cm around, 2 cm in front of the knob: the small knob top's stereo depth comes up to 1.5 cm too near at 0.6 m.
-    const auto box = ctx.param<std::array<double, 6>>("device_box", {-0.11, 0.11, -0.11, 0.11, -0.02, 0.06},
-                                                      "with eye_T_dev: keyed points in this box (dev frame, xmin xmax ymin ymax zmin zmax, m) are device, not hand");
+    const auto box = ctx.param<std::array<double, 6>>(
+        "device_box", {-0.11, 0.11, -0.11, 0.11, -0.02, 0.06},
+        "with eye_T_dev: keyed points in this box (dev frame, xmin xmax ymin ymax zmin zmax, m) are device, not hand");
     max_skew_ns_ = static_cast<std::int64_t>(
-        ctx.param<double>("max_skew_ms", 5.0, "left and right frames further apart in time are not paired, ms", Range{0, 1000}) * 1e6);
+        ctx.param<double>("max_skew_ms", 5.0, "left and right frames further apart in time are not paired, ms",
+                          Range{0, 1000}) *
+        1e6);
     left_in_ = ctx.input<msg::Image>("left", "left (reference) image, rectified, rgb8 or mono8", Qos::sensor(2));
-    right_in_ = ctx.input<msg::Image>("right", "right image, rectified, displaced along +x, same encoding and size", Qos::sensor(2));
+    right_in_ = ctx.input<msg::Image>("right", "right image, rectified, displaced along +x, same encoding and size",
+                                      Qos::sensor(2));
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "the left camera's intrinsics (K)", Qos::sensor(2));
-    right_info_in_ = ctx.input<msg::CameraInfo>("right_camera_info", "optional: the right camera's P gives the baseline (P[3] = -fx B)",
-                                                Qos::sensor(2));
-    keyed_in_ = ctx.input<msg::Image>("keyed", "optional: the keyer's rgba8 hand of the left image (alpha = hand)", Qos::sensor(2));
-    eye_T_base_in_ = ctx.input<msg::PoseStamped>("eye_T_base", "optional: the camera's pose; the hand is then given in base", Qos::sensor(4));
-    eye_T_dev_in_ = ctx.input<msg::PoseStamped>("eye_T_dev", "optional: the device plate's pose; keyed points on it are not hand", Qos::sensor(4));
-    depth_out_ = ctx.output<msg::Image>("depth", "metric depth of the left image, 32FC1, 0 where unknown", Qos::sensor(2));
-    hand_out_ = ctx.output<msg::PoseStamped>("hand_position", "the hand's 3D point (eye or base frame; orientation identity)",
-                                             Qos::sensor(4));
-    if (!(box[0] < box[1] && box[2] < box[3] && box[4] < box[5])) ctx.reject("device_box", "each min must be below its max");
+    right_info_in_ = ctx.input<msg::CameraInfo>(
+        "right_camera_info", "optional: the right camera's P gives the baseline (P[3] = -fx B)", Qos::sensor(2));
+    keyed_in_ = ctx.input<msg::Image>("keyed", "optional: the keyer's rgba8 hand of the left image (alpha = hand)",
+                                      Qos::sensor(2));
+    eye_T_base_in_ = ctx.input<msg::PoseStamped>(
+        "eye_T_base", "optional: the camera's pose; the hand is then given in base", Qos::sensor(4));
+    eye_T_dev_in_ = ctx.input<msg::PoseStamped>(
+        "eye_T_dev", "optional: the device plate's pose; keyed points on it are not hand", Qos::sensor(4));
+    depth_out_ =
+        ctx.output<msg::Image>("depth", "metric depth of the left image, 32FC1, 0 where unknown", Qos::sensor(2));
+    hand_out_ = ctx.output<msg::PoseStamped>(
+        "hand_position", "the hand's 3D point (eye or base frame; orientation identity)", Qos::sensor(4));
+    if (!(box[0] < box[1] && box[2] < box[3] && box[4] < box[5]))
+      ctx.reject("device_box", "each min must be below its max");
     if (!(s.min_depth < s.max_depth)) ctx.reject("max_depth", "must be larger than min_depth");
     if (s.block_size % 2 == 0 || (s.algorithm == "bm" && s.block_size < 5))
       ctx.reject("block_size", "expected an odd number (at least 5 with algorithm bm)");
-    if (s.num_disparities % 16 != 0) ctx.reject("num_disparities", "expected 0 (from the depth range) or a multiple of 16");
-    hand_.device_box = Eigen::AlignedBox3d(Eigen::Vector3d(box[0], box[2], box[4]), Eigen::Vector3d(box[1], box[3], box[5]));
+    if (s.num_disparities % 16 != 0)
+      ctx.reject("num_disparities", "expected 0 (from the depth range) or a multiple of 16");
+    hand_.device_box =
+        Eigen::AlignedBox3d(Eigen::Vector3d(box[0], box[2], box[4]), Eigen::Vector3d(box[1], box[3], box[5]));
     if (ctx.issues().empty()) matcher_.emplace(s);
   }
 
@@ -90,24 +113,31 @@ class StereoDepth final : public Component {
     while (info_in_.take(info_)) {
       const auto& k = info_.k();
       if (k[0] > 0 && k[4] > 0 && std::isfinite(k[2]) && std::isfinite(k[5]))
-        K_ = Intrinsics{k[0], k[4], k[2], k[5]}, K_size_ = cv::Size(static_cast<int>(info_.width()), static_cast<int>(info_.height()));
+        K_ = Intrinsics{k[0], k[4], k[2], k[5]},
+        K_size_ = cv::Size(static_cast<int>(info_.width()), static_cast<int>(info_.height()));
       else
         reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
     }
     while (right_info_in_.take(right_info_)) {
       const double fx = right_info_.p()[0], tx = right_info_.p()[3];
-      if (fx > 0 && tx < 0) info_baseline_ = -tx / fx;
-      else reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
+      if (fx > 0 && tx < 0)
+        info_baseline_ = -tx / fx;
+      else
+        reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
     }
     while (eye_T_base_in_.take(pose_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_.pose());
-      if (T.matrix().allFinite()) base_T_eye_ = T.inverse(), have_pose_ = true;
-      else reject(eye_T_base_in_, "a non-finite pose");
+      if (T.matrix().allFinite())
+        base_T_eye_ = T.inverse(), have_pose_ = true;
+      else
+        reject(eye_T_base_in_, "a non-finite pose");
     }
     while (eye_T_dev_in_.take(pose_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_.pose());
-      if (T.matrix().allFinite()) dev_T_eye_ = T.inverse(), have_dev_ = true;
-      else reject(eye_T_dev_in_, "a non-finite pose");
+      if (T.matrix().allFinite())
+        dev_T_eye_ = T.inverse(), have_dev_ = true;
+      else
+        reject(eye_T_dev_in_, "a non-finite pose");
     }
   }
 
@@ -130,7 +160,8 @@ class StereoDepth final : public Component {
       return false;
     }
     std::string missing;
-    if (K_.fx <= 0) missing = "no intrinsics yet (camera_info)";
+    if (K_.fx <= 0)
+      missing = "no intrinsics yet (camera_info)";
     else if (K_size_.width != static_cast<int>(left_.width()) || K_size_.height != static_cast<int>(left_.height()))
       missing = "camera_info is for " + std::to_string(K_size_.width) + "x" + std::to_string(K_size_.height) +
                 " but the images are " + size_text(left_);
@@ -170,7 +201,8 @@ class StereoDepth final : public Component {
     cv::extractChannel(image::view(keyed_), alpha_, 3);
     const auto hand = estimate_hand_point(depth_, alpha_, K_, hand_, have_dev_ ? &dev_T_eye_ : nullptr, points_);
     if (!hand) return;  // no hand in view (or too little of it with depth)
-    fill_header(hand_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, keyed_.header().seq(), have_pose_ ? "base" : "eye");
+    fill_header(hand_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, keyed_.header().seq(),
+                have_pose_ ? "base" : "eye");
     hand_msg_.child_frame_id("hand");
     const Eigen::Vector3d p = have_pose_ ? Eigen::Vector3d(base_T_eye_ * hand->eye_p_hand) : hand->eye_p_hand;
     msgs::to_msg(p, Eigen::Quaterniond::Identity(), hand_msg_.pose());
@@ -179,7 +211,9 @@ class StereoDepth final : public Component {
 
   double baseline() const { return baseline_ > 0 ? baseline_ : info_baseline_; }
 
-  static std::string size_text(const msg::Image& m) { return std::to_string(m.width()) + "x" + std::to_string(m.height()); }
+  static std::string size_text(const msg::Image& m) {
+    return std::to_string(m.width()) + "x" + std::to_string(m.height());
+  }
 
   std::optional<DisparityDepth> matcher_;
   HandPointOptions hand_;

@@ -115,12 +115,10 @@ struct ComponentEntry {
 #define WYSIWYF_COMPONENT_ENTRY_SYMBOL "wysiwyf_component_entry"
 
 // Exports Class as the component type `type_name` (one per shared library).
-#define WYSIWYF_COMPONENT(Class, type_name)                                                        \
-  extern "C" __attribute__((visibility("default"))) const ::wysiwyf::ComponentEntry*              \
-  wysiwyf_component_entry() {                                                                      \
-    static const ::wysiwyf::ComponentEntry entry{                                                  \
-        ::wysiwyf::kAbiVersion, WYSIWYF_BUILD_ID, type_name,                                       \
-        []() -> ::wysiwyf::Component* { return new Class(); },                                     \
-        [](::wysiwyf::Component* c) { delete c; }};                                                \
-    return &entry;                                                                                 \
+#define WYSIWYF_COMPONENT(Class, type_name)                                                                      \
+  extern "C" __attribute__((visibility("default"))) const ::wysiwyf::ComponentEntry* wysiwyf_component_entry() { \
+    static const ::wysiwyf::ComponentEntry entry{::wysiwyf::kAbiVersion, WYSIWYF_BUILD_ID, type_name,            \
+                                                 []() -> ::wysiwyf::Component* { return new Class(); },          \
+                                                 [](::wysiwyf::Component* c) { delete c; }};                     \
+    return &entry;                                                                                               \
   }

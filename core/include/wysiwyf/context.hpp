@@ -44,8 +44,8 @@ class Context {
   T param(const std::string& name, const T& default_value, const std::string& description,
           std::optional<Range> range = std::nullopt, std::optional<Length> length = std::nullopt);
   // A string parameter that must be one of `choices`.
-  std::string param_choice(const std::string& name, const std::string& default_value,
-                           const std::string& description, const std::vector<std::string>& choices);
+  std::string param_choice(const std::string& name, const std::string& default_value, const std::string& description,
+                           const std::vector<std::string>& choices);
 
   // Refuses the value of parameter `name` (declared before) for a reason the declaration cannot
   // express, such as a relation between two parameters: reported like a wrong type or range, at
@@ -119,9 +119,9 @@ T Context::param(const std::string& name, const T& default_value, const std::str
                  std::optional<Range> range, std::optional<Length> length) {
   if constexpr (detail::IsStdArray<T>::value) {
     static_assert(std::is_same_v<typename T::value_type, double>, "fixed-size parameters are std::array<double, N>");
-    const std::vector<double> list = param<std::vector<double>>(
-        name, std::vector<double>(default_value.begin(), default_value.end()), description, range,
-        Length::exactly(std::tuple_size<T>::value));
+    const std::vector<double> list =
+        param<std::vector<double>>(name, std::vector<double>(default_value.begin(), default_value.end()), description,
+                                   range, Length::exactly(std::tuple_size<T>::value));
     T out = default_value;
     if (list.size() == out.size()) std::copy(list.begin(), list.end(), out.begin());
     return out;

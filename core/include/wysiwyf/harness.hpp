@@ -39,8 +39,9 @@ class Harness : private ComponentHost {
   // An input receiving what the component writes on its output port `port`.
   template <class T>
   Input<T> watch(const std::string& port, int depth = 10000) {
-    return Input<T>(bus_.channel<T>(spec_.components.front().topic_for(port), "harness.watch")->add_reader(Qos::reliable(depth)),
-                    "watch " + port);
+    return Input<T>(
+        bus_.channel<T>(spec_.components.front().topic_for(port), "harness.watch")->add_reader(Qos::reliable(depth)),
+        "watch " + port);
   }
 
   void activate();

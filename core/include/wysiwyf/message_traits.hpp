@@ -14,16 +14,16 @@ struct MessageTraits;  // specialised by WYSIWYF_MESSAGE for every IDL struct us
 }  // namespace wysiwyf
 
 // WYSIWYF_MESSAGE(wysiwyf::msg, JointState) in a header: declares JointState usable on ports.
-#define WYSIWYF_MESSAGE(NS, NAME)                                   \
-  template <>                                                        \
-  struct wysiwyf::MessageTraits<NS::NAME> {                          \
-    static const char* type_name() { return #NS "::" #NAME; }        \
-    static eprosima::fastdds::dds::TopicDataType* make_type();       \
+#define WYSIWYF_MESSAGE(NS, NAME)                              \
+  template <>                                                  \
+  struct wysiwyf::MessageTraits<NS::NAME> {                    \
+    static const char* type_name() { return #NS "::" #NAME; }  \
+    static eprosima::fastdds::dds::TopicDataType* make_type(); \
   };
 
 // WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, JointState) in the message library's one .cpp that
 // includes the generated *PubSubTypes.h: the DDS type support behind the port binding.
-#define WYSIWYF_MESSAGE_TYPE_SUPPORT(NS, NAME)                                             \
+#define WYSIWYF_MESSAGE_TYPE_SUPPORT(NS, NAME)                                           \
   eprosima::fastdds::dds::TopicDataType* wysiwyf::MessageTraits<NS::NAME>::make_type() { \
-    return new NS::NAME##PubSubType();                                                    \
+    return new NS::NAME##PubSubType();                                                   \
   }

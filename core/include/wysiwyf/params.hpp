@@ -34,9 +34,7 @@ struct Length {
   static Length rows_of(std::size_t width, std::size_t min_rows = 0) {
     return Length{width * min_rows, SIZE_MAX, width, false};
   }
-  bool accepts(std::size_t n) const {
-    return (or_empty && n == 0) || (n >= min && n <= max && n % multiple_of == 0);
-  }
+  bool accepts(std::size_t n) const { return (or_empty && n == 0) || (n >= min && n <= max && n % multiple_of == 0); }
   std::string text() const;  // "3 values", "0 or 4 values", "rows of 7 values", ...
 };
 
@@ -52,12 +50,33 @@ struct ParamSpec {
 
 template <class T>
 struct ParamTypeOf;
-template <> struct ParamTypeOf<bool> { static constexpr ParamType value = ParamType::kBool; };
-template <> struct ParamTypeOf<int> { static constexpr ParamType value = ParamType::kInt; };
-template <> struct ParamTypeOf<std::int64_t> { static constexpr ParamType value = ParamType::kInt; };
-template <> struct ParamTypeOf<double> { static constexpr ParamType value = ParamType::kDouble; };
-template <> struct ParamTypeOf<std::string> { static constexpr ParamType value = ParamType::kString; };
-template <> struct ParamTypeOf<std::vector<double>> { static constexpr ParamType value = ParamType::kDoubleList; };
-template <> struct ParamTypeOf<std::vector<std::string>> { static constexpr ParamType value = ParamType::kStringList; };
+template <>
+struct ParamTypeOf<bool> {
+  static constexpr ParamType value = ParamType::kBool;
+};
+template <>
+struct ParamTypeOf<int> {
+  static constexpr ParamType value = ParamType::kInt;
+};
+template <>
+struct ParamTypeOf<std::int64_t> {
+  static constexpr ParamType value = ParamType::kInt;
+};
+template <>
+struct ParamTypeOf<double> {
+  static constexpr ParamType value = ParamType::kDouble;
+};
+template <>
+struct ParamTypeOf<std::string> {
+  static constexpr ParamType value = ParamType::kString;
+};
+template <>
+struct ParamTypeOf<std::vector<double>> {
+  static constexpr ParamType value = ParamType::kDoubleList;
+};
+template <>
+struct ParamTypeOf<std::vector<std::string>> {
+  static constexpr ParamType value = ParamType::kStringList;
+};
 
 }  // namespace wysiwyf

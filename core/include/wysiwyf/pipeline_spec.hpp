@@ -37,10 +37,10 @@ struct QosOverride {
 };
 
 struct ComponentSpec {
-  std::string name;       // instance name: the key under components:
-  Location where;         // of the key
+  std::string name;  // instance name: the key under components:
+  Location where;    // of the key
   Sourced<std::string> type;
-  Sourced<double> rate;   // Hz
+  Sourced<double> rate;  // Hz
   Sourced<std::string> process;
   Sourced<bool> enabled;
   // Real clock only (ignored on the sim clock, so a pipeline swaps clocks by one line):

@@ -16,7 +16,7 @@ struct PortSpec {
   PortDirection direction = PortDirection::kInput;
   std::string type_name;  // DDS type, e.g. "wysiwyf::msg::JointState"
   std::string description;
-  Qos qos;                // the component's default; the pipeline may override it
+  Qos qos;  // the component's default; the pipeline may override it
 };
 
 // Receives samples of T. Unconnected (describe/validate mode) it never has data.

@@ -33,17 +33,17 @@ struct ComponentReport {
 
 struct RunResult {
   bool ok = true;
-  std::string stop_reason;   // "duration reached", "stopped by tracker: ...", "signal", ...
-  std::string error;         // set when !ok: which component failed where and why
+  std::string stop_reason;  // "duration reached", "stopped by tracker: ...", "signal", ...
+  std::string error;        // set when !ok: which component failed where and why
   std::int64_t sim_time_ns = 0;
   double wall_seconds = 0;
   std::vector<ComponentReport> components;
 };
 
 struct RunOptions {
-  std::string process;             // empty: every enabled component of the pipeline
-  bool progress = false;           // sim clock: a progress line on stderr
-  std::ostream* log = nullptr;     // component log lines and lifecycle messages (null: std::cerr)
+  std::string process;          // empty: every enabled component of the pipeline
+  bool progress = false;        // sim clock: a progress line on stderr
+  std::ostream* log = nullptr;  // component log lines and lifecycle messages (null: std::cerr)
 };
 
 class Runtime {

@@ -24,9 +24,8 @@ class TopicBus {
     }
     auto* typed = dynamic_cast<TopicChannel<T>*>(it->second.get());
     if (!typed)
-      throw std::runtime_error("topic '" + topic + "': port " + port + " carries " +
-                               MessageTraits<T>::type_name() + " but port " + owners_[topic] +
-                               " carries " + it->second->type_name());
+      throw std::runtime_error("topic '" + topic + "': port " + port + " carries " + MessageTraits<T>::type_name() +
+                               " but port " + owners_[topic] + " carries " + it->second->type_name());
     return typed;
   }
 

@@ -23,8 +23,7 @@ class DdsWriterLink {
 
 class TopicChannelBase {
  public:
-  TopicChannelBase(std::string topic, std::string type_name,
-                   eprosima::fastdds::dds::TopicDataType* (*make_type)())
+  TopicChannelBase(std::string topic, std::string type_name, eprosima::fastdds::dds::TopicDataType* (*make_type)())
       : topic_(std::move(topic)), type_name_(std::move(type_name)), make_type_(make_type) {}
   virtual ~TopicChannelBase() = default;
 
