@@ -117,8 +117,7 @@ class CameraSim final : public Component {
   void tick(Time now) override {
     auto stamp = [&](const std_msgs::Header& h) { return h.stamp_ns() > 0 ? h.stamp_ns() : now.ns; };
     while (joints_in_.take(joints_msg_)) {
-      robot::Vector6d q;
-      for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
+      const robot::Vector6d q = msgs::joint_positions(joints_msg_);
       if (!q.allFinite()) {
         reject(joints_in_, "a non-finite joint angle");
         continue;

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "image/image_view.hpp"
+#include "image/pixel_math.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -30,19 +31,7 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_d
     const float* virt = kZKey ? virtual_depth.ptr<float>(y) : nullptr;
     int x = 0;
 #if CV_SIMD128
-    const cv::v_uint16x8 half = cv::v_setall_u16(128);
     const cv::v_uint8x16 full = cv::v_setall_u8(255);
-    // round(s (255 - a) / 255) for 16 channel values, in 16 bits: (v + (v >> 8)) >> 8, v = s (255 - a) + 128
-    auto scale = [&](const cv::v_uint8x16& s, const cv::v_uint8x16& inverse) {
-      cv::v_uint16x8 s0, s1, i0, i1;
-      cv::v_expand(s, s0, s1);
-      cv::v_expand(inverse, i0, i1);
-      cv::v_uint16x8 v0 = cv::v_mul_wrap(s0, i0) + half,
-                     v1 = cv::v_mul_wrap(s1, i1) + half;  // (no overflow: 255 * 255 + 128)
-      v0 = (v0 + (v0 >> 8)) >> 8;
-      v1 = (v1 + (v1 >> 8)) >> 8;
-      return cv::v_pack(v0, v1);
-    };
     for (; x + 16 <= scene.cols; x += 16) {
       cv::v_uint8x16 hr, hg, hb, ha, sr, sg, sb;
       cv::v_load_deinterleave(h + 4 * x, hr, hg, hb, ha);
@@ -59,7 +48,8 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_d
       }
       const cv::v_uint8x16 inverse = full - ha;
       // (+ saturates on 8 bits; the sum cannot pass 255 anyway: the hand is premultiplied)
-      cv::v_store_interleave(out + 3 * x, hr + scale(sr, inverse), hg + scale(sg, inverse), hb + scale(sb, inverse));
+      cv::v_store_interleave(out + 3 * x, hr + image::mul_div255(sr, inverse), hg + image::mul_div255(sg, inverse),
+                             hb + image::mul_div255(sb, inverse));
     }
 #endif
     for (; x < scene.cols; ++x) {
@@ -67,8 +57,7 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_d
       if constexpr (kZKey) keep = !(virt[x] > 0.0f && real[x] > 0.0f && virt[x] < real[x] + margin);
       const unsigned a = h[4 * x + 3] * keep, inverse = 255u - a;
       for (int c = 0; c < 3; ++c) {
-        const unsigned v = sc[3 * x + c] * inverse + 128u;
-        const unsigned blended = h[4 * x + c] * keep + ((v + (v >> 8)) >> 8);
+        const unsigned blended = h[4 * x + c] * keep + image::mul_div255(sc[3 * x + c], inverse);
         out[3 * x + c] = static_cast<std::uint8_t>(blended > 255u ? 255u : blended);
       }
     }

@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "image/image_view.hpp"
+#include "image/pixel_math.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -117,22 +118,13 @@ class ChromaKeyer final : public Component {
       std::uint8_t* out = hand_msg_.data().data() + static_cast<std::size_t>(y) * w * 4;
       int x = 0;
 #if CV_SIMD128
-      const cv::v_uint16x8 half = cv::v_setall_u16(128);
-      // round(c a / 255) for 16 channel values, exact: (v + (v >> 8)) >> 8, v = c a + 128
-      auto premultiply = [&](const cv::v_uint8x16& c, const cv::v_uint8x16& a) {
-        cv::v_uint16x8 c0, c1, a0, a1;
-        cv::v_expand(c, c0, c1);
-        cv::v_expand(a, a0, a1);
-        cv::v_uint16x8 v0 = cv::v_mul_wrap(c0, a0) + half,
-                       v1 = cv::v_mul_wrap(c1, a1) + half;  // (no overflow: 255 * 255 + 128)
-        return cv::v_pack((v0 + (v0 >> 8)) >> 8, (v1 + (v1 >> 8)) >> 8);
-      };
       for (; x + 16 <= w; x += 16) {
         cv::v_uint8x16 r, g, b;
         cv::v_load_deinterleave(in + 3 * x, r, g, b);
         const cv::v_uint8x16 a = cv::v_load(alpha + x);
         if (despill_) b = cv::v_min(b, cv::v_max(r, g));  // blue spill: blue may not exceed max(red, green)
-        cv::v_store_interleave(out + 4 * x, premultiply(r, a), premultiply(g, a), premultiply(b, a), a);
+        cv::v_store_interleave(out + 4 * x, image::mul_div255(r, a), image::mul_div255(g, a), image::mul_div255(b, a),
+                               a);
       }
 #endif
       for (; x < w; ++x) {
@@ -140,10 +132,7 @@ class ChromaKeyer final : public Component {
         const unsigned r = in[3 * x], g = in[3 * x + 1];
         const unsigned b = despill_ ? std::min<unsigned>(in[3 * x + 2], std::max(r, g)) : in[3 * x + 2];
         const unsigned c[3] = {r, g, b};
-        for (int k = 0; k < 3; ++k) {
-          const unsigned v = c[k] * a + 128u;
-          out[4 * x + k] = static_cast<std::uint8_t>((v + (v >> 8)) >> 8);
-        }
+        for (int k = 0; k < 3; ++k) out[4 * x + k] = static_cast<std::uint8_t>(image::mul_div255(c[k], a));
         out[4 * x + 3] = static_cast<std::uint8_t>(a);
       }
     }

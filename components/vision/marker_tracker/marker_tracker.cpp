@@ -139,8 +139,7 @@ class MarkerTracker final : public Component {
  private:
   void read_joints(Time now) {
     while (joints_in_.take(joints_msg_)) {
-      robot::Vector6d q;
-      for (int i = 0; i < 6; ++i) q[i] = joints_msg_.position()[i];
+      const robot::Vector6d q = msgs::joint_positions(joints_msg_);
       if (!q.allFinite()) {
         reject(joints_in_, "a non-finite joint position");
         continue;

@@ -53,6 +53,9 @@ inline Vector6d to_vector6(const geometry_msgs::Wrench& w) {
 }
 inline void to_msg(const Vector6d& v, geometry_msgs::Wrench& w) { to_msg(v.head<3>(), v.tail<3>(), w); }
 
+// A six-joint arm's positions as one vector.
+inline Vector6d joint_positions(const msg::JointState& m) { return Eigen::Map<const Vector6d>(m.position().data()); }
+
 inline bool all_finite(const geometry_msgs::Wrench& w) { return to_vector6(w).allFinite(); }
 inline bool all_finite(const geometry_msgs::Pose& p) {
   return to_eigen(p.position()).allFinite() && to_eigen(p.orientation()).coeffs().allFinite();
