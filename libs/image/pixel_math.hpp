@@ -19,7 +19,8 @@ inline cv::v_uint8x16 mul_div255(const cv::v_uint8x16& a, const cv::v_uint8x16& 
   cv::v_uint16x8 a0, a1, b0, b1;
   cv::v_expand(a, a0, a1);
   cv::v_expand(b, b0, b1);
-  const cv::v_uint16x8 v0 = cv::v_mul_wrap(a0, b0) + half, v1 = cv::v_mul_wrap(a1, b1) + half;  // (at most 255 * 255 + 128)
+  const cv::v_uint16x8 v0 = cv::v_mul_wrap(a0, b0) + half,
+                       v1 = cv::v_mul_wrap(a1, b1) + half;  // (at most 255 * 255 + 128)
   return cv::v_pack((v0 + (v0 >> 8)) >> 8, (v1 + (v1 >> 8)) >> 8);
 }
 #endif
