@@ -6,6 +6,7 @@
 
 #include "wysiwyf/idl/geometry_msgsPubSubTypes.h"
 #include "wysiwyf/idl/sensor_msgsPubSubTypes.h"
+#include "wysiwyf/idl/display_msgsPubSubTypes.h"
 #include "wysiwyf/idl/wysiwyf_msgsPubSubTypes.h"
 
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, Image)
@@ -19,6 +20,11 @@ WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, ObjectState)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, DisplayMode)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, RobotStatus)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, MarkerObservation)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, HandPosition)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, Attachment)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, PlannerStatus)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, UserEvent)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, ContactReport)
 
 namespace wysiwyf::msgs {
 
@@ -140,6 +146,31 @@ const char* tracking_name(msg::TrackingStatus s) {
     case msg::TRACKING_LOST: return "lost";
     case msg::TRACKING_OK: return "tracking";
     case msg::TRACKING_COASTING: return "coasting";
+  }
+  return "?";
+}
+
+const char* planner_state_name(msg::PlannerState s) {
+  switch (s) {
+    case msg::PLAN_IDLE: return "idle";
+    case msg::PLAN_MOVING: return "moving";
+    case msg::PLAN_IN_PLACE: return "in_place";
+    case msg::PLAN_WAITING: return "waiting";
+    case msg::PLAN_UNREACHABLE: return "unreachable";
+    case msg::PLAN_FAULT: return "fault";
+  }
+  return "?";
+}
+
+const char* user_event_name(msg::UserEventKind k) {
+  switch (k) {
+    case msg::USER_REACH: return "reach";
+    case msg::USER_TOUCH: return "touch";
+    case msg::USER_MISS: return "miss";
+    case msg::USER_PUSH: return "push";
+    case msg::USER_RELEASE: return "release";
+    case msg::USER_WITHDRAW: return "withdraw";
+    case msg::USER_DONE: return "done";
   }
   return "?";
 }
@@ -271,6 +302,55 @@ std::string to_yaml(const msg::MarkerObservation& m) {
   return y.text();
 }
 
+std::string to_yaml(const msg::HandPosition& m) {
+  Yaml y;
+  header(y, m.header());
+  vec3(y, "position", m.position().x(), m.position().y(), m.position().z());
+  y.list("covariance", m.covariance().begin(), m.covariance().end());
+  y.kv("status", tracking_name(m.status())).str("source", m.source());
+  return y.text();
+}
+
+std::string to_yaml(const msg::Attachment& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("attached", m.attached() ? "true" : "false").str("body", m.body()).str("feature", m.feature());
+  y.key("obj_T_dev").in();
+  pose(y, m.obj_T_dev());
+  y.out();
+  return y.text();
+}
+
+std::string to_yaml(const msg::PlannerStatus& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("state", planner_state_name(m.state())).str("feature", m.feature()).str("body", m.body());
+  y.key("base_T_target").in();
+  pose(y, m.base_T_target());
+  y.out();
+  y.kv("eta", m.eta()).kv("hand_eta", m.hand_eta()).kv("separation", m.separation());
+  y.kv("speed_limit", m.speed_limit()).str("reason", m.reason());
+  return y.text();
+}
+
+std::string to_yaml(const msg::UserEvent& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("kind", user_event_name(m.kind())).kv("contact", m.contact()).str("feature", m.feature()).str("body", m.body());
+  vec3(y, "point", m.point().x(), m.point().y(), m.point().z());
+  vec3(y, "normal", m.normal().x(), m.normal().y(), m.normal().z());
+  y.kv("force", m.force());
+  return y.text();
+}
+
+std::string to_yaml(const msg::ContactReport& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("contact", m.contact()).str("feature", m.feature()).kv("hit", m.hit() ? "true" : "false");
+  y.kv("still_before_s", m.still_before_s()).kv("offset_mm", m.offset_mm()).kv("angle_deg", m.angle_deg());
+  return y.text();
+}
+
 const MessageRegistry& registry() {
   static const MessageRegistry r = [] {
     MessageRegistry reg;
@@ -286,6 +366,11 @@ const MessageRegistry& registry() {
     reg.add<msg::DisplayMode>(&to_yaml);
     reg.add<msg::RobotStatus>(&to_yaml);
     reg.add<msg::MarkerObservation>(&to_yaml);
+    reg.add<msg::HandPosition>(&to_yaml);
+    reg.add<msg::Attachment>(&to_yaml);
+    reg.add<msg::PlannerStatus>(&to_yaml);
+    reg.add<msg::UserEvent>(&to_yaml);
+    reg.add<msg::ContactReport>(&to_yaml);
     return reg;
   }();
   return r;

@@ -16,6 +16,9 @@ ArmParams declare_arm_params(Context& ctx) {
   p.tracker_hz =
       ctx.param<double>("tracker_bandwidth_hz", 10.0,
                         "natural frequency of the critically damped Cartesian setpoint tracker, Hz", Range{0.1, 200});
+  p.setpoint_source = ctx.param<std::string>(
+      "setpoint_source", "",
+      "accept setpoints only from sources that begin so (e.g. supervisor: the display's one voice); empty: any");
   SafetyConfig& c = p.gate;
   const auto accel = ctx.param<std::array<double, kDof>>(
       "acceleration_limits", {8, 8, 10, 30, 30, 30},
@@ -58,6 +61,12 @@ ArmParams declare_arm_params(Context& ctx) {
   if (c.approach_rate * c.dt > 2.0)  // the braking set must stay invariant over one period
     ctx.reject("approach_rate", "must be at most 2 / period = " + std::to_string(2.0 / c.dt) + " 1/s at this rate");
   return p;
+}
+
+std::string ArmParams::source_problem(const msg::CartesianSetpoint& m) const {
+  const std::string_view source = m.source().c_str();
+  if (setpoint_source.empty() || source.substr(0, setpoint_source.size()) == setpoint_source) return {};
+  return "source '" + std::string(source) + "', expected one beginning '" + setpoint_source + "'";
 }
 
 std::unique_ptr<PumaModel> load_arm_model(Context& ctx, ArmParams& params) {

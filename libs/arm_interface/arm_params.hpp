@@ -8,14 +8,19 @@
 #include "puma_model/puma_model.hpp"
 #include "safety_gate/safety_gate.hpp"
 #include "wysiwyf/context.hpp"
+#include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::robot {
 
 struct ArmParams {
-  std::string urdf_path;   // robot URDF (found on the config path)
-  std::string tip_frame;   // the frame the Cartesian setpoints place, fixed to link 6
-  double tracker_hz = 10;  // natural frequency of the critically damped setpoint tracker
-  SafetyConfig gate;       // limits from the URDF are filled in by load_arm_model
+  std::string urdf_path;        // robot URDF (found on the config path)
+  std::string tip_frame;        // the frame the Cartesian setpoints place, fixed to link 6
+  double tracker_hz = 10;       // natural frequency of the critically damped setpoint tracker
+  SafetyConfig gate;            // limits from the URDF are filled in by load_arm_model
+  std::string setpoint_source;  // setpoints whose source does not begin so are refused ("": any)
+
+  // Why a setpoint is refused for its source, or empty.
+  std::string source_problem(const msg::CartesianSetpoint& m) const;
 };
 
 ArmParams declare_arm_params(Context& ctx);

@@ -5,8 +5,9 @@
 namespace wysiwyf::robot {
 
 void ArmPorts::declare(Context& ctx) {
-  setpoint = ctx.input<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist, at any period of 1-20 ms",
-                                               Qos::reliable(32));
+  setpoint = ctx.input<msg::CartesianSetpoint>(
+      "setpoint", "base_T_dev and its twist, at any period of 1-20 ms (one writer: a second is a validation error)",
+      Qos::reliable(32).one_writer());
   joint_state_out_ =
       ctx.output<msg::JointState>("joint_state", "measured joint angles (encoders), velocities, motor torques");
   device_pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -55,7 +57,13 @@ Quat rpy(const Vec3& r) {
               Eigen::AngleAxisd(r.x(), Vec3::UnitX()));
 }
 
-// The plate frame on a face: origin at the face centre, z along the face's outward normal.
+bool is_face(const std::string& f) {
+  static const std::vector<std::string> faces{"+x", "-x", "+y", "-y", "+z", "-z"};
+  return std::find(faces.begin(), faces.end(), f) != faces.end();
+}
+
+}  // namespace
+
 Eigen::Isometry3d face_frame(const std::string& face, const Vec3& half) {
   const int axis = face[1] == 'x' ? 0 : face[1] == 'y' ? 1 : 2;
   const double sign = face[0] == '+' ? 1.0 : -1.0;
@@ -72,10 +80,84 @@ Eigen::Isometry3d face_frame(const std::string& face, const Vec3& half) {
   return T;
 }
 
+namespace {
+
+DisplayFeature parse_feature(const std::string& name, const YAML::Node& f, const Scene& s, const Reader& r) {
+  const std::string what = "feature '" + name + "'";
+  if (!f.IsMap()) r.fail(f, what + ": expected a map with body, face, kind");
+  r.keys(f, {"body", "face", "kind", "at", "edge", "knob_radius"}, what);
+  DisplayFeature d;
+  d.name = name;
+  if (!f["body"]) r.fail(f, what + ": expected body: <a dynamic body>");
+  d.body = s.body_index(f["body"].Scalar());
+  if (d.body < 0 || !s.models[d.body].dynamic)
+    r.fail(f["body"], what + " body: found '" + f["body"].Scalar() + "'; expected a dynamic body of this scene");
+  if (!f["face"] || !is_face(f["face"].Scalar()))
+    r.fail(f["face"] ? f["face"] : f, what + ": expected face: +x -x +y -y +z or -z");
+  d.face = f["face"].Scalar();
+  const std::string kind = f["kind"] ? f["kind"].Scalar() : "face";
+  if (kind == "face")
+    d.kind = DisplayFeature::Kind::kFace;
+  else if (kind == "edge")
+    d.kind = DisplayFeature::Kind::kEdge;
+  else if (kind == "knob")
+    d.kind = DisplayFeature::Kind::kKnob;
+  else
+    r.fail(f["kind"], what + " kind: found '" + kind + "'; expected face, edge or knob");
+  const Vec3& half = s.models[d.body].half_extents;
+  const Eigen::Isometry3d obj_T_face = face_frame(d.face, half);
+  // The face's half sizes along its frame's x and y.
+  const Vec3 face_half = (obj_T_face.linear().transpose() * half).cwiseAbs();
+  d.touch_u = obj_T_face.linear().col(0), d.touch_v = obj_T_face.linear().col(1), d.normal = obj_T_face.linear().col(2);
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();
+  if (f["at"]) {
+    const YAML::Node a = f["at"];
+    if (!a.IsSequence() || a.size() != 2) r.fail(a, what + " at: expected [u, v], m in the face's plane");
+    at = Eigen::Vector2d(r.number(a[0], what + " at"), r.number(a[1], what + " at"));
+    if (std::abs(at.x()) > face_half.x() || std::abs(at.y()) > face_half.y()) r.fail(a, what + " at: outside the face");
+  }
+  Eigen::Isometry3d face_T_plate = Eigen::Isometry3d::Identity();
+  switch (d.kind) {
+    case DisplayFeature::Kind::kFace:
+      d.touch = obj_T_face * Vec3(at.x(), at.y(), 0);
+      d.half_u = face_half.x(), d.half_v = face_half.y();
+      face_T_plate.translation() = Vec3(at.x(), at.y(), 0);
+      break;
+    case DisplayFeature::Kind::kKnob:
+      d.knob_radius = f["knob_radius"] ? r.positive(f["knob_radius"], what + " knob_radius") : 0.015;
+      face_T_plate.translation() = Vec3(at.x(), at.y(), 0);  // the plate's knob on the virtual one
+      d.touch = obj_T_face * (face_T_plate * s.device.knob_offset);
+      break;
+    case DisplayFeature::Kind::kEdge: {
+      // `edge`: the face's edge toward that axis (e.g. +z on the +x face); the plate's edge on it.
+      if (!f["edge"] || !is_face(f["edge"].Scalar()) || f["edge"].Scalar()[1] == d.face[1])
+        r.fail(f["edge"] ? f["edge"] : f,
+               what + ": expected edge: the direction of the face's edge (+x ... -z, not the face's own axis)");
+      const std::string e = f["edge"].Scalar();
+      Vec3 dir_obj = Vec3::Zero();
+      dir_obj[e[1] - 'x'] = e[0] == '+' ? 1.0 : -1.0;
+      const Vec3 dir = obj_T_face.linear().transpose() * dir_obj;  // in the face frame: +-x or +-y
+      const int axis = std::abs(dir.x()) > 0.5 ? 0 : 1;
+      const double reach = face_half[axis], plate = s.device.plate_half[axis];
+      Vec3 centre = Vec3::Zero();
+      centre[axis] = dir[axis] * (reach - plate);  // the plate's edge on the object's edge
+      face_T_plate.translation() = centre;
+      Vec3 mid = Vec3::Zero();
+      mid[axis] = dir[axis] * reach;
+      d.touch = obj_T_face * mid;
+      (axis == 0 ? d.half_v : d.half_u) = face_half[1 - axis];
+      break;
+    }
+  }
+  d.obj_T_plate = obj_T_face * face_T_plate;
+  d.face_point = obj_T_face.translation();
+  return d;
+}
+
 Scene parse(const YAML::Node& root, const Reader& r) {
   Scene s;
   if (!root.IsMap()) r.fail(root, "expected a map with keys scene, name, gravity, bodies, device");
-  r.keys(root, {"scene", "name", "gravity", "bodies", "device"}, "scene");
+  r.keys(root, {"scene", "name", "gravity", "bodies", "device", "features"}, "scene");
   if (!root["scene"] || root["scene"].Scalar() != "1") r.fail(root, "expected 'scene: 1' (the scene format version)");
   s.name = root["name"] ? root["name"].Scalar() : "scene";
   if (root["gravity"]) s.gravity = r.vec3(root["gravity"], "gravity");
@@ -125,7 +207,7 @@ Scene parse(const YAML::Node& root, const Reader& r) {
     s.initial.push_back(st);
   }
   if (const YAML::Node d = root["device"]) {
-    r.keys(d, {"body", "face", "sensor_offset", "knob_offset", "tool_mass", "tool_com"}, "device");
+    r.keys(d, {"body", "face", "sensor_offset", "knob_offset", "tool_mass", "tool_com", "plate_size"}, "device");
     if (!d["body"]) r.fail(d, "device: expected body: <name of a dynamic body>");
     const std::string body = d["body"].Scalar();
     for (std::size_t i = 0; i < s.models.size(); ++i)
@@ -146,11 +228,39 @@ Scene parse(const YAML::Node& root, const Reader& r) {
       if (s.device.tool_mass < 0) r.fail(d["tool_mass"], "device tool_mass: expected a mass >= 0");
     }
     if (d["tool_com"]) s.device.tool_com = r.vec3(d["tool_com"], "device tool_com");
+    if (const YAML::Node p = d["plate_size"]) {
+      if (!p.IsSequence() || p.size() != 2) r.fail(p, "device plate_size: expected [x, y], m");
+      s.device.plate_half =
+          0.5 * Eigen::Vector2d(r.positive(p[0], "device plate_size"), r.positive(p[1], "device plate_size"));
+    }
+  }
+  if (const YAML::Node features = root["features"]) {
+    if (!features.IsMap()) r.fail(features, "features: expected a map of name: {body, face, kind}");
+    for (auto it = features.begin(); it != features.end(); ++it)
+      s.features.push_back(parse_feature(it->first.Scalar(), it->second, s, r));
   }
   return s;
 }
 
 }  // namespace
+
+int Scene::body_index(const std::string& body) const {
+  for (std::size_t i = 0; i < models.size(); ++i)
+    if (models[i].name == body) return static_cast<int>(i);
+  return -1;
+}
+
+const DisplayFeature* Scene::feature(const std::string& feature_name) const {
+  for (const auto& f : features)
+    if (f.name == feature_name) return &f;
+  return nullptr;
+}
+
+double DisplayFeature::distance(const Vec3& p) const {
+  const Vec3 d = p - touch;
+  const double u = std::clamp(d.dot(touch_u), -half_u, half_u), v = std::clamp(d.dot(touch_v), -half_v, half_v);
+  return (d - u * touch_u - v * touch_v).norm();
+}
 
 Scene load_scene(const std::string& path) {
   std::ifstream in(path);

@@ -18,18 +18,23 @@ struct BodyWrench {
   Vec3 torque = Vec3::Zero();  // N.m, world frame, about the body's centre of mass
 };
 
+// The user's load alone, in the sensor frame: the reading less the weight of the tool it carries
+// (world_R_sensor: the sensor's orientation; tool_com_sensor: the tool's centre of mass).
+inline SensorReading user_load(const SensorReading& measured, const Mat3& world_R_sensor, double tool_mass,
+                               const Vec3& tool_com_sensor, const Vec3& gravity) {
+  const Vec3 weight_sensor = world_R_sensor.transpose() * (tool_mass * gravity);
+  return SensorReading{measured.force - weight_sensor, measured.torque - tool_com_sensor.cross(weight_sensor)};
+}
+
 // world_T_sensor: where the sensor is; body_com: the body's centre of mass (world).
 inline BodyWrench user_wrench_on_body(const SensorReading& measured, const Eigen::Isometry3d& world_T_sensor,
                                       const Vec3& body_com, double tool_mass, const Vec3& tool_com_sensor,
                                       const Vec3& gravity) {
   const Mat3 R = world_T_sensor.linear();
-  // The tool's weight, as the sensor sees it: remove it.
-  const Vec3 weight_sensor = R.transpose() * (tool_mass * gravity);
-  const Vec3 f_user = measured.force - weight_sensor;
-  const Vec3 t_user = measured.torque - tool_com_sensor.cross(weight_sensor);
+  const SensorReading user = user_load(measured, R, tool_mass, tool_com_sensor, gravity);
   BodyWrench w;
-  w.force = R * f_user;
-  w.torque = R * t_user + (world_T_sensor.translation() - body_com).cross(w.force);
+  w.force = R * user.force;
+  w.torque = R * user.torque + (world_T_sensor.translation() - body_com).cross(w.force);
   return w;
 }
 

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/scene.hpp"
-#include "admittance_sim/wrench_path.hpp"
+#include "scene/tool_load.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msgs.hpp"
 

@@ -67,7 +67,7 @@ TEST(Loader, MissingFileAndUnknownTypeListTheKnownTypes) {
   } catch (const LoadError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("unknown component type 'test_prob'"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("known types: test_pose_sink, test_probe"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("known types: test_display_recorder, test_pose_sink, test_probe"), std::string::npos) << msg;
   }
 }
 

@@ -3,11 +3,17 @@
 // dynamics with non-penetration constraints (Baraff's contact LCP on SUNDIALS CVODE) and sends
 // the object's motion to the robot as the device setpoint: base_T_dev = base_T_obj * obj_T_dev
 // (the virtual environment frame is the robot base, eq. 6).
+//
+// Where the device is attached: the scene file's device (body and face) from the start, or, with
+// attached_at_start false, only once an `attach` message says so (the supervisor, entering
+// admittance display mode, attaches the device to the feature the surface planner chose, at the
+// pose where the device is, so the first setpoint is the last one the arm had). Detached, the
+// user's wrench does not act on the object and no setpoint is published.
 #include <cmath>
 
 #include "scene/scene.hpp"
 #include "rigid_body/world.hpp"
-#include "wrench_path.hpp"
+#include "scene/tool_load.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msg_eigen.hpp"
@@ -27,6 +33,10 @@ class AdmittanceSim final : public Component {
                               "CVODE relative tolerance (absolute: 1e-2 of it); 1e-7 keeps a pushed cube within 5 um "
                               "of its exact motion over 10 s",
                               Range{1e-14, 1e-3});
+    attached_ = ctx.param<bool>("attached_at_start", true,
+                                "the scene's device attachment holds from the start (false: wait for `attach`)");
+    attach_in_ =
+        ctx.input<msg::Attachment>("attach", "where the device holds the object, or that it lets go", Qos::reliable(4));
     wrench_ = ctx.input<msg::WrenchStamped>("wrench", "the wrist F/T sensor: user push plus tool weight, sensor frame",
                                             Qos::sensor(8));
     device_pose_ =
@@ -45,6 +55,8 @@ class AdmittanceSim final : public Component {
       return ctx.reject("scene", e.what());
     }
     if (scene_.device.body < 0) ctx.reject("scene", "'" + scene_path_ + "' has no device: attachment");
+    body_ = scene_.device.body;
+    obj_T_dev_ = scene_.device.obj_T_dev;
   }
 
   void activate() override {
@@ -56,6 +68,7 @@ class AdmittanceSim final : public Component {
   }
 
   void tick(Time now) override {
+    while (attach_in_.take(attach_msg_)) take_attachment();
     // STEP 1: the user's wrench, held until the next sample.
     while (wrench_.take(sample_)) {
       if (!msgs::all_finite(sample_.wrench())) {  // a corrupt sample: ignore it, never move on it
@@ -74,15 +87,15 @@ class AdmittanceSim final : public Component {
       else
         reject(device_pose_, "a non-finite pose");
     }
-    const int body = scene_.device.body;
+    const int body = body_;
     const Eigen::Isometry3d base_T_obj = pose_of(body);
     // The sensor is where the robot holds it; if the robot lags or holds, that is not where the
     // object says, and the tool's weight must be removed in the sensor's true orientation.
-    const Eigen::Isometry3d base_T_dev =
-        have_device_pose_ ? measured_base_T_dev_ : base_T_obj * scene_.device.obj_T_dev;
+    const Eigen::Isometry3d base_T_dev = have_device_pose_ ? measured_base_T_dev_ : base_T_obj * obj_T_dev_;
     const Eigen::Isometry3d base_T_sensor = base_T_dev * scene_.device.dev_T_sensor;
-    // Until the sensor has said anything, nobody pushes (a zero reading would be minus the tool's weight).
-    const BodyWrench user = have_reading_
+    // Until the sensor has said anything, nobody pushes (a zero reading would be minus the tool's
+    // weight); detached, the user's hand is on the plate, not on the object.
+    const BodyWrench user = have_reading_ && attached_
                                 ? user_wrench_on_body(reading_, base_T_sensor, world_->state(body).x,
                                                       scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
                                 : BodyWrench{};
@@ -96,6 +109,24 @@ class AdmittanceSim final : public Component {
   }
 
  private:
+  // An attach or detach from the supervisor; a wrong one is refused and changes nothing.
+  void take_attachment() {
+    if (!attach_msg_.attached()) {
+      if (attached_) log("detached from " + world_->model(body_).name);
+      attached_ = false;
+      return;
+    }
+    const int body = scene_.body_index(attach_msg_.body().c_str());
+    if (body < 0 || !scene_.models[body].dynamic)
+      return reject(attach_in_,
+                    "body '" + std::string(attach_msg_.body().c_str()) + "' is not a dynamic body of the scene");
+    if (!msgs::all_finite(attach_msg_.obj_T_dev())) return reject(attach_in_, "a non-finite obj_T_dev");
+    body_ = body;
+    obj_T_dev_ = msgs::to_isometry(attach_msg_.obj_T_dev());
+    attached_ = true;
+    log("attached to " + scene_.models[body].name + " (" + attach_msg_.feature().c_str() + ")");
+  }
+
   Eigen::Isometry3d pose_of(int body) const {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = world_->state(body).q.normalized().toRotationMatrix();
@@ -104,15 +135,16 @@ class AdmittanceSim final : public Component {
   }
 
   void publish(Time now) {
-    const int body = scene_.device.body;
-    const auto k = world_->kinematics(body);
-    const Eigen::Isometry3d base_T_dev = pose_of(body) * scene_.device.obj_T_dev;
-    fill_header(setpoint_msg_.header(), now.ns, seq_, "base");
-    setpoint_msg_.child_frame_id("dev");
-    msgs::to_msg(base_T_dev, setpoint_msg_.pose());
-    msgs::to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body).x), k.omega, setpoint_msg_.twist());
-    setpoint_msg_.source("admittance");
-    setpoint_.write(setpoint_msg_);
+    if (attached_) {
+      const auto k = world_->kinematics(body_);
+      const Eigen::Isometry3d base_T_dev = pose_of(body_) * obj_T_dev_;
+      fill_header(setpoint_msg_.header(), now.ns, seq_, "base");
+      setpoint_msg_.child_frame_id("dev");
+      msgs::to_msg(base_T_dev, setpoint_msg_.pose());
+      msgs::to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body_).x), k.omega, setpoint_msg_.twist());
+      setpoint_msg_.source("admittance");
+      setpoint_.write(setpoint_msg_);
+    }
 
     for (int i = 0; i < world_->body_count(); ++i) {
       if (!world_->model(i).dynamic) continue;
@@ -141,6 +173,11 @@ class AdmittanceSim final : public Component {
   std::string scene_path_;
   double max_force_ = 200, rtol_ = kHapticRtol, dt_ = 1e-3;
   Scene scene_;
+  bool attached_ = true;
+  int body_ = -1;                                                // the body the device holds
+  Eigen::Isometry3d obj_T_dev_ = Eigen::Isometry3d::Identity();  // where on it
+  msg::Attachment attach_msg_;
+  Input<msg::Attachment> attach_in_;
   std::unique_ptr<World> world_;
   SensorReading reading_;
   bool have_device_pose_ = false;

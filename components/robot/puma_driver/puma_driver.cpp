@@ -141,7 +141,13 @@ class PumaDriver final : public Component {
       gate_->check_wrench(msgs::to_eigen(wrench_msg_.wrench().force()), msgs::to_eigen(wrench_msg_.wrench().torque()));
 
     // ---- 3. setpoints, trajectory generator, 4. the reference
-    while (ports_.setpoint.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
+    while (ports_.setpoint.take(setpoint_msg_)) {
+      if (const std::string why = arm_.source_problem(setpoint_msg_); !why.empty()) {
+        reject(ports_.setpoint, why);
+        continue;
+      }
+      follower_->take(setpoint_msg_, now.ns);
+    }
     follower_->update(now.ns);
     const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
     const JointReference& ref = gate_->step(now.ns);

@@ -179,7 +179,13 @@ class PumaSim final : public Component {
     gate_->check_wrench(f_sensor, t_sensor);
 
     // ---- 3. setpoints, hand target, trajectory generator
-    while (ports_.setpoint.take(setpoint_msg_)) follower_->take(setpoint_msg_, now.ns);
+    while (ports_.setpoint.take(setpoint_msg_)) {
+      if (const std::string why = arm_.source_problem(setpoint_msg_); !why.empty()) {
+        reject(ports_.setpoint, why);
+        continue;
+      }
+      follower_->take(setpoint_msg_, now.ns);
+    }
     while (hand_in_.take(hand_msg_)) {
       const Eigen::Vector3d x = msgs::to_eigen(hand_msg_.pose().position());
       if (x.allFinite())

@@ -13,10 +13,18 @@ struct Qos {
   Durability durability = Durability::kVolatile;
   int depth = 4;                 // samples kept per reader (keep-last history)
   std::int64_t deadline_ns = 0;  // 0: none; else the longest expected gap between samples
+  // An input that takes one writer only (a robot's setpoint): a second output port on its topic
+  // is a validation error.
+  bool single_writer = false;
 
   static Qos reliable(int depth = 4) { return Qos{Reliability::kReliable, Durability::kVolatile, depth, 0}; }
   // Latest-value streams (images, sensor data): lose a sample rather than wait for it.
   static Qos sensor(int depth = 1) { return Qos{Reliability::kBestEffort, Durability::kVolatile, depth, 0}; }
+  Qos one_writer() const {
+    Qos q = *this;
+    q.single_writer = true;
+    return q;
+  }
 };
 
 std::string to_string(Reliability r);

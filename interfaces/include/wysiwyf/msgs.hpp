@@ -3,6 +3,7 @@
 // type support is compiled into the message library, src/msgs.cpp.)
 #include <string>
 
+#include "wysiwyf/idl/display_msgs.h"
 #include "wysiwyf/idl/geometry_msgs.h"
 #include "wysiwyf/idl/sensor_msgs.h"
 #include "wysiwyf/idl/wysiwyf_msgs.h"
@@ -20,6 +21,11 @@ WYSIWYF_MESSAGE(wysiwyf::msg, ObjectState)
 WYSIWYF_MESSAGE(wysiwyf::msg, DisplayMode)
 WYSIWYF_MESSAGE(wysiwyf::msg, RobotStatus)
 WYSIWYF_MESSAGE(wysiwyf::msg, MarkerObservation)
+WYSIWYF_MESSAGE(wysiwyf::msg, HandPosition)
+WYSIWYF_MESSAGE(wysiwyf::msg, Attachment)
+WYSIWYF_MESSAGE(wysiwyf::msg, PlannerStatus)
+WYSIWYF_MESSAGE(wysiwyf::msg, UserEvent)
+WYSIWYF_MESSAGE(wysiwyf::msg, ContactReport)
 
 namespace wysiwyf::msgs {
 
@@ -36,6 +42,11 @@ std::string to_yaml(const msg::ObjectState& m);
 std::string to_yaml(const msg::DisplayMode& m);
 std::string to_yaml(const msg::RobotStatus& m);
 std::string to_yaml(const msg::MarkerObservation& m);
+std::string to_yaml(const msg::HandPosition& m);
+std::string to_yaml(const msg::Attachment& m);
+std::string to_yaml(const msg::PlannerStatus& m);
+std::string to_yaml(const msg::UserEvent& m);
+std::string to_yaml(const msg::ContactReport& m);
 
 // Every port message type of this build, by DDS type name.
 const MessageRegistry& registry();
