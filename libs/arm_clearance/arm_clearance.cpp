@@ -44,7 +44,7 @@ ArmClearance::ArmClearance(const PumaModel& model, Eigen::Vector2d plate_half, d
       knob_radius_(knob_radius) {}
 
 std::array<PartClearance, ArmClearance::kParts> ArmClearance::evaluate(const Vector6d& q, const Vector6d& qd,
-                                                                      const Vec3& point) const {
+                                                                       const Vec3& point) const {
   // Each frame's origin and its velocity (the first three rows of its geometric Jacobian).
   auto at = [&](FrameId f, Vec3& p, Vec3& v, Vec3* w = nullptr, Eigen::Matrix3d* R = nullptr) {
     const Eigen::Isometry3d T = model_.fk(q, f);

@@ -17,7 +17,7 @@ struct PartClearance {
   const char* name = "";
   double distance = 0;                                // m from the part's surface to the point (0 inside)
   Eigen::Vector3d nearest = Eigen::Vector3d::Zero();  // the part's point nearest the point (its axis or face), base
-  double approach_speed = 0;  // m/s of that point toward the point (negative: moving away)
+  double approach_speed = 0;                          // m/s of that point toward the point (negative: moving away)
 };
 
 class ArmClearance {

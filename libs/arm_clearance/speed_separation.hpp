@@ -11,12 +11,12 @@
 namespace wysiwyf::robot {
 
 struct SsmParams {
-  double human_speed = 1.6;          // v_h, m/s: ISO 13855's walking/reaching speed, ISO/TS 15066 default
-  double reaction_time = 0.1;        // T_r, s: sensing, planning and setpoint-to-motion latency
-  double braking_deceleration = 3.0; // a_s, m/s^2: the arm's assured deceleration along its path
-  double intrusion = 0.0;            // C, m: reach of a body part past the sensing (0: the fingertip is tracked)
-  double human_uncertainty = 0.02;   // Z_d, m: hand tracking error
-  double robot_uncertainty = 0.01;   // Z_r, m: arm position error (following error, calibration)
+  double human_speed = 1.6;           // v_h, m/s: ISO 13855's walking/reaching speed, ISO/TS 15066 default
+  double reaction_time = 0.1;         // T_r, s: sensing, planning and setpoint-to-motion latency
+  double braking_deceleration = 1.5;  // a_s, m/s^2: the arm's assured deceleration along its path
+  double intrusion = 0.0;             // C, m: reach of a body part past the sensing (0: the fingertip is tracked)
+  double human_uncertainty = 0.02;    // Z_d, m: hand tracking error
+  double robot_uncertainty = 0.01;    // Z_r, m: arm position error (following error, calibration)
 
   // S_p for a robot approach speed v_r.
   double protective_distance(double v_r) const {

@@ -44,13 +44,23 @@ class TestDisplayRecorder final : public Component {
     while (mode_.take(m_)) {
       if (m_.mode() != last_mode_) {
         char line[256];
-        std::snprintf(line, sizeof line, "%lld,mode,%d,%s\n", static_cast<long long>(now.ns), static_cast<int>(m_.mode()),
-                      m_.reason().c_str());
+        std::snprintf(line, sizeof line, "%lld,mode,%d,%s\n", static_cast<long long>(now.ns),
+                      static_cast<int>(m_.mode()), m_.reason().c_str());
         event_text_ += line;
         last_mode_ = m_.mode();
       }
     }
     while (planner_.take(p_)) {
+      std::string reason = p_.reason().c_str();
+      for (auto& c : reason)
+        if (c == ',') c = ';';
+      // A new line when the state or the reason's words change (not its figures, every tick).
+      const std::string words = reason.substr(0, reason.find_first_of("0123456789"));
+      if (p_.state() != last_planner_ || words != last_reason_) {
+        event_text_ +=
+            std::to_string(now.ns) + ",planner," + std::to_string(static_cast<int>(p_.state())) + "," + reason + "\n";
+        last_planner_ = p_.state(), last_reason_ = words;
+      }
     }
     while (events_.take(e_)) {
       char line[512];
@@ -68,10 +78,42 @@ class TestDisplayRecorder final : public Component {
     const auto& sp = s_.pose().position();
     const auto& tq = p_.base_T_target().orientation();
     const auto& tp = p_.base_T_target().position();
-    const double values[] = {q[0],  q[1],  q[2],  q[3],  q[4],  q[5],  qd[0], qd[1], qd[2], qd[3], qd[4],
-                             qd[5], hp.x(), hp.y(), hp.z(), dp.x(), dp.y(), dp.z(), dq.x(), dq.y(), dq.z(), dq.w(),
-                             sp.x(), sp.y(), sp.z(), tp.x(), tp.y(), tp.z(), tq.x(), tq.y(), tq.z(), tq.w(),
-                             p_.separation(), p_.speed_limit(), w_.wrench().force().x(), w_.wrench().force().y(),
+    const double values[] = {q[0],
+                             q[1],
+                             q[2],
+                             q[3],
+                             q[4],
+                             q[5],
+                             qd[0],
+                             qd[1],
+                             qd[2],
+                             qd[3],
+                             qd[4],
+                             qd[5],
+                             hp.x(),
+                             hp.y(),
+                             hp.z(),
+                             dp.x(),
+                             dp.y(),
+                             dp.z(),
+                             dq.x(),
+                             dq.y(),
+                             dq.z(),
+                             dq.w(),
+                             sp.x(),
+                             sp.y(),
+                             sp.z(),
+                             tp.x(),
+                             tp.y(),
+                             tp.z(),
+                             tq.x(),
+                             tq.y(),
+                             tq.z(),
+                             tq.w(),
+                             p_.separation(),
+                             p_.speed_limit(),
+                             w_.wrench().force().x(),
+                             w_.wrench().force().y(),
                              w_.wrench().force().z()};
     char row[64];
     std::snprintf(row, sizeof row, "%lld,%d,%d", static_cast<long long>(now.ns), static_cast<int>(m_.mode()),
@@ -94,6 +136,8 @@ class TestDisplayRecorder final : public Component {
  private:
   std::string samples_path_, events_path_, samples_text_, event_text_;
   msg::DisplayModeKind last_mode_ = msg::MODE_IDLE;
+  msg::PlannerState last_planner_ = msg::PLAN_IDLE;
+  std::string last_reason_;
   msg::JointState j_;
   msg::PoseStamped h_, d_;
   msg::CartesianSetpoint s_;

@@ -61,28 +61,28 @@ class Supervisor final : public Component {
     ctx.summary("the display's modes (idle, surface, admittance, fault) and the only writer of the robot setpoint");
     scene_path_ = ctx.param<std::string>("scene", "scenes/cube_against_wall.yaml", "scene file (tool, features)");
     ContactThresholds t;
-    t.contact_force = ctx.param<double>("contact_force", 2.0, "N: the user's force that starts a touch", Range{0.1, 100});
+    t.contact_force =
+        ctx.param<double>("contact_force", 2.0, "N: the user's force that starts a touch", Range{0.1, 100});
     t.contact_dwell = ctx.param<double>("contact_dwell", 0.02, "s it must last", Range{0, 1});
     t.release_force = ctx.param<double>("release_force", 1.0, "N: below this the touch may end", Range{0, 100});
     t.release_dwell = ctx.param<double>("release_dwell", 0.1, "s it must last", Range{0, 5});
-    t.contact_distance = ctx.param<double>("contact_distance", 0.05,
-                                           "m: a touch needs a tracked hand this near the plate", Range{0, 1});
+    t.contact_distance =
+        ctx.param<double>("contact_distance", 0.05, "m: a touch needs a tracked hand this near the plate", Range{0, 1});
     t.release_distance = ctx.param<double>(
         "release_distance", 0.02, "m: a release needs a tracked hand at least this far from the plate", Range{0, 1});
     if (!(t.release_force < t.contact_force)) ctx.reject("release_force", "must be below contact_force");
     detector_ = ContactDetector(t);
     finger_radius_ = ctx.param<double>("finger_radius", 0.01, "m around the tracked hand point", Range{0, 0.1});
-    max_switch_step_ = ctx.param<double>("max_switch_step", 1e-4,
-                                         "m: a new source takes over only within this of the last setpoint",
-                                         Range{1e-6, 0.1});
-    switch_timeout_ns_ = nanos(ctx.param<double>("switch_timeout", 0.1, "s a new source has to take over",
-                                                 Range{0.001, 10}));
-    max_speed_ = ctx.param<double>("max_setpoint_speed", 2.0, "m/s: a setpoint moving faster is a fault",
-                                   Range{0.01, 100});
+    max_switch_step_ = ctx.param<double>(
+        "max_switch_step", 1e-4, "m: a new source takes over only within this of the last setpoint", Range{1e-6, 0.1});
+    switch_timeout_ns_ =
+        nanos(ctx.param<double>("switch_timeout", 0.1, "s a new source has to take over", Range{0.001, 10}));
+    max_speed_ =
+        ctx.param<double>("max_setpoint_speed", 2.0, "m/s: a setpoint moving faster is a fault", Range{0.01, 100});
     setpoint_timeout_ns_ = nanos(ctx.param<double>(
         "setpoint_timeout", 0.03, "s without a setpoint from the mode's source: a fault", Range{0.001, 10}));
-    wrench_timeout_ns_ = nanos(ctx.param<double>("wrench_timeout", 0.03, "s without a wrist reading: a fault",
-                                                 Range{0.001, 10}));
+    wrench_timeout_ns_ =
+        nanos(ctx.param<double>("wrench_timeout", 0.03, "s without a wrist reading: a fault", Range{0.001, 10}));
     status_timeout_ns_ = nanos(ctx.param<double>(
         "status_timeout", 0.5, "s without the arm's or the planner's status: a fault", Range{0.01, 60}));
     auto_recover_ = ctx.param<bool>("auto_recover", true, "leave a fault once every input is good again");
@@ -117,18 +117,20 @@ class Supervisor final : public Component {
         if (surface_.at_ns >= 0 && robot_ok() && (!sent_ || near(surface_))) enter(msg::MODE_SURFACE, now.ns, "");
         break;
       case msg::MODE_SURFACE:
-        if (taking_over_) take_over(surface_, now.ns);
-        else if (surface_.fresh) forward(surface_);
+        if (taking_over_)
+          take_over(surface_, now.ns);
+        else if (surface_.fresh)
+          forward(surface_);
         watch_contact(now.ns);
         break;
       case msg::MODE_ADMITTANCE:
-        if (taking_over_) take_over(admittance_, now.ns);
-        else if (admittance_.fresh) forward(admittance_);
+        if (taking_over_)
+          take_over(admittance_, now.ns);
+        else if (admittance_.fresh)
+          forward(admittance_);
         watch_contact(now.ns);
         break;
-      case msg::MODE_FAULT:
-        recover(now.ns);
-        break;
+      case msg::MODE_FAULT: recover(now.ns); break;
     }
     if (sent_) publish_setpoint(now.ns);
     if (now.ns - mode_sent_ns_ >= 100'000'000) publish_mode(now.ns);
@@ -187,7 +189,8 @@ class Supervisor final : public Component {
       }
       if (std::string_view(setpoint_msg_.source().c_str()) != source) {
         reject(in, "source '" + std::string(setpoint_msg_.source().c_str()) + "', expected '" + source + "'");
-        bad(std::string("a setpoint from '") + setpoint_msg_.source().c_str() + "' on the " + source + " input", now_ns);
+        bad(std::string("a setpoint from '") + setpoint_msg_.source().c_str() + "' on the " + source + " input",
+            now_ns);
         continue;
       }
       std::swap(s.sample, setpoint_msg_);
@@ -200,12 +203,14 @@ class Supervisor final : public Component {
     if (mode_ == msg::MODE_IDLE) return;
     const Stream& source = mode_ == msg::MODE_SURFACE ? surface_ : admittance_;
     if (!taking_over_ && now_ns - source.at_ns > setpoint_timeout_ns_)
-      return bad(std::string("no ") + mode_name(mode_) + " setpoint for " + std::to_string(seconds(now_ns - source.at_ns)) + " s",
+      return bad(std::string("no ") + mode_name(mode_) + " setpoint for " +
+                     std::to_string(seconds(now_ns - source.at_ns)) + " s",
                  now_ns);
     if (now_ns - wrench_ns_ > wrench_timeout_ns_)
       return bad("no wrist reading for " + std::to_string(seconds(now_ns - wrench_ns_)) + " s", now_ns);
     if (now_ns - robot_ns_ > status_timeout_ns_) return bad("no status from the arm", now_ns);
-    if (robot_msg_.state() == msg::ARM_FAULT) return bad(std::string("the arm: ") + robot_msg_.reason().c_str(), now_ns);
+    if (robot_msg_.state() == msg::ARM_FAULT)
+      return bad(std::string("the arm: ") + robot_msg_.reason().c_str(), now_ns);
     if (now_ns - planner_ns_ > status_timeout_ns_) return bad("no status from the surface planner", now_ns);
     if (planner_msg_.state() == msg::PLAN_FAULT)
       return bad(std::string("the surface planner: ") + planner_msg_.reason().c_str(), now_ns);
@@ -247,9 +252,9 @@ class Supervisor final : public Component {
     if (mode_ == msg::MODE_FAULT || !have_reading_ || !have_device_) return;
     // The user's force: the reading less the tool's weight, in the sensor's true orientation.
     const Eigen::Matrix3d base_R_sensor = device_.linear() * scene_.device.dev_T_sensor.linear();
-    const double force = haptics::user_load(reading_, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com,
-                                            scene_.gravity)
-                             .force.norm();
+    const double force =
+        haptics::user_load(reading_, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
+            .force.norm();
     const double hand_distance = now_ns - hand_ns_ <= 200'000'000 && hand_ns_ >= 0 ? plate_distance(hand_) : -1;
     switch (detector_.update(now_ns, force, hand_distance, mode_ == msg::MODE_ADMITTANCE)) {
       case ContactDetector::Event::kTouch:
@@ -265,8 +270,7 @@ class Supervisor final : public Component {
                 " m away: something else touches the arm",
             now_ns);
         break;
-      case ContactDetector::Event::kNone:
-        break;
+      case ContactDetector::Event::kNone: break;
     }
   }
 
@@ -280,7 +284,8 @@ class Supervisor final : public Component {
   // The device holds the planner's feature where the arm is commanded to be.
   void attach(std::int64_t now_ns) {
     std::string feature = planner_msg_.feature().c_str(), body = planner_msg_.body().c_str();
-    if (body.empty() && scene_.device.body >= 0) body = scene_.models[static_cast<std::size_t>(scene_.device.body)].name;
+    if (body.empty() && scene_.device.body >= 0)
+      body = scene_.models[static_cast<std::size_t>(scene_.device.body)].name;
     const auto obj = base_T_obj_.find(body);
     const Eigen::Isometry3d base_T_obj = obj != base_T_obj_.end() ? obj->second : initial_pose(body);
     fill_header(attach_msg_.header(), now_ns, attach_seq_++, "base");

@@ -1,17 +1,38 @@
 #include "feature_choice.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace wysiwyf::display {
 
 namespace {
 
-bool inside(const haptics::Scene& scene, const std::vector<Eigen::Isometry3d>& base_T_obj, const Eigen::Vector3d& p) {
-  for (std::size_t i = 0; i < scene.models.size(); ++i) {
-    const Eigen::Vector3d local = base_T_obj[i].inverse() * p;
-    if ((local.cwiseAbs().array() < scene.models[i].half_extents.array()).all()) return true;
+// Where along p + t d, t in [0, t_max], the ray first enters a box (its frame, half extents);
+// t_max if it does not (Kay and Kajiya's slabs).
+double box_entry(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Eigen::Vector3d& half, double t_max) {
+  double t0 = 0, t1 = t_max;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-12) {
+      if (std::abs(p[i]) >= half[i]) return t_max;
+      continue;
+    }
+    const double a = (-half[i] - p[i]) / d[i], b = (half[i] - p[i]) / d[i];
+    t0 = std::max(t0, std::min(a, b)), t1 = std::min(t1, std::max(a, b));
   }
-  return false;
+  return t0 <= t1 ? t0 : t_max;
+}
+
+// Where it first comes within `radius` of `centre`; t_max if it does not.
+double sphere_entry(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Eigen::Vector3d& centre, double radius,
+                    double t_max) {
+  const Eigen::Vector3d m = p - centre;
+  const double a = d.squaredNorm(), b = m.dot(d), c = m.squaredNorm() - radius * radius;
+  if (c <= 0) return 0.0;  // there already
+  const double disc = b * b - a * c;
+  if (a < 1e-18 || disc < 0) return t_max;
+  const double t = (-b - std::sqrt(disc)) / a;
+  return t >= 0 && t < t_max ? t : t_max;
 }
 
 }  // namespace
@@ -20,14 +41,21 @@ const haptics::DisplayFeature* FeatureChooser::choose(const haptics::Scene& scen
                                                       const std::vector<Eigen::Isometry3d>& base_T_obj,
                                                       const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
                                                       std::int64_t now_ns) {
-  // The predicted path: up to the horizon, or until it would enter an object (the hand stops there).
-  constexpr int kSamples = 24;
-  path_.clear();
-  for (int k = 0; k <= kSamples; ++k) {
-    const Eigen::Vector3d p = position + velocity * (horizon_ * k / kSamples);
-    if (k > 0 && inside(scene, base_T_obj, p)) break;
-    path_.push_back(p);
+  // The predicted path: up to the horizon, or to where the hand would stop: entering an object,
+  // or on a knob's tip (within its radius).
+  double t_end = horizon_;
+  for (std::size_t i = 0; i < scene.models.size(); ++i) {
+    const Eigen::Isometry3d obj_T_base = base_T_obj[i].inverse();
+    t_end = std::min(t_end, box_entry(obj_T_base * position, obj_T_base.linear() * velocity,
+                                      scene.models[i].half_extents, horizon_));
   }
+  for (const auto& f : scene.features)
+    if (f.kind == haptics::DisplayFeature::Kind::kKnob)
+      t_end = std::min(t_end, sphere_entry(position, velocity, base_T_obj[static_cast<std::size_t>(f.body)] * f.touch,
+                                           f.knob_radius, horizon_));
+  constexpr int kSamples = 96;
+  path_.clear();
+  for (int k = 0; k <= kSamples; ++k) path_.push_back(position + velocity * (t_end * k / kSamples));
   auto distance_to = [&](const haptics::DisplayFeature& f) {
     const Eigen::Isometry3d obj_T_base = base_T_obj[static_cast<std::size_t>(f.body)].inverse();
     double best = std::numeric_limits<double>::infinity();

@@ -1,7 +1,8 @@
 #pragma once
 // Which feature the hand is about to touch (paper section 2.3: "the device is placed at the
 // position of the virtual object closest from the user"): the hand's motion extrapolated over a
-// horizon, cut where it would enter an object, and the displayable feature nearest that path.
+// horizon, cut where it would enter an object or meet a knob, and the displayable feature
+// nearest that path.
 // With hysteresis, so the target does not flip between two faces the path passes equally near:
 // another feature takes over only when it is nearer by `hysteresis` for `dwell`.
 #include <cstdint>

@@ -34,7 +34,9 @@ void PlatePath::plan(const Eigen::Isometry3d& from, const std::vector<Eigen::Vec
     Segment seg;
     seg.p0 = points[i], seg.p1 = points[i + 1];
     const double length = (seg.p1 - seg.p0).norm();
-    auto turned = [&](double at) { return i >= turning ? 1.0 : turn_length > 0 ? at / turn_length : (i == 0 ? 1.0 : 0.0); };
+    auto turned = [&](double at) {
+      return i >= turning ? 1.0 : turn_length > 0 ? at / turn_length : (i == 0 ? 1.0 : 0.0);
+    };
     const double f0 = i == 0 ? 0.0 : std::min(1.0, turned(along));
     along += length;
     const double f1 = std::min(1.0, i + 1 >= turning ? 1.0 : turned(along));
@@ -51,8 +53,11 @@ void PlatePath::plan(const Eigen::Isometry3d& from, const std::vector<Eigen::Vec
 }
 
 double PlatePath::s() const { return tau_ * tau_ * tau_ * (10 - 15 * tau_ + 6 * tau_ * tau_); }
-double PlatePath::ds() const {
-  return 30 * tau_ * tau_ * (1 - 2 * tau_ + tau_ * tau_) / segments_[index_].duration;
+double PlatePath::ds() const { return 30 * tau_ * tau_ * (1 - 2 * tau_ + tau_ * tau_) / segments_[index_].duration; }
+
+double PlatePath::dds() const {
+  const double T = segments_[index_].duration;
+  return 60 * tau_ * (1 - 3 * tau_ + 2 * tau_ * tau_) / (T * T);
 }
 
 void PlatePath::advance(double dt, double kappa) {
@@ -77,6 +82,12 @@ Eigen::Vector3d PlatePath::velocity() const {
   if (done()) return Eigen::Vector3d::Zero();
   const Segment& g = segments_[index_];
   return (g.p1 - g.p0) * ds();
+}
+
+double PlatePath::speed_rate() const {
+  if (done()) return 0.0;
+  const Segment& g = segments_[index_];
+  return (g.p1 - g.p0).norm() * dds();
 }
 
 Eigen::Vector3d PlatePath::angular_velocity() const {

@@ -12,9 +12,9 @@
 namespace wysiwyf::display {
 
 struct PathLimits {
-  double speed = 0.6;           // m/s
-  double acceleration = 2.0;    // m/s^2
-  double angular_speed = 1.5;   // rad/s
+  double speed = 0.6;                 // m/s
+  double acceleration = 2.0;          // m/s^2
+  double angular_speed = 1.5;         // rad/s
   double angular_acceleration = 6.0;  // rad/s^2
 };
 
@@ -34,6 +34,8 @@ class PlatePath {
   // The plate's linear and angular velocity now at kappa 1.
   Eigen::Vector3d velocity() const;
   Eigen::Vector3d angular_velocity() const;
+  // How fast the plate's speed grows now at kappa 1, m/s^2 (negative: slowing); a segment is straight.
+  double speed_rate() const;
   // The current segment's peak velocities at kappa 1 (its direction holds along the segment).
   Eigen::Vector3d peak_velocity() const;
   Eigen::Vector3d peak_angular_velocity() const;
@@ -46,8 +48,9 @@ class PlatePath {
     Eigen::Quaterniond q0, q1;
     double duration = 0;
   };
-  double s() const;     // minimum-jerk progress of the current segment
-  double ds() const;    // its derivative in time, at full speed
+  double s() const;    // minimum-jerk progress of the current segment
+  double ds() const;   // its derivative in time, at full speed
+  double dds() const;  // its second derivative
 
   PathLimits limits_;
   std::vector<Segment> segments_;

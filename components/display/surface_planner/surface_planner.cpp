@@ -53,49 +53,52 @@ class SurfacePlanner final : public Component {
     urdf_ = ctx.param<std::string>("urdf", "robots/puma560.urdf", "robot description (as the arm's)");
     limits_.speed = ctx.param<double>("max_speed", 0.6, "m/s, the plate's top speed along its path", Range{0.01, 2});
     limits_.acceleration = ctx.param<double>("max_acceleration", 2.0, "m/s^2, along the path", Range{0.1, 20});
-    limits_.angular_speed = ctx.param<double>("max_angular_speed", 3.0, "rad/s, the plate's top turning rate",
-                                              Range{0.01, 10});
+    limits_.angular_speed =
+        ctx.param<double>("max_angular_speed", 3.0, "rad/s, the plate's top turning rate", Range{0.01, 10});
     limits_.angular_acceleration = ctx.param<double>("max_angular_acceleration", 12.0, "rad/s^2", Range{0.1, 100});
-    inner_depth_ = ctx.param<double>("inner_depth", 0.05,
-                                     "m behind a face (inside the virtual object) the plate passes on its way",
-                                     Range{0, 0.5});
-    const double horizon = ctx.param<double>("prediction_horizon", 0.8, "s the hand's path is extrapolated",
-                                             Range{0, 5});
+    inner_depth_ = ctx.param<double>(
+        "inner_depth", 0.05, "m behind a face (inside the virtual object) the plate passes on its way", Range{0, 0.5});
+    const double horizon =
+        ctx.param<double>("prediction_horizon", 0.8, "s the hand's path is extrapolated", Range{0, 5});
     const double hysteresis = ctx.param<double>(
         "hysteresis", 0.03, "m another feature must be nearer the hand's path to take over", Range{0, 1});
     const double dwell = ctx.param<double>("switch_dwell", 0.1, "s it must stay nearer", Range{0, 5});
     chooser_ = std::make_unique<FeatureChooser>(horizon, hysteresis, dwell);
-    accel_density_ = ctx.param<double>("hand_accel_density", 20.0,
-                                       "the hand filter's white acceleration, (m/s^2)^2/Hz", Range{1e-3, 1e6});
+    accel_density_ = ctx.param<double>("hand_accel_density", 20.0, "the hand filter's white acceleration, (m/s^2)^2/Hz",
+                                       Range{1e-3, 1e6});
     hand_timeout_ns_ = static_cast<std::int64_t>(
-        ctx.param<double>("hand_timeout", 0.2, "s without a tracked hand before it counts as unknown", Range{0.001, 10}) *
+        ctx.param<double>("hand_timeout", 0.2, "s without a tracked hand before it counts as unknown",
+                          Range{0.001, 10}) *
         1e9);
     input_timeout_ns_ = static_cast<std::int64_t>(
         ctx.param<double>("input_timeout", 0.05, "s without joint states or device poses: a fault", Range{0.001, 10}) *
         1e9);
-    finger_radius_ = ctx.param<double>("finger_radius", 0.01, "m, the fingertip's radius around the tracked point",
-                                       Range{0, 0.1});
+    finger_radius_ =
+        ctx.param<double>("finger_radius", 0.01, "m, the fingertip's radius around the tracked point", Range{0, 0.1});
     // ISO/TS 15066 speed and separation monitoring, each constant with its source.
-    ssm_.human_speed = ctx.param<double>("human_speed", 1.6,
-                                         "v_h, m/s: the hand's approach speed (ISO 13855 K = 1600 mm/s; ISO/TS 15066)",
-                                         Range{0.1, 5});
+    ssm_.human_speed =
+        ctx.param<double>("human_speed", 1.6,
+                          "v_h, m/s: the hand's approach speed (ISO 13855 K = 1600 mm/s; ISO/TS 15066)", Range{0.1, 5});
     ssm_.reaction_time = ctx.param<double>(
         "reaction_time", 0.1,
         "T_r, s: from the hand moving to the arm reacting (tracking latency, planner period, the arm's tracking lag)",
         Range{0, 2});
     ssm_.braking_deceleration = ctx.param<double>(
-        "braking_deceleration", 3.0, "a_s, m/s^2: the arm's assured deceleration (S_s = v^2/(2 a_s), T_s = v/a_s)",
+        "braking_deceleration", 1.5,
+        "a_s, m/s^2: the arm's assured deceleration along the plate's path (S_s = v^2/(2 a_s), T_s = v/a_s); the "
+        "PUMA's joint acceleration limits hold it to about this",
         Range{0.1, 50});
-    ssm_.intrusion = ctx.param<double>("intrusion", 0.0,
-                                       "C, m: reach past the tracked point (0: the fingertip itself is tracked)",
-                                       Range{0, 1});
+    ssm_.intrusion = ctx.param<double>(
+        "intrusion", 0.0, "C, m: reach past the tracked point (0: the fingertip itself is tracked)", Range{0, 1});
     ssm_.human_uncertainty = ctx.param<double>("human_uncertainty", 0.02, "Z_d, m: hand tracking error", Range{0, 1});
-    ssm_.robot_uncertainty = ctx.param<double>("robot_uncertainty", 0.01,
-                                               "Z_r, m: the arm's position error (following error, calibration)",
-                                               Range{0, 1});
-    speed_without_hand_ = ctx.param<double>("speed_without_hand", 0.25,
-                                            "m/s at most while no hand is tracked (ISO 10218-1's reduced speed)",
-                                            Range{0, 2});
+    ssm_.robot_uncertainty = ctx.param<double>(
+        "robot_uncertainty", 0.01, "Z_r, m: the arm's position error (following error, calibration)", Range{0, 1});
+    ssm_margin_ = ctx.param<double>("ssm_margin", 0.8,
+                                    "share of the SSM-allowed approach speed the plan uses (the rest: the arm's "
+                                    "tracking of it lags and overshoots)",
+                                    Range{0.1, 1});
+    speed_without_hand_ = ctx.param<double>(
+        "speed_without_hand", 0.25, "m/s at most while no hand is tracked (ISO 10218-1's reduced speed)", Range{0, 2});
     in_place_ = ctx.param<double>("in_place_tolerance", 0.001, "m: the plate this near its target is in place",
                                   Range{1e-5, 0.1});
     still_speed_ = ctx.param<double>("still_speed", 0.002, "m/s: the plate slower than this is still", Range{1e-5, 1});
@@ -105,15 +108,16 @@ class SurfacePlanner final : public Component {
     joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's measured joints", Qos::sensor(4));
     device_in_ = ctx.input<msg::PoseStamped>("device_pose", "the plate's measured pose base_T_dev", Qos::sensor(4));
     mode_in_ = ctx.input<msg::DisplayMode>("mode", "the display's mode (the supervisor)", Qos::reliable(8));
-    commanded_in_ = ctx.input<msg::CartesianSetpoint>("commanded", "what the arm is commanded (robot/setpoint)",
-                                                      Qos::reliable(32));
+    commanded_in_ =
+        ctx.input<msg::CartesianSetpoint>("commanded", "what the arm is commanded (robot/setpoint)", Qos::reliable(32));
     setpoint_out_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev for surface mode (source surface)");
-    status_out_ = ctx.output<msg::PlannerStatus>("status", "target feature, state, ETA, hand ETA, reason",
-                                                 Qos::reliable(8));
+    status_out_ =
+        ctx.output<msg::PlannerStatus>("status", "target feature, state, ETA, hand ETA, reason", Qos::reliable(8));
     dt_ = ctx.period_ns() > 0 ? seconds(ctx.period_ns()) : 1e-3;
     try {
       scene_ = haptics::load_scene(find_config_file(scene_path_));
-      if (scene_.features.empty()) ctx.reject("scene", "'" + scene_path_ + "' declares no features: for the plate to display");
+      if (scene_.features.empty())
+        ctx.reject("scene", "'" + scene_path_ + "' declares no features: for the plate to display");
       model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "dev");
       clearance_ = std::make_unique<robot::ArmClearance>(*model_, scene_.device.plate_half,
                                                          scene_.device.knob_offset.z(), 0.015);
@@ -151,8 +155,10 @@ class SurfacePlanner final : public Component {
       if (have_commanded_) cmd_ = commanded_;
       path_.clear();
       kappa_ = 0;
+      replan_ = false;
       chooser_->reset();
       target_feature_ = nullptr;
+      was_in_place_ = false;
       status_.reason("not in surface mode");
       publish(now.ns, Vec3::Zero(), Vec3::Zero());
       publish_status(now.ns);
@@ -163,11 +169,15 @@ class SurfacePlanner final : public Component {
     if (hand_known) choose_target(hand, now.ns);
     // The path's clock runs at kappa: 1 at full speed, lower where speed and separation monitoring
     // says so; it may fall only as fast as the arm brakes, and rises over rise_time.
-    const double ssm = !hand_known ? without_hand_kappa() : path_.done() ? (measure_separation(hand), 1.0) : ssm_kappa(hand);
-    const double target = std::min(1.0, ssm);
-    const double v_now = path_.velocity().norm();
-    kappa_ = target < kappa_ ? std::max(target, kappa_ - (v_now > 1e-6 ? ssm_.braking_deceleration * dt_ / v_now : 1.0))
-                             : std::min(target, kappa_ + dt_ / 0.2);
+    if (replan_ && !moving()) {
+      replan_ = false;
+      if (target_feature_) plan(*target_feature_, planned_obj_);
+    }
+    const double ssm = !hand_known    ? without_hand_kappa()
+                       : path_.done() ? (measure_separation(hand), 1.0)
+                                      : ssm_kappa(hand);
+    const double target = replan_ ? 0.0 : std::min(1.0, ssm_margin_ * ssm);
+    kappa_ = target < kappa_ ? std::max(target, braking_kappa()) : std::min(target, kappa_ + dt_ / 0.2);
     if (!path_.done()) {
       path_.advance(dt_, kappa_);
       cmd_ = path_.pose();
@@ -191,8 +201,8 @@ class SurfacePlanner final : public Component {
         reject(hand_in_, "a non-finite position");
         continue;
       }
-      const double variance = std::max(1e-8, (hand_msg_.covariance()[0] + hand_msg_.covariance()[4] +
-                                              hand_msg_.covariance()[8]) / 3);
+      const double variance =
+          std::max(1e-8, (hand_msg_.covariance()[0] + hand_msg_.covariance()[4] + hand_msg_.covariance()[8]) / 3);
       hand_.update(hand_msg_.header().stamp_ns() ? hand_msg_.header().stamp_ns() : now_ns, p, variance);
     }
     while (objects_in_.take(object_msg_)) {
@@ -219,10 +229,11 @@ class SurfacePlanner final : public Component {
       }
       const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
       device_ = T, have_device_ = true, device_ns_ = now_ns;
-      // The plate's speed over the last 50 ms (one encoder step moves it 0.06 mm: per sample,
+      // The plate's speed over the last 100 ms (one encoder step moves it 0.06 mm: per sample,
       // quantisation alone would read as centimetres a second).
       device_history_.push_back({now_ns, T.translation()});
-      while (device_history_.size() > 2 && now_ns - device_history_[1].first >= 50'000'000) device_history_.pop_front();
+      while (device_history_.size() > 2 && now_ns - device_history_[1].first >= 100'000'000)
+        device_history_.pop_front();
       const auto& [then_ns, then] = device_history_.front();
       if (now_ns > then_ns) device_speed_ = (T.translation() - then).norm() / seconds(now_ns - then_ns);
     }
@@ -238,15 +249,34 @@ class SurfacePlanner final : public Component {
 
   // The feature the hand goes for; a new one (or its object moved) gets a new path.
   void choose_target(const Vec3& hand, std::int64_t now_ns) {
-    const haptics::DisplayFeature* f = chooser_->choose(scene_, base_T_obj_, hand, hand_.significant_velocity(), now_ns);
+    const haptics::DisplayFeature* f =
+        chooser_->choose(scene_, base_T_obj_, hand, hand_.significant_velocity(), now_ns);
     if (!f) return;
     const Eigen::Isometry3d& base_T_obj = base_T_obj_[static_cast<std::size_t>(f->body)];
     const bool moved = target_feature_ == f && (base_T_obj.translation() - planned_obj_.translation()).norm() > 0.002;
     if (f == target_feature_ && !moved) return;
     target_feature_ = f;
     planned_obj_ = base_T_obj;
+    // A new path starts at rest: while the plate moves, brake first (a setpoint stopping dead
+    // would leave the lagging arm to overshoot it), then plan from where it stopped.
+    if (moving()) {
+      replan_ = true;
+      return;
+    }
     plan(*f, base_T_obj);
   }
+
+  // The lowest kappa for the next tick at which the plate's speed falls by no more than the arm
+  // brakes (a_s dt): the path's own acceleration over the tick counted, or the plate would
+  // speed up while kappa falls.
+  double braking_kappa() const {
+    const double v_now = path_.velocity().norm();
+    const double v_next = v_now + path_.speed_rate() * kappa_ * dt_;
+    if (v_next <= 1e-6) return 0.0;
+    return std::max(0.0, (kappa_ * v_now - ssm_.braking_deceleration * dt_) / v_next);
+  }
+
+  bool moving() const { return !path_.done() && kappa_ * path_.velocity().norm() > 0.002; }
 
   // A path from the commanded pose to a plate pose displaying `f`, through the object's inside.
   void plan(const haptics::DisplayFeature& f, const Eigen::Isometry3d& base_T_obj) {
@@ -334,7 +364,8 @@ class SurfacePlanner final : public Component {
     } else if (!unreachable_.empty() && path_.done()) {
       status_.state(msg::PLAN_UNREACHABLE);
       status_.reason(unreachable_.substr(0, 127));
-    } else if (at_target && offset <= in_place_ && device_speed_ < still_speed_) {
+    } else if (at_target && (was_in_place_ ? offset <= 2 * in_place_ && device_speed_ < 2 * still_speed_  // hysteresis
+                                           : offset <= in_place_ && device_speed_ < still_speed_)) {
       status_.state(msg::PLAN_IN_PLACE);
     } else if (!path_.done() && ssm <= 0 && kappa_ <= 0) {
       status_.state(msg::PLAN_WAITING);
@@ -354,14 +385,15 @@ class SurfacePlanner final : public Component {
       const Eigen::Isometry3d obj_T_base = base_T_obj_[static_cast<std::size_t>(target_feature_->body)].inverse();
       const double d = target_feature_->distance(obj_T_base * hand);
       const Vec3 touch = base_T_obj_[static_cast<std::size_t>(target_feature_->body)] * target_feature_->touch;
-      const double closing = hand_.velocity().dot((touch - hand).normalized());
-      if (closing > 0.05) hand_eta = d / closing;
+      const double closing = hand_.significant_velocity().dot((touch - hand).normalized());
+      if (closing > 0.1) hand_eta = d / closing;
       if (hand_eta >= 0 && eta > hand_eta && status_.state() == msg::PLAN_MOVING)
         status_.reason(("late: the plate needs " + std::to_string(eta) + " s, the hand arrives in " +
                         std::to_string(hand_eta) + " s")
                            .substr(0, 127));
     }
     status_.hand_eta(hand_eta);
+    was_in_place_ = status_.state() == msg::PLAN_IN_PLACE;
     status_.separation(hand_known ? separation_ : -1);
     status_.speed_limit(hand_known ? allowed_ : speed_without_hand_);
     publish_status(now_ns);
@@ -397,7 +429,7 @@ class SurfacePlanner final : public Component {
   std::unique_ptr<FeatureChooser> chooser_;
   robot::SsmParams ssm_;
   PathLimits limits_;
-  double inner_depth_ = 0.05, accel_density_ = 20, settle_time_ = 0.1;
+  double inner_depth_ = 0.05, accel_density_ = 20, settle_time_ = 0.1, ssm_margin_ = 0.9;
   double finger_radius_ = 0.01, speed_without_hand_ = 0.25, in_place_ = 0.001, still_speed_ = 0.002, dt_ = 1e-3;
   std::int64_t hand_timeout_ns_ = 0, input_timeout_ns_ = 0;
   // what it knows
@@ -413,7 +445,7 @@ class SurfacePlanner final : public Component {
   // the plan
   Eigen::Isometry3d cmd_ = Eigen::Isometry3d::Identity(), target_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d planned_obj_ = Eigen::Isometry3d::Identity();
-  bool have_cmd_ = false;
+  bool have_cmd_ = false, replan_ = false, was_in_place_ = false;
   const haptics::DisplayFeature* target_feature_ = nullptr;
   PlatePath path_;
   double kappa_ = 0, separation_ = kInf, allowed_ = 0;

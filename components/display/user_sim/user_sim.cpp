@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 
+#include "reach_path.hpp"
 #include "scene/scene.hpp"
 #include "user_script.hpp"
 #include "wysiwyf/component.hpp"
@@ -41,22 +42,27 @@ class UserSim final : public Component {
         "withdraw D T, move X Y Z T, wait T");
     const auto start = ctx.param<std::array<double, 3>>(
         "start", {1.1, 0.0, 0.2}, "where the fingertip is at the start, base frame, m (puma_sim's hand_park)");
-    hand_k_ = ctx.param<double>("hand_stiffness", 500.0, "N/m: puma_sim's impedance from target to fingertip",
-                                Range{1, 1e5});
+    hand_k_ =
+        ctx.param<double>("hand_stiffness", 500.0, "N/m: puma_sim's impedance from target to fingertip", Range{1, 1e5});
     finger_radius_ = ctx.param<double>("finger_radius", 0.01, "m: puma_sim's fingertip radius", Range{0.001, 0.1});
-    press_ = ctx.param<double>("touch_press", 0.004,
-                               "a reach aims this far behind the surface (a touch of press x stiffness newtons), m",
-                               Range{0, 0.05});
-    miss_depth_ = ctx.param<double>("miss_depth", 0.003,
+    press_ = ctx.param<double>(
+        "touch_press", 0.003,
+        "a reach aims this far behind the surface (a touch of press x stiffness newtons: 1.5 N, below the "
+        "supervisor's 2 N contact threshold), m",
+        Range{0.001, 0.05});
+    miss_depth_ = ctx.param<double>("miss_depth", 0.0015,
                                     "the finger this far past the virtual surface: the plate was not there (a miss), m",
                                     Range{0.0005, 0.05});
+    if (miss_depth_ >= press_)
+      ctx.reject("miss_depth", "must be less than touch_press (" + std::to_string(press_) +
+                                   " m): a finger that meets no plate stops at touch_press behind the surface");
     stop_when_done_ = ctx.param<bool>("stop_when_done", false, "end the run when the script is done");
-    objects_in_ = ctx.input<msg::ObjectState>("objects", "where the virtual objects are (admittance_sim)",
-                                              Qos::reliable(64));
+    objects_in_ =
+        ctx.input<msg::ObjectState>("objects", "where the virtual objects are (admittance_sim)", Qos::reliable(64));
     hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "where the fingertip really is (puma_sim)", Qos::sensor(4));
     target_out_ = ctx.output<msg::PoseStamped>("hand_target", "where the user moves the fingertip (base frame)");
-    events_out_ = ctx.output<msg::UserEvent>("events", "reach, touch or miss, push, release, withdraw, done",
-                                             Qos::reliable(32));
+    events_out_ =
+        ctx.output<msg::UserEvent>("events", "reach, touch or miss, push, release, withdraw, done", Qos::reliable(32));
     target_ = Vec3(start[0], start[1], start[2]);
     try {
       scene_ = haptics::load_scene(find_config_file(scene_path_));
@@ -91,8 +97,10 @@ class UserSim final : public Component {
     }
     while (hand_in_.take(hand_msg_)) {
       const Vec3 p = msgs::to_eigen(hand_msg_.pose().position());
-      if (p.allFinite()) finger_ = p, have_finger_ = true;
-      else reject(hand_in_, "a non-finite position");
+      if (p.allFinite())
+        finger_ = p, have_finger_ = true;
+      else
+        reject(hand_in_, "a non-finite position");
     }
     step(now.ns);
     judge_touch(now.ns);
@@ -136,9 +144,7 @@ class UserSim final : public Component {
     const double tau = duration_ > 0 ? t / duration_ : 1.0;
     const double s = min_jerk(tau);
     switch (a.kind) {
-      case UserAction::Kind::kReach:
-        target_ = action_from_ + s * (pressing(hand_k_ * press_) - action_from_);
-        break;
+      case UserAction::Kind::kReach: target_ = reach_.at(s, pressing(hand_k_ * press_), surface_normal()); break;
       case UserAction::Kind::kPush: {
         const double ramp = std::min(0.3, duration_ / 3);
         force_ = force_from_ + min_jerk(t / ramp) * (a.force - force_from_);
@@ -155,16 +161,13 @@ class UserSim final : public Component {
         force_ = force_from_ * (1 - s);
         target_ = pressing(force_);
         break;
-      case UserAction::Kind::kWithdraw:
-        target_ = action_from_ + s * a.distance * surface_normal();
-        break;
-      case UserAction::Kind::kMove:
-        target_ = action_from_ + s * (a.vector - action_from_);
-        break;
-      case UserAction::Kind::kWait:
-        break;
+      case UserAction::Kind::kWithdraw: target_ = action_from_ + s * a.distance * surface_normal(); break;
+      case UserAction::Kind::kMove: target_ = action_from_ + s * (a.vector - action_from_); break;
+      case UserAction::Kind::kWait: break;
     }
-    if (tau >= 1.0) {
+    // A reach is over when the finger has met the surface or missed it (a person feels which
+    // before doing anything else); until then the finger keeps pressing toward it.
+    if (tau >= 1.0 && !(a.kind == UserAction::Kind::kReach && !judged_)) {
       ++index_;
       begun_ = false;
     }
@@ -183,8 +186,11 @@ class UserSim final : public Component {
         normal_obj_ = f.normal;
         offset_obj_ = offset_from_ = Vec3::Zero();
         force_ = force_from_ = 0;
+        // Around the object, not through it: clear of it by the finger and a centimetre.
+        reach_ = reach_around(action_from_, pressing(hand_k_ * press_), surface_normal(), body_pose(),
+                              scene_.models[static_cast<std::size_t>(body_)].half_extents, finger_radius_ + 0.01);
         // Minimum jerk peaks at 1.875 times the mean speed.
-        duration_ = std::max(0.2, 1.875 * (pressing(hand_k_ * press_) - action_from_).norm() / a.speed);
+        duration_ = std::max(0.2, 1.875 * reach_.length(pressing(hand_k_ * press_), surface_normal()) / a.speed);
         ++contact_;
         arrived_ns_ = -1;
         judged_ = false;
@@ -192,32 +198,38 @@ class UserSim final : public Component {
         event(msg::USER_REACH, now_ns);
         break;
       }
-      case UserAction::Kind::kPush:
-        event(msg::USER_PUSH, now_ns, a.force);
-        break;
-      case UserAction::Kind::kRelease:
-        event(msg::USER_RELEASE, now_ns);
-        break;
-      case UserAction::Kind::kWithdraw:
-        event(msg::USER_WITHDRAW, now_ns);
-        break;
-      default:
-        break;
+      case UserAction::Kind::kPush: event(msg::USER_PUSH, now_ns, a.force); break;
+      case UserAction::Kind::kRelease: event(msg::USER_RELEASE, now_ns); break;
+      case UserAction::Kind::kWithdraw: event(msg::USER_WITHDRAW, now_ns); break;
+      default: break;
     }
   }
 
-  // Hit or miss of the current reach, from where the finger really is against the virtual surface.
+  // Hit or miss of the current reach, from where the finger really is against the virtual object:
+  // a hit when it has rested on the touched face for 0.1 s; a miss when it went into the object
+  // (no plate there), or when half a second after the reach's end it has not got there (something
+  // stopped it early: felt before seen).
   void judge_touch(std::int64_t now_ns) {
     if (!feature_ || judged_ || !have_finger_) return;
-    const double gap = (finger_ - surface_point()).dot(surface_normal()) - finger_radius_;  // < 0: past the surface
-    if (arrived_ns_ < 0 && gap <= 0.001) arrived_ns_ = now_ns;
-    if (gap < -miss_depth_) return judge(false, arrived_ns_ >= 0 ? arrived_ns_ : now_ns, "passed through the surface");
-    // Half a second after the reach's end the finger has come to rest: on the surface (the plate
-    // is there) or short of it (something stopped it early: felt before seen).
-    if (now_ns >= reach_end_ns_ + 500'000'000) {
-      if (arrived_ns_ >= 0) judge(true, arrived_ns_, "");
-      else judge(false, now_ns, "stopped " + std::to_string(gap * 1e3) + " mm short of the surface");
+    const Vec3 half = scene_.models[static_cast<std::size_t>(body_)].half_extents;
+    const Vec3 p = body_pose().inverse() * finger_;  // the finger's centre, body frame
+    const Vec3 rel = p - (touch_obj_ + offset_obj_);
+    const double gap = rel.dot(normal_obj_) - finger_radius_;  // < 0: past the touched face's plane
+    // Over the face (within its other axes' half extents), where the finger meets it or passes.
+    const Vec3 face_half = half - half.cwiseProduct(normal_obj_.cwiseAbs());
+    const bool over_face = ((p - normal_obj_ * p.dot(normal_obj_)).cwiseAbs() - face_half).maxCoeff() <= 0;
+    const bool inside = ((p.cwiseAbs() - half).array() < finger_radius_ - miss_depth_).all();
+    if (inside || (over_face && gap < -miss_depth_))
+      return judge(false, arrived_ns_ >= 0 ? arrived_ns_ : now_ns,
+                   "passed through the virtual surface (no plate there)");
+    if (over_face && gap <= 0.001) {
+      if (arrived_ns_ < 0) arrived_ns_ = now_ns;
+      if (now_ns - arrived_ns_ >= 100'000'000) return judge(true, arrived_ns_, "");
+    } else if (arrived_ns_ >= 0 && gap > 0.003) {
+      arrived_ns_ = -1;  // it came off again before resting
     }
+    if (now_ns >= reach_end_ns_ + 500'000'000)
+      judge(false, now_ns, "stopped " + std::to_string(gap * 1e3) + " mm short of the surface");
   }
 
   void judge(bool hit, std::int64_t at_ns, const std::string& why) {
@@ -260,6 +272,7 @@ class UserSim final : public Component {
   int body_ = 0;
   Vec3 touch_obj_ = Vec3::Zero(), normal_obj_ = Vec3::UnitZ(), offset_obj_ = Vec3::Zero(), offset_from_ = Vec3::Zero();
   double force_ = 0, force_from_ = 0;
+  ReachPath reach_;
   std::int64_t arrived_ns_ = -1, reach_end_ns_ = 0;
   bool judged_ = true, done_ = false;
   int contact_ = 0, hits_ = 0, misses_ = 0;

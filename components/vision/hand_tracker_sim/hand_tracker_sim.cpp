@@ -55,8 +55,7 @@ class HandTrackerSim final : public Component {
     for (std::size_t i = 0; i + 1 < outages_.size(); i += 2) lost = lost || (t >= outages_[i] && t < outages_[i + 1]);
     fill_header(msg_.header(), latest.stamp_ns, seq_++, "base");
     msg_.status(lost ? msg::TRACKING_LOST : msg::TRACKING_OK);
-    const Eigen::Vector3d noisy =
-        latest.p + noise_ * Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_));
+    const Eigen::Vector3d noisy = latest.p + noise_ * Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_));
     msgs::to_msg(lost ? Eigen::Vector3d::Zero() : noisy, msg_.position());
     const double var = noise_ * noise_;
     msg_.covariance() = {var, 0, 0, 0, var, 0, 0, 0, var};

@@ -1,0 +1,152 @@
+// display_metrics: what the display promised, measured against the truth, contact by contact.
+// For every touch or miss the (simulated) user reports: was it a hit, how long the plate had
+// been still before the finger arrived, and how far the plate was from the pose that displays the
+// feature at that moment (mm, deg; the nearest of the plate's four turns about the face normal).
+// Published as ContactReports, logged one line each and summed up at the end.
+#include <deque>
+#include <limits>
+
+#include "scene/scene.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_eigen.hpp"
+
+namespace wysiwyf::display {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+struct Sample {
+  std::int64_t t = 0;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace
+
+class DisplayMetrics final : public Component {
+ public:
+  void configure(Context& ctx) override {
+    ctx.summary("measures each contact: hit or miss, plate still before the finger, plate offset from the feature");
+    scene_path_ = ctx.param<std::string>("scene", "scenes/display_demo.yaml", "scene file with its features");
+    still_speed_ = ctx.param<double>("still_speed", 0.002, "m/s: the plate slower than this is still", Range{1e-5, 1});
+    history_ns_ = static_cast<std::int64_t>(
+        ctx.param<double>("history", 10.0, "s of plate and object poses kept (events may come late)", Range{1, 600}) *
+        1e9);
+    events_in_ = ctx.input<msg::UserEvent>("events", "the user's touches and misses (user_sim)", Qos::reliable(64));
+    device_in_ = ctx.input<msg::PoseStamped>("device_pose", "the plate's true pose base_T_dev", Qos::reliable(64));
+    objects_in_ = ctx.input<msg::ObjectState>("objects", "the virtual objects", Qos::reliable(64));
+    reports_out_ = ctx.output<msg::ContactReport>("contacts", "one report a contact", Qos::reliable(16));
+    try {
+      scene_ = haptics::load_scene(find_config_file(scene_path_));
+    } catch (const std::exception& e) {
+      ctx.reject("scene", e.what());
+    }
+  }
+
+  void tick(Time now) override {
+    while (device_in_.take(device_msg_)) {
+      if (!msgs::all_finite(device_msg_.pose())) {
+        reject(device_in_, "a non-finite pose");
+        continue;
+      }
+      plate_.push_back({stamp(device_msg_.header(), now), msgs::to_isometry(device_msg_.pose())});
+    }
+    while (objects_in_.take(object_msg_)) {
+      const int body = scene_.body_index(object_msg_.child_frame_id().c_str());
+      if (body < 0 || !msgs::all_finite(object_msg_.pose())) continue;
+      objects_[static_cast<std::size_t>(body)].push_back(
+          {stamp(object_msg_.header(), now), msgs::to_isometry(object_msg_.pose())});
+    }
+    while (!plate_.empty() && plate_.front().t < now.ns - history_ns_) plate_.pop_front();
+    for (auto& h : objects_)
+      while (h.size() > 1 && h[1].t < now.ns - history_ns_) h.pop_front();
+    while (events_in_.take(event_))
+      if (event_.kind() == msg::USER_TOUCH || event_.kind() == msg::USER_MISS) measure(now);
+  }
+
+  void activate() override { objects_.resize(scene_.models.size()); }
+
+  void deactivate() override {
+    int hits = 0;
+    for (const auto& r : reports_) hits += r.hit() ? 1 : 0;
+    log(std::to_string(reports_.size()) + " contact(s), " + std::to_string(hits) + " hit(s)");
+  }
+
+ private:
+  static std::int64_t stamp(const std_msgs::Header& h, Time now) { return h.stamp_ns() ? h.stamp_ns() : now.ns; }
+
+  // The newest sample at or before t (the oldest if none is).
+  static const Sample* at(const std::deque<Sample>& h, std::int64_t t) {
+    const Sample* found = h.empty() ? nullptr : &h.front();
+    for (const auto& s : h) {
+      if (s.t > t) break;
+      found = &s;
+    }
+    return found;
+  }
+
+  void measure(Time now) {
+    const std::int64_t t = event_.header().stamp_ns() ? event_.header().stamp_ns() : now.ns;
+    msg::ContactReport r;
+    fill_header(r.header(), t, reports_.size(), "base");
+    r.contact(event_.contact());
+    r.feature(event_.feature());
+    r.hit(event_.kind() == msg::USER_TOUCH);
+    r.still_before_s(-1);
+    r.offset_mm(-1);
+    r.angle_deg(-1);
+    const haptics::DisplayFeature* f = scene_.feature(event_.feature().c_str());
+    const Sample* plate = at(plate_, t);
+    if (f && plate && !objects_[static_cast<std::size_t>(f->body)].empty()) {
+      // Still since: walking back from the arrival, the last 100 ms window the plate moved in (over a
+      // shorter one the encoders' quantisation, 0.06 mm a step, reads as motion).
+      std::int64_t still_since = plate_.front().t;
+      for (auto it = plate_.rbegin(); it != plate_.rend(); ++it) {
+        if (it->t > t) continue;
+        const Sample* before = at(plate_, it->t - 100'000'000);
+        if (before && it->t > before->t &&
+            (it->pose.translation() - before->pose.translation()).norm() / ((it->t - before->t) * 1e-9) >
+                still_speed_) {
+          still_since = it->t;
+          break;
+        }
+      }
+      r.still_before_s(static_cast<double>(t - still_since) * 1e-9);
+      const Eigen::Isometry3d base_T_obj = at(objects_[static_cast<std::size_t>(f->body)], t)->pose;
+      double best_angle = std::numeric_limits<double>::infinity(), offset = 0;
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::Isometry3d want = base_T_obj * f->obj_T_plate * Eigen::AngleAxisd(k * M_PI / 2, Vec3::UnitZ());
+        const double angle =
+            Eigen::Quaterniond(want.linear()).angularDistance(Eigen::Quaterniond(plate->pose.linear()));
+        if (angle < best_angle) best_angle = angle, offset = (want.translation() - plate->pose.translation()).norm();
+      }
+      r.offset_mm(offset * 1e3);
+      r.angle_deg(best_angle * 180 / M_PI);
+    }
+    log("contact " + std::to_string(r.contact()) + " (" + r.feature().c_str() + "): " + (r.hit() ? "hit" : "MISS") +
+        ", plate still " + std::to_string(static_cast<int>(r.still_before_s() * 1e3)) + " ms before the finger, " +
+        std::to_string(r.offset_mm()) + " mm / " + std::to_string(r.angle_deg()) + " deg from the feature");
+    reports_out_.write(r);
+    reports_.push_back(r);
+  }
+
+  std::string scene_path_;
+  haptics::Scene scene_;
+  double still_speed_ = 0.002;
+  std::int64_t history_ns_ = 0;
+  std::deque<Sample> plate_;
+  std::vector<std::deque<Sample>> objects_;
+  std::vector<msg::ContactReport> reports_;
+  msg::UserEvent event_;
+  msg::PoseStamped device_msg_;
+  msg::ObjectState object_msg_;
+  Input<msg::UserEvent> events_in_;
+  Input<msg::PoseStamped> device_in_;
+  Input<msg::ObjectState> objects_in_;
+  Output<msg::ContactReport> reports_out_;
+};
+
+}  // namespace wysiwyf::display
+
+WYSIWYF_COMPONENT(wysiwyf::display::DisplayMetrics, "display_metrics")

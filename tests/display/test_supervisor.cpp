@@ -1,0 +1,190 @@
+// The supervisor alone (the Harness) and the one-writer rule: only the supervisor's setpoints reach
+// the robot, and a stale or non-finite input holds it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "display_support.hpp"
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msg_eigen.hpp"
+
+namespace wysiwyf::test {
+
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+
+// The supervisor with every input fed as a healthy display would: the plate on the +x face, the
+// arm following, the planner in place, no force but the tool's weight.
+class SupervisorRig {
+ public:
+  SupervisorRig()
+      : h_("supervisor", "{scene: scenes/display_demo.yaml, recover_after: 0.2}", 1000, &loader_),
+        surface_(h_.feed<msg::CartesianSetpoint>("surface")),
+        admittance_(h_.feed<msg::CartesianSetpoint>("admittance")),
+        wrench_(h_.feed<msg::WrenchStamped>("wrench")),
+        device_(h_.feed<msg::PoseStamped>("device_pose")),
+        robot_(h_.feed<msg::RobotStatus>("robot_status")),
+        planner_(h_.feed<msg::PlannerStatus>("planner_status")),
+        out_(h_.watch<msg::CartesianSetpoint>("setpoint")),
+        mode_(h_.watch<msg::DisplayMode>("mode")) {
+    plate_.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    plate_.translation() = Eigen::Vector3d(0.7, 0, 0.1);
+    h_.activate();
+  }
+
+  // One tick at t ms with the surface setpoint at `surface` (NaN allowed), or none.
+  void tick(std::int64_t t_ms, const Eigen::Vector3d* surface) {
+    const std::int64_t t = t_ms * kMs;
+    if (surface) {
+      msg::CartesianSetpoint sp;
+      fill_header(sp.header(), t, static_cast<std::uint64_t>(t_ms), "base");
+      Eigen::Isometry3d T = plate_;
+      T.translation() = *surface;
+      msgs::to_msg(T, sp.pose());
+      sp.source("surface");
+      surface_.write(sp);
+    }
+    msg::WrenchStamped w;  // the tool's weight only: 11.34 N down in base, the sensor's x axis down here
+    fill_header(w.header(), t, 0, "ft_sensor");
+    const Eigen::Vector3d weight = plate_.linear().transpose() * Eigen::Vector3d(0, 0, -1.1563 * 9.81);
+    msgs::to_msg(weight, Eigen::Vector3d::Zero(), w.wrench());
+    wrench_.write(w);
+    msg::PoseStamped d;
+    fill_header(d.header(), t, 0, "base");
+    msgs::to_msg(plate_, d.pose());
+    device_.write(d);
+    msg::RobotStatus r;
+    r.state(msg::ARM_OK);
+    robot_.write(r);
+    msg::PlannerStatus p;
+    p.state(msg::PLAN_IN_PLACE);
+    planner_.write(p);
+    h_.tick(Time{t});
+  }
+
+  msg::DisplayModeKind mode() {
+    msg::DisplayMode m;
+    while (mode_.take(m)) last_mode_ = m;
+    return last_mode_.mode();
+  }
+  std::string reason() {
+    mode();
+    return last_mode_.reason().c_str();
+  }
+  bool setpoint(msg::CartesianSetpoint& out) {
+    bool any = false;
+    while (out_.take(out)) any = true;
+    return any;
+  }
+  Harness& harness() { return h_; }
+
+ private:
+  Loader loader_{Loader({WYSIWYF_COMPONENT_DIR})};
+  Harness h_;
+  Output<msg::CartesianSetpoint> surface_, admittance_;
+  Output<msg::WrenchStamped> wrench_;
+  Output<msg::PoseStamped> device_;
+  Output<msg::RobotStatus> robot_;
+  Output<msg::PlannerStatus> planner_;
+  Input<msg::CartesianSetpoint> out_;
+  Input<msg::DisplayMode> mode_;
+  msg::DisplayMode last_mode_;
+  Eigen::Isometry3d plate_ = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace
+
+TEST(Supervisor, ANonFiniteSetpointHoldsTheArmWhereItWasSent) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1), nan(std::nan(""), 0, 0);
+  for (int t = 0; t < 50; ++t) rig.tick(t, &at);
+  ASSERT_EQ(rig.mode(), msg::MODE_SURFACE);
+  rig.tick(50, &nan);
+  EXPECT_EQ(rig.mode(), msg::MODE_FAULT);
+  EXPECT_NE(rig.reason().find("a non-finite surface setpoint"), std::string::npos) << rig.reason();
+  EXPECT_EQ(rig.harness().rejected("surface"), 1u);
+  msg::CartesianSetpoint held;
+  ASSERT_TRUE(rig.setpoint(held));
+  EXPECT_NEAR((msgs::to_eigen(held.pose().position()) - at).norm(), 0.0, 1e-12);
+  EXPECT_EQ(msgs::to_eigen(held.twist().linear()).norm(), 0.0);
+  EXPECT_STREQ(held.source().c_str(), "supervisor/hold");
+  // Good input again: back through idle to surface after recover_after, without a step.
+  for (int t = 51; t < 400; ++t) rig.tick(t, &at);
+  EXPECT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
+  ASSERT_TRUE(rig.setpoint(held));
+  EXPECT_STREQ(held.source().c_str(), "supervisor/surface");
+}
+
+TEST(Supervisor, AStaleSourceHoldsTheArm) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1);
+  for (int t = 0; t < 50; ++t) rig.tick(t, &at);
+  ASSERT_EQ(rig.mode(), msg::MODE_SURFACE);
+  for (int t = 50; t < 100; ++t) rig.tick(t, nullptr);  // the planner falls silent
+  EXPECT_EQ(rig.mode(), msg::MODE_FAULT);
+  EXPECT_NE(rig.reason().find("no surface setpoint for"), std::string::npos) << rig.reason();
+  msg::CartesianSetpoint held;
+  ASSERT_TRUE(rig.setpoint(held));
+  EXPECT_STREQ(held.source().c_str(), "supervisor/hold");
+  EXPECT_NEAR((msgs::to_eigen(held.pose().position()) - at).norm(), 0.0, 1e-12);
+}
+
+TEST(Supervisor, ASetpointThatJumpsIsAFault) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1), far(0.7, 0.05, 0.1);
+  for (int t = 0; t < 50; ++t) rig.tick(t, &at);
+  rig.tick(50, &far);  // 5 cm in 1 ms: 50 m/s
+  EXPECT_EQ(rig.mode(), msg::MODE_FAULT);
+  EXPECT_NE(rig.reason().find("jumped"), std::string::npos) << rig.reason();
+}
+
+// A second writer to the robot's setpoint is a validation error.
+TEST(OneWriter, ASecondWriterToTheRobotsSetpointIsRefused) {
+  LoopSetup s;
+  s.script = {"wait 1"};
+  std::string yaml = loop_yaml(s, display_scratch());
+  yaml += "  intruder: {type: setpoint_script, rate: 50, topics: {setpoint: robot/setpoint}}\n";
+  Loader loader({WYSIWYF_TEST_COMPONENT_DIR, WYSIWYF_COMPONENT_DIR});
+  const auto v = validate_pipeline(load_pipeline_from_string(yaml, "two-writers.yaml"), loader);
+  ASSERT_FALSE(v.ok());
+  std::string all;
+  for (const auto& e : v.errors) all += e.str() + "\n";
+  EXPECT_NE(all.find("topic 'robot/setpoint': port intruder.setpoint writes it, but supervisor.setpoint"),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("arm.setpoint takes one writer only"), std::string::npos) << all;
+}
+
+// Across processes the arm refuses setpoints whose source is not the supervisor's.
+TEST(OneWriter, TheArmRefusesAnotherSource) {
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("puma_sim", "{setpoint_source: supervisor}", 1000, &loader);
+  auto setpoints = h.feed<msg::CartesianSetpoint>("setpoint");
+  auto pose = h.watch<msg::PoseStamped>("device_pose");
+  auto status = h.watch<msg::RobotStatus>("status");
+  h.activate();
+  h.tick(Time{0});
+  msg::PoseStamped p;
+  ASSERT_TRUE(pose.take_latest(p));
+  for (int t = 1; t <= 100; ++t) {
+    msg::CartesianSetpoint sp;
+    fill_header(sp.header(), t * kMs, static_cast<std::uint64_t>(t), "base");
+    sp.child_frame_id("dev");
+    sp.pose() = p.pose();
+    sp.pose().position().x(sp.pose().position().x() + 0.0001 * t);  // drifting away, were it followed
+    sp.source("intruder");
+    setpoints.write(sp);
+    h.tick(Time{t * kMs});
+  }
+  EXPECT_EQ(h.rejected("setpoint"), 100u);
+  msg::RobotStatus s;
+  while (status.take(s)) {
+  }
+  EXPECT_NE(s.state(), msg::ARM_OK) << "the arm followed a source it should refuse";
+  msg::PoseStamped after;
+  ASSERT_TRUE(pose.take_latest(after));
+  EXPECT_LT((msgs::to_eigen(after.pose().position()) - msgs::to_eigen(p.pose().position())).norm(), 1e-4);
+}
+
+}  // namespace wysiwyf::test
