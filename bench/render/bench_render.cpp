@@ -14,9 +14,14 @@ namespace wysiwyf::render {
 void BM_Renderer_640x480(benchmark::State& state) {
   const std::string params = "{samples: " + std::to_string(state.range(0)) + "}";
   Harness h("renderer", params, 60);
+  auto info_in = h.feed<msg::CameraInfo>("camera_info");
   auto pose_in = h.feed<msg::PoseStamped>("eye_T_base");
   auto color = h.watch<msg::Image>("color", 2);
   h.activate();
+  msg::CameraInfo info;
+  info.width(640), info.height(480);
+  info.k() = {600, 0, 319.5, 0, 600, 239.5, 0, 0, 1};
+  info_in.write(info);
   Eigen::Isometry3d base_T_eye = Eigen::Isometry3d::Identity();
   base_T_eye.linear() << 1, 0, 0, 0, 0.6, 0.8, 0, -0.8, 0.6;  // looking down at the table
   base_T_eye.translation() = Eigen::Vector3d(0.6, -0.7, 0.6);

@@ -1,7 +1,12 @@
 // video_sink writes an MP4; the camera component reads it back through OpenCV's decoding path.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -45,6 +50,54 @@ TEST(Video, AnMp4WrittenByVideoSinkReadsBackThroughTheCamera) {
   EXPECT_NE(cam.stop_request().find("end of"), std::string::npos) << cam.stop_request();
   // The frames come back in order: each one near its grey (MPEG-4 through YUV 4:2:0 is lossy, a few levels).
   for (std::size_t i = 0; i < means.size(); ++i) EXPECT_NEAR(means[i], 20.0 * i, 6.0) << "frame " << i;
+}
+
+// A calibrated camera with lens distortion publishes undistorted frames and says so: a dot filmed
+// where the lens puts the undistorted point (290, 215) px comes out there, and camera_info has
+// the calibration's K and no distortion.
+TEST(Video, TheCameraTakesTheLensDistortionOut) {
+  const auto dir = std::filesystem::path(WYSIWYF_TEST_SCRATCH_DIR) / "undistort";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const cv::Matx33d K(300, 0, 159.5, 0, 300, 119.5, 0, 0, 1);
+  const std::vector<double> D{-0.4, 0.1, 0.001, -0.002, 0};
+  {
+    cv::FileStorage fs((dir / "calibration.yaml").string(), cv::FileStorage::WRITE);
+    fs << "image_width" << 320 << "image_height" << 240 << "camera_matrix" << cv::Mat(K) << "distortion_coefficients"
+       << cv::Mat(D).t();
+  }
+  // Where the lens images the ray of the undistorted pixel (290, 215).
+  const cv::Point3d ray((290 - K(0, 2)) / K(0, 0), (215 - K(1, 2)) / K(1, 1), 1);
+  std::vector<cv::Point2d> seen;
+  cv::projectPoints(std::vector<cv::Point3d>{ray}, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D, seen);
+  cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(0, 0, 0));
+  cv::circle(frame,
+             cv::Point(static_cast<int>(std::lround(seen[0].x * 16)), static_cast<int>(std::lround(seen[0].y * 16))),
+             3 * 16, cv::Scalar(255, 255, 255), cv::FILLED, cv::LINE_AA, 4);
+  for (int i = 0; i < 3; ++i) cv::imwrite((dir / ("frame_" + std::to_string(i) + ".png")).string(), frame);
+  Harness cam(
+      "camera",
+      "{source: " + (dir / "frame_%d.png").string() + ", calibration: " + (dir / "calibration.yaml").string() + "}",
+      25);
+  auto out = cam.watch<msg::Image>("image");
+  auto info = cam.watch<msg::CameraInfo>("camera_info");
+  cam.activate();
+  cam.tick(Time{0});
+  msg::Image f;
+  msg::CameraInfo ci;
+  ASSERT_TRUE(out.take_latest(f));
+  ASSERT_TRUE(info.take_latest(ci));
+  EXPECT_DOUBLE_EQ(ci.k()[0], 300);
+  EXPECT_DOUBLE_EQ(ci.k()[2], 159.5);
+  for (double d : ci.d()) EXPECT_EQ(d, 0.0);
+  const cv::Mat rgb(static_cast<int>(f.height()), static_cast<int>(f.width()), CV_8UC3, f.data().data());
+  cv::Mat grey;
+  cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+  const cv::Moments m = cv::moments(grey);
+  ASSERT_GT(m.m00, 0);
+  EXPECT_NEAR(m.m10 / m.m00, 290, 0.5);
+  EXPECT_NEAR(m.m01 / m.m00, 215, 0.5);
+  EXPECT_GT(std::hypot(seen[0].x - 290, seen[0].y - 215), 10) << "the lens must move the dot for this to test anything";
 }
 
 TEST(Video, AMissingCameraSourceIsAClearErrorAtActivation) {

@@ -1,8 +1,12 @@
 // camera: a real camera (or a recording) through OpenCV's VideoCapture: a V4L2 device
 // ("/dev/video0" or "0"), a video file, or a GStreamer pipeline string. Intrinsics come from an
-// OpenCV calibration file (camera_matrix, distortion_coefficients). A missing source is an
-// error at activation; a source lost while running is reported and reopened, and the pipeline
-// keeps running.
+// OpenCV calibration file (camera_matrix, distortion_coefficients); with `undistort` (the
+// default) the lens distortion is taken out of every frame (one remap through maps made once)
+// and camera_info says so (no distortion, the same K): the renderer draws a pinhole camera, and
+// the filmed hand must lie where the drawn scene does. A missing source is an error at
+// activation; a source lost while running is reported and reopened, and the pipeline keeps
+// running.
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -24,9 +28,17 @@ class Camera final : public Component {
     at_end_ = ctx.param_choice("at_end", "stop", "when a file ends", {"stop", "loop", "hold"});
     reopen_s_ = ctx.param<double>("reopen_after", 1.0, "seconds without frames before reopening a lost source",
                                   Range{0.05, 60});
+    undistort_ = ctx.param<bool>(
+        "undistort", true, "take the calibration's lens distortion out of the frames (camera_info then has none)");
     image_ = ctx.output<msg::Image>("image", "frames, rgb8", Qos::sensor(2));
     info_ = ctx.output<msg::CameraInfo>("camera_info", "the calibration, with every frame", Qos::sensor(2));
-    if (!calibration_.empty()) load_calibration();
+    if (!calibration_.empty()) {
+      try {
+        load_calibration();
+      } catch (const std::exception& e) {
+        ctx.reject("calibration", e.what());
+      }
+    }
   }
 
   void activate() override {
@@ -57,7 +69,17 @@ class Camera final : public Component {
       return;
     }
     cv::Mat rgb = image::allocate(msg_, bgr_.cols, bgr_.rows, "rgb8");
-    cv::cvtColor(bgr_, rgb, cv::COLOR_BGR2RGB);  // straight into the message's buffer
+    if (!map1_.empty() && bgr_.size() != map1_.size()) {
+      warn_once("size", "frames of " + std::to_string(bgr_.cols) + "x" + std::to_string(bgr_.rows) +
+                            " px, but the calibration is for " + std::to_string(map1_.cols) + "x" +
+                            std::to_string(map1_.rows) + ": published as they come, not undistorted");
+      cv::cvtColor(bgr_, rgb, cv::COLOR_BGR2RGB);
+    } else if (!map1_.empty()) {
+      cv::remap(bgr_, undistorted_, map1_, map2_, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+      cv::cvtColor(undistorted_, rgb, cv::COLOR_BGR2RGB);
+    } else {
+      cv::cvtColor(bgr_, rgb, cv::COLOR_BGR2RGB);  // straight into the message's buffer
+    }
     fill_header(msg_.header(), now.ns, frames_++, "eye");
     image_.write(msg_);
     if (!calibration_.empty()) {
@@ -92,8 +114,18 @@ class Camera final : public Component {
     info_msg_.height(static_cast<std::uint32_t>(static_cast<int>(fs["image_height"])));
     info_msg_.distortion_model("plumb_bob");
     info_msg_.d().clear();
-    D.convertTo(D, CV_64F);
-    for (int i = 0; i < static_cast<int>(D.total()) && i < 14; ++i) info_msg_.d().push_back(D.at<double>(i));
+    if (!D.empty()) D.convertTo(D, CV_64F);
+    const bool distorted = !D.empty() && cv::countNonZero(D) > 0;
+    if (undistort_ && distorted) {
+      // Frames are remapped to the pinhole with the same K: camera_info then carries no distortion.
+      const cv::Size size(static_cast<int>(info_msg_.width()), static_cast<int>(info_msg_.height()));
+      if (size.width <= 0 || size.height <= 0)
+        throw std::invalid_argument("calibration '" + calibration_ + "': expected image_width and image_height");
+      cv::initUndistortRectifyMap(K, D, cv::Mat(), K, size, CV_16SC2, map1_, map2_);
+      info_msg_.d().assign(5, 0.0);
+    } else {
+      for (int i = 0; i < static_cast<int>(D.total()) && i < 14; ++i) info_msg_.d().push_back(D.at<double>(i));
+    }
     for (int i = 0; i < 9; ++i) info_msg_.k()[i] = K.at<double>(i / 3, i % 3);
     info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     info_msg_.p() = {
@@ -102,7 +134,8 @@ class Camera final : public Component {
 
   std::string source_, backend_, calibration_, at_end_;
   double reopen_s_ = 1.0;
-  bool is_file_ = false;
+  bool is_file_ = false, undistort_ = true;
+  cv::Mat map1_, map2_, undistorted_;  // undistortion maps (empty: frames as they come)
   cv::VideoCapture capture_;
   cv::Mat bgr_;
   std::uint64_t frames_ = 0;

@@ -1,8 +1,11 @@
 // renderer: the virtual environment as the user should see it (paper section 2.2, STEP 1): the
-// scene's static bodies and the dynamic bodies at the poses the simulation publishes, drawn from
-// the tracked camera pose eye_T_base with the calibrated intrinsics, so that eye_T_v_obj =
-// eye_T_dev (eq. 4) and eye_T_v_env = eye_T_base (eq. 6). Publishes colour and metric depth.
+// scene's static bodies and the dynamic bodies at the poses the simulation publishes, with the
+// knobs the scene declares on them, drawn from the tracked camera pose eye_T_base with the
+// camera's own intrinsics (its camera_info: the rendered and the filmed image are one camera's),
+// so that eye_T_v_obj = eye_T_dev (eq. 4) and eye_T_v_env = eye_T_base (eq. 6). Publishes colour
+// and metric depth, at the camera's size.
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -28,10 +31,6 @@ class Renderer final : public Component {
   void configure(Context& ctx) override {
     ctx.summary("draws the virtual environment from the tracked camera pose: colour and metric depth");
     scene_path_ = ctx.param<std::string>("scene", "scenes/cube_on_table.yaml", "scene file (cwd, then config/)");
-    camera_.width = ctx.param<int>("width", 640, "image width, px", Range{16, 1280});
-    camera_.height = ctx.param<int>("height", 480, "image height, px", Range{16, 720});
-    const auto K = ctx.param<std::array<double, 4>>("intrinsics", {600, 600, 319.5, 239.5}, "fx fy cx cy, px (OpenCV)",
-                                                    Range{0, 1e5});
     camera_.near_m = ctx.param<double>("near", 0.02, "near clipping distance, m", Range{1e-4, 10});
     camera_.far_m = ctx.param<double>("far", 20.0, "far clipping distance, m", Range{0.1, 1000});
     samples_ =
@@ -39,12 +38,13 @@ class Renderer final : public Component {
     background_ =
         ctx.param<std::array<double, 3>>("background", {0.08, 0.09, 0.12}, "background colour, RGB 0..1", Range{0, 1});
     eye_T_base_in_ = ctx.input<msg::PoseStamped>("eye_T_base", "where the camera is (the tracker)", Qos::sensor(4));
+    info_in_ = ctx.input<msg::CameraInfo>("camera_info", "the camera's size and intrinsics (K; images undistorted)",
+                                          Qos::sensor(2));
     objects_in_ =
         ctx.input<msg::ObjectState>("objects", "dynamic bodies of the virtual environment", Qos::reliable(64));
     color_out_ = ctx.output<msg::Image>("color", "the rendered scene, rgb8", Qos::sensor(2));
     depth_out_ =
         ctx.output<msg::Image>("depth", "metric depth along the optical axis, 32FC1 (0: nothing)", Qos::sensor(2));
-    camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     if (camera_.near_m >= camera_.far_m)
       ctx.reject("far", "must be larger than near (" + std::to_string(camera_.near_m) + " m)");
     try {
@@ -57,18 +57,16 @@ class Renderer final : public Component {
   void activate() override {
     gl_ = std::make_unique<GlContext>();
     log("OpenGL on " + gl_->renderer() + " (" + gl_->platform() + ")");
-    renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, samples_);
     for (std::size_t i = 0; i < scene_.models.size(); ++i) {
-      const auto& m = scene_.models[i];
-      meshes_.push_back(renderer_->add_mesh(Mesh::box(m.half_extents.cast<float>())));
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
       T.linear() = scene_.initial[i].q.toRotationMatrix();
       T.translation() = scene_.initial[i].x;
-      base_T_body_[m.name] = T;
+      base_T_body_[scene_.models[i].name] = T;
     }
   }
 
   void tick(Time now) override {
+    if (info_in_.take_latest(info_msg_)) take_camera_info();
     while (eye_T_base_in_.take(pose_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
       if (finite(T))
@@ -83,6 +81,10 @@ class Renderer final : public Component {
       else
         reject(objects_in_, "a non-finite pose");
     }
+    if (!renderer_)
+      return warn_once("no camera_info",
+                       "no camera_info yet: nothing is drawn until the camera's "
+                       "intrinsics arrive");
     if (!have_pose_) return;  // nothing to draw from yet
     renderer_->begin(Eigen::Vector4f(static_cast<float>(background_[0]), static_cast<float>(background_[1]),
                                      static_cast<float>(background_[2]), 1));
@@ -92,6 +94,10 @@ class Renderer final : public Component {
           m.dynamic ? Eigen::Vector4f(0.85f, 0.55f, 0.15f, 1) : Eigen::Vector4f(0.45f, 0.42f, 0.38f, 1);
       renderer_->draw(meshes_[i], eye_T_base_ * base_T_body_[m.name], color);
     }
+    // The knobs: a cylinder from the face out to the knob's tip.
+    for (const auto& [body, obj_T_knob] : knobs_)
+      renderer_->draw(knob_mesh_, eye_T_base_ * base_T_body_[scene_.models[body].name] * obj_T_knob,
+                      Eigen::Vector4f(0.75f, 0.72f, 0.68f, 1));
     renderer_->read_rgb(rgb_);
     renderer_->read_depth(depth_);
     std::memcpy(image::allocate(color_msg_, camera_.width, camera_.height, "rgb8").data, rgb_.data(), rgb_.size());
@@ -101,6 +107,44 @@ class Renderer final : public Component {
     fill_header(depth_msg_.header(), now.ns, seq_++, "eye");
     color_out_.write(color_msg_);
     depth_out_.write(depth_msg_);
+  }
+
+  // A new size or new intrinsics: a renderer for them (the meshes again: they live in it).
+  void take_camera_info() {
+    const auto& k = info_msg_.k();
+    Pinhole camera = camera_;
+    camera.width = static_cast<int>(info_msg_.width()), camera.height = static_cast<int>(info_msg_.height());
+    camera.fx = k[0], camera.fy = k[4], camera.cx = k[2], camera.cy = k[5];
+    if (camera.width < 16 || camera.height < 16 || camera.width > 4096 || camera.height > 4096 ||
+        !(camera.fx > 0 && camera.fy > 0 && std::isfinite(camera.fx) && std::isfinite(camera.fy) &&
+          std::isfinite(camera.cx) && std::isfinite(camera.cy)))
+      return reject(info_in_, "a camera_info without a size of 16..4096 px or a finite K with fx, fy > 0");
+    for (double d : info_msg_.d())
+      if (d != 0.0) {
+        warn_once("distorted",
+                  "camera_info has lens distortion: the scene is drawn for a pinhole camera, so the "
+                  "camera's images should be undistorted (camera: undistort: true)");
+        break;
+      }
+    if (renderer_ && camera.width == camera_.width && camera.height == camera_.height && camera.fx == camera_.fx &&
+        camera.fy == camera_.fy && camera.cx == camera_.cx && camera.cy == camera_.cy)
+      return;
+    camera_ = camera;
+    renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, samples_);
+    meshes_.clear();
+    for (const auto& m : scene_.models) meshes_.push_back(renderer_->add_mesh(Mesh::box(m.half_extents.cast<float>())));
+    knobs_.clear();
+    const double length = scene_.device.knob_offset.z();
+    for (const auto& f : scene_.features) {
+      if (f.kind != haptics::DisplayFeature::Kind::kKnob || length <= 0) continue;
+      Eigen::Isometry3d obj_T_knob = f.obj_T_plate;
+      obj_T_knob.translate(Eigen::Vector3d(0, 0, length / 2));
+      knobs_.emplace_back(static_cast<std::size_t>(f.body), obj_T_knob);
+      knob_radius_ = f.knob_radius;
+    }
+    if (!knobs_.empty())
+      knob_mesh_ =
+          renderer_->add_mesh(Mesh::cylinder(static_cast<float>(knob_radius_), static_cast<float>(length / 2)));
   }
 
   void deactivate() override {
@@ -117,6 +161,9 @@ class Renderer final : public Component {
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;
   std::vector<int> meshes_;
+  std::vector<std::pair<std::size_t, Eigen::Isometry3d>> knobs_;  // body, obj_T_knob (the cylinder's centre)
+  int knob_mesh_ = -1;
+  double knob_radius_ = 0.015;
   std::map<std::string, Eigen::Isometry3d> base_T_body_;
   Eigen::Isometry3d eye_T_base_ = Eigen::Isometry3d::Identity();
   bool have_pose_ = false;
@@ -124,6 +171,8 @@ class Renderer final : public Component {
   std::vector<std::uint8_t> rgb_;
   std::vector<float> depth_;
   msg::PoseStamped pose_msg_;
+  msg::CameraInfo info_msg_;
+  Input<msg::CameraInfo> info_in_;
   msg::ObjectState object_msg_;
   msg::Image color_msg_, depth_msg_;
   Input<msg::PoseStamped> eye_T_base_in_;
