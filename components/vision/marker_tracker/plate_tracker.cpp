@@ -142,8 +142,8 @@ void PlateTracker::acquire(const cv::Mat& image, PixelLayout layout, const Camer
   PoseEkf::Matrix6d dev_cov = PoseEkf::Matrix6d::Zero();
   dev_cov.diagonal() << Eigen::Vector3d::Constant(s_.start_sigma_m * s_.start_sigma_m),
       Eigen::Vector3d::Constant(s_.start_sigma_rad * s_.start_sigma_rad);
-  ekf_.reset(fix->eye_T_dev * dev_T_x, compose_covariance(dev_cov, fix->eye_T_dev, dev_T_x), s_.start_velocity_sigma,
-             s_.start_angular_sigma);
+  ekf_.reset(fix->eye_T_dev * dev_T_x, frames::compose_covariance(dev_cov, fix->eye_T_dev, dev_T_x),
+             s_.start_velocity_sigma, s_.start_angular_sigma);
   // The fix's lamps are this image's measurements too.
   accepted_.clear(), accepted_pixels_.clear(), accepted_ids_.clear();
   for (int i = 0; i < 4; ++i) {
@@ -170,7 +170,7 @@ bool PlateTracker::acquire_from_guess(const CameraModel& camera) {
       Eigen::Vector3d::Constant(s_.prior_sigma_rad * s_.prior_sigma_rad);
   // The guess is uncertain about the camera: its errors are those of eye_T_base, carried to x.
   const Eigen::Isometry3d base_T_x = x_T_base_.inverse();
-  ekf_.reset(guess * base_T_x, compose_covariance(cov, guess, base_T_x), s_.start_velocity_sigma,
+  ekf_.reset(guess * base_T_x, frames::compose_covariance(cov, guess, base_T_x), s_.start_velocity_sigma,
              s_.start_angular_sigma);
   match_blobs(camera);
   if (static_cast<int>(accepted_.size()) < std::max(2, s_.min_markers)) return false;

@@ -24,6 +24,7 @@
 #include "lamp_detector.hpp"
 #include "plate_acquisition.hpp"
 #include "plate_markers.hpp"
+#include "frames/pose_covariance.hpp"
 #include "pose_ekf.hpp"
 
 namespace wysiwyf::vision {
@@ -80,10 +81,10 @@ class PlateTracker {
   Eigen::Isometry3d eye_T_base() const { return ekf_.pose() * x_T_base_; }
   Eigen::Isometry3d eye_T_dev() const { return ekf_.pose() * x_T_dev_; }
   PoseEkf::Matrix6d eye_T_base_covariance() const {
-    return compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_base_);
+    return frames::compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_base_);
   }
   PoseEkf::Matrix6d eye_T_dev_covariance() const {
-    return compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_dev_);
+    return frames::compose_covariance(ekf_.pose_covariance(), ekf_.pose(), x_T_dev_);
   }
   const PoseEkf& filter() const { return ekf_; }
   const TrackerSettings& settings() const { return s_; }

@@ -2,15 +2,13 @@
 
 #include <cassert>
 
+#include "frames/pose_covariance.hpp"
+
 namespace wysiwyf::vision {
 
 namespace {
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
+using frames::skew;
 
 Eigen::Matrix3d exp_so3(const Eigen::Vector3d& r) {
   const double angle = r.norm();
@@ -98,15 +96,6 @@ void PoseEkf::update(const std::vector<Prediction>& predictions, const std::vect
   eye_T_x_.linear() = exp_so3(dx.segment<3>(3)) * eye_T_x_.linear();
   v_ += dx.segment<3>(6);
   w_ += dx.segment<3>(9);
-}
-
-Eigen::Matrix<double, 6, 6> compose_covariance(const Eigen::Matrix<double, 6, 6>& eye_T_x_cov,
-                                               const Eigen::Isometry3d& eye_T_x, const Eigen::Isometry3d& x_T_y) {
-  // eye_t_y = exp(dtheta) R x_t_y + t + dt: its error is dt - [R x_t_y]x dtheta; the rotation error
-  // is the same.
-  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Identity();
-  J.block<3, 3>(0, 3) = -skew(eye_T_x.linear() * x_T_y.translation());
-  return J * eye_T_x_cov * J.transpose();
 }
 
 }  // namespace wysiwyf::vision

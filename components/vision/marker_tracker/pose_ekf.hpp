@@ -70,9 +70,4 @@ class PoseEkf {
   StateMatrix P_ = StateMatrix::Identity();
 };
 
-// The covariance of eye_T_y = eye_T_x * x_T_y given that of eye_T_x (both over (dt, dtheta) in
-// eye coordinates; x_T_y known exactly).
-Eigen::Matrix<double, 6, 6> compose_covariance(const Eigen::Matrix<double, 6, 6>& eye_T_x_cov,
-                                               const Eigen::Isometry3d& eye_T_x, const Eigen::Isometry3d& x_T_y);
-
 }  // namespace wysiwyf::vision
