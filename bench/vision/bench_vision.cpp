@@ -185,11 +185,11 @@ void BM_StereoDepth_640x480(benchmark::State& state, const std::string& params) 
   auto info_in = stereo.feed<msg::CameraInfo>("camera_info");
   auto keyed_in = stereo.feed<msg::Image>("keyed");
   auto depth = stereo.watch<msg::Image>("depth", 2);
-  auto hand = stereo.watch<msg::PoseStamped>("hand_position", 2);
+  auto hand = stereo.watch<msg::HandPosition>("hand_position", 2);
   stereo.activate();
   info_in.write(info);
   msg::Image depth_out;
-  msg::PoseStamped hand_out;
+  msg::HandPosition hand_out;
   std::int64_t t = 0;
   for (auto _ : state) {
     t += 40'000'000;

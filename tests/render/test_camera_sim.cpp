@@ -41,10 +41,10 @@ TEST(CameraSim, ItsHandMaskAgreesWithItsImageAndItsPosesWithTheModel) {
   msg::JointState js;
   for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
   joints.write(js);
-  // The hand 12 cm in front of the plate, palm toward it.
+  // The index fingertip 5 cm in front of the plate, pointing at it.
   Eigen::Isometry3d base_T_hand = model.fk(q, model.frame("dev"));
-  base_T_hand.translate(Eigen::Vector3d(0.02, 0.0, 0.12));
-  base_T_hand.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
+  base_T_hand.translate(Eigen::Vector3d(0.02, 0.0, 0.05));
+  base_T_hand.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
   msg::PoseStamped hp;
   msgs::to_msg(base_T_hand, hp.pose());
   hand.write(hp);

@@ -29,6 +29,17 @@ double min_jerk(double tau) {
   return tau * tau * tau * (10 - 15 * tau + 6 * tau * tau);
 }
 
+// The hand pointing along `direction` (its x, the finger), the back of the hand up (its z as near
+// base +z as the finger allows; toward base +x when the finger points straight up or down).
+Eigen::Quaterniond pointing(const Vec3& direction) {
+  const Vec3 x = direction.normalized();
+  const Vec3 up = std::abs(x.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitX();
+  const Vec3 z = (up - up.dot(x) * x).normalized();
+  Eigen::Matrix3d R;
+  R.col(0) = x, R.col(1) = z.cross(x), R.col(2) = z;
+  return Eigen::Quaterniond(R);
+}
+
 }  // namespace
 
 class UserSim final : public Component {
@@ -60,7 +71,8 @@ class UserSim final : public Component {
     objects_in_ =
         ctx.input<msg::ObjectState>("objects", "where the virtual objects are (admittance_sim)", Qos::reliable(64));
     hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "where the fingertip really is (puma_sim)", Qos::sensor(4));
-    target_out_ = ctx.output<msg::PoseStamped>("hand_target", "where the user moves the fingertip (base frame)");
+    target_out_ = ctx.output<msg::PoseStamped>(
+        "hand_target", "where the user moves the fingertip, base frame; the hand's orientation: x along the finger");
     events_out_ =
         ctx.output<msg::UserEvent>("events", "reach, touch or miss, push, release, withdraw, done", Qos::reliable(32));
     target_ = Vec3(start[0], start[1], start[2]);
@@ -106,7 +118,7 @@ class UserSim final : public Component {
     judge_touch(now.ns);
     fill_header(target_msg_.header(), now.ns, seq_++, "base");
     target_msg_.child_frame_id("hand");
-    msgs::to_msg(target_, Eigen::Quaterniond::Identity(), target_msg_.pose());
+    msgs::to_msg(target_, hand_q_, target_msg_.pose());
     target_out_.write(target_msg_);
   }
 
@@ -144,7 +156,10 @@ class UserSim final : public Component {
     const double tau = duration_ > 0 ? t / duration_ : 1.0;
     const double s = min_jerk(tau);
     switch (a.kind) {
-      case UserAction::Kind::kReach: target_ = reach_.at(s, pressing(hand_k_ * press_), surface_normal()); break;
+      case UserAction::Kind::kReach:
+        target_ = reach_.at(s, pressing(hand_k_ * press_), surface_normal());
+        hand_q_ = q_from_.slerp(s, pointing(-surface_normal()));  // the finger turns toward the face
+        break;
       case UserAction::Kind::kPush: {
         const double ramp = std::min(0.3, duration_ / 3);
         force_ = force_from_ + min_jerk(t / ramp) * (a.force - force_from_);
@@ -186,6 +201,7 @@ class UserSim final : public Component {
         normal_obj_ = f.normal;
         offset_obj_ = offset_from_ = Vec3::Zero();
         force_ = force_from_ = 0;
+        q_from_ = hand_q_;
         // Around the object, not through it: clear of it by the finger and a centimetre.
         reach_ = reach_around(action_from_, pressing(hand_k_ * press_), surface_normal(), body_pose(),
                               scene_.models[static_cast<std::size_t>(body_)].half_extents, finger_radius_ + 0.01);
@@ -267,6 +283,7 @@ class UserSim final : public Component {
   bool begun_ = false;
   double duration_ = 0;
   Vec3 target_ = Vec3::Zero(), action_from_ = Vec3::Zero();
+  Eigen::Quaterniond hand_q_ = pointing(-Vec3::UnitX()), q_from_ = hand_q_;  // the user faces the robot
   // the current contact
   const haptics::DisplayFeature* feature_ = nullptr;
   int body_ = 0;

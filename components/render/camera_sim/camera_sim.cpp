@@ -1,9 +1,11 @@
 // camera_sim: what the real camera would see (paper section 5.1, Fig. 6a): blue cloth on the
 // table and behind it, the PUMA's links wrapped in blue (posed from joint state through the
 // robot model), the aluminium plate with its four lamp markers and the knob, and the user's hand
-// (skin, at the true hand pose); with lighting variation, sensor noise, optical blur and blue
-// spill on the hand's edges. Beside the image it publishes ground truth for tests and metrics:
-// eye_T_base, eye_T_dev, the hand mask and the metric depth; optionally a stereo right image.
+// (skin, pointing: the index fingertip at the true fingertip pose), optionally with a bright LED
+// on the fingertip's nail (the fingertip marker the paper cites for hand tracking); with lighting
+// variation, sensor noise, optical blur and blue spill on the hand's edges. Beside the image it
+// publishes ground truth for tests and metrics: eye_T_base, eye_T_dev, the hand mask and the
+// metric depth; optionally a stereo right image, rectified, with its camera_info (P[3] = -fx B).
 #include <array>
 #include <deque>
 #include <utility>
@@ -38,6 +40,13 @@ Eigen::Isometry3d segment_pose(const Eigen::Vector3d& a, const Eigen::Vector3d& 
 const Eigen::Vector4f kCloth(0.10f, 0.16f, 0.62f, 1), kAluminium(0.72f, 0.72f, 0.74f, 1), kLamp(1.0f, 0.97f, 0.85f, 1),
     kSkin(0.86f, 0.62f, 0.50f, 1), kBlack(0, 0, 0, 1), kWhite(1, 1, 1, 1);
 
+// The hand, in the fingertip's frame (x along the pointing index finger, z out of the back of the
+// hand, the origin the fingertip sphere's centre, as puma_sim simulates it): finger segments and
+// the palm as (mesh, pose) pairs are laid out once.
+constexpr double kFingerRadius = 0.009, kIndexLength = 0.075;
+// The LED on the index fingernail (a 5 mm dome): its centre 6 mm behind the fingertip, on the nail.
+const Eigen::Vector3d kMarkerOnFinger(-0.006, 0.0, kFingerRadius);
+
 }  // namespace
 
 class CameraSim final : public Component {
@@ -62,6 +71,13 @@ class CameraSim final : public Component {
     baseline_ = ctx.param<double>("stereo_baseline", 0.0,
                                   "0: mono; else also render a right camera this far along x, m", Range{0, 1});
     seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
+    marker_ =
+        ctx.param<bool>("fingertip_marker", false,
+                        "draw a bright LED on the index fingernail (5 mm, 6 mm behind the tip), for fingertip_tracker");
+    const auto marker_colour = ctx.param<std::array<double, 3>>(
+        "marker_colour", {0.25, 1.0, 0.3}, "the LED's colour, RGB 0..1 (unlit: it glows)", Range{0, 1});
+    marker_colour_ = Eigen::Vector4f(static_cast<float>(marker_colour[0]), static_cast<float>(marker_colour[1]),
+                                     static_cast<float>(marker_colour[2]), 1);
     hidden_ = ctx.param<std::vector<double>>(
         "hidden_markers", {}, "lamps not drawn (occluded, switched off): rows [t_start s, t_end s, marker 0..3]",
         std::nullopt, Length::rows_of(3));
@@ -73,11 +89,14 @@ class CameraSim final : public Component {
     exposure_samples_ = ctx.param<int>("exposure_samples", 8, "renders averaged over the exposure", Range{2, 64});
     // Deep queues: the exposure looks back up to 100 ms into 1 kHz streams.
     joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints", Qos::sensor(128));
-    hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "base_T_hand: palm centre, z out of the palm, fingers along x",
-                                           Qos::sensor(128));
+    hand_in_ = ctx.input<msg::PoseStamped>(
+        "hand_pose", "base_T_fingertip: the index fingertip, the finger along x, the back of the hand along z",
+        Qos::sensor(128));
     image_ = ctx.output<msg::Image>("image", "the camera image, rgb8", Qos::sensor(2));
     right_ = ctx.output<msg::Image>("image_right", "the right camera's image (stereo), rgb8", Qos::sensor(2));
     info_ = ctx.output<msg::CameraInfo>("camera_info", "intrinsics (no distortion)", Qos::sensor(2));
+    right_info_ = ctx.output<msg::CameraInfo>("camera_info_right", "the right camera's (stereo): P[3] = -fx baseline",
+                                              Qos::sensor(2));
     true_eye_T_base_ = ctx.output<msg::PoseStamped>("true_eye_T_base", "ground truth", Qos::sensor(4));
     true_eye_T_dev_ = ctx.output<msg::PoseStamped>("true_eye_T_dev", "ground truth", Qos::sensor(4));
     true_mask_ =
@@ -100,8 +119,12 @@ class CameraSim final : public Component {
     plate_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.1f, 0.1f, 0.005f)));
     knob_ = renderer_->add_mesh(Mesh::cylinder(0.015f, 0.02f));
     lamp_ = renderer_->add_mesh(Mesh::sphere(0.006f));
-    palm_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.045f, 0.04f, 0.012f)));
-    finger_ = renderer_->add_mesh(Mesh::capsule(0.009f, 0.03f));
+    palm_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.045f, 0.042f, 0.014f)));
+    index_ =
+        renderer_->add_mesh(Mesh::capsule(static_cast<float>(kFingerRadius), static_cast<float>(kIndexLength / 2)));
+    curled_ = renderer_->add_mesh(Mesh::capsule(0.0095f, 0.012f));
+    thumb_ = renderer_->add_mesh(Mesh::capsule(0.0105f, 0.022f));
+    led_ = renderer_->add_mesh(Mesh::sphere(0.005f));
     // The arm: one capsule per segment between joint origins (rigid: lengths are constant).
     const robot::Vector6d q0 = robot::Vector6d::Zero();
     const auto points = arm_points(q0);
@@ -194,6 +217,10 @@ class CameraSim final : public Component {
     info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     info_msg_.p() = {camera_.fx, 0, camera_.cx, 0, 0, camera_.fy, camera_.cy, 0, 0, 0, 1, 0};
     info_.write(info_msg_);
+    if (baseline_ > 0) {
+      info_msg_.p()[3] = -camera_.fx * baseline_;
+      right_info_.write(info_msg_);
+    }
     ++seq_;
   }
 
@@ -259,18 +286,23 @@ class CameraSim final : public Component {
                           color(kLamp, false), false);
     }
     if (have_hand_) {
-      const Eigen::Isometry3d eye_T_hand = eye_T_base * base_T_hand_;
-      renderer_->draw(palm_, eye_T_hand, color(kSkin, true), !mask_pass);
-      for (int f = 0; f < 4; ++f) {  // four fingers along +x from the palm's front edge
-        Eigen::Isometry3d finger = Eigen::Isometry3d::Identity();
-        finger.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
-        finger.translation() = Eigen::Vector3d(0.045 + 0.035, -0.03 + 0.02 * f, 0.0);
-        renderer_->draw(finger_, eye_T_hand * finger, color(kSkin, true), !mask_pass);
-      }
-      Eigen::Isometry3d thumb = Eigen::Isometry3d::Identity();
-      thumb.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
-      thumb.translation() = Eigen::Vector3d(0.0, 0.065, 0.0);
-      renderer_->draw(finger_, eye_T_hand * thumb, color(kSkin, true), !mask_pass);
+      // A pointing hand: the index finger out along x to the fingertip at the origin, the palm
+      // behind it, the other three fingers curled under the palm's front edge, the thumb along it.
+      const Eigen::Isometry3d eye_T_tip = eye_T_base * base_T_hand_;
+      const Eigen::Matrix3d along_x = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+      auto at = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.linear() = R, T.translation() = p;
+        return eye_T_tip * T;
+      };
+      const double palm_front = -kIndexLength - 0.004;
+      renderer_->draw(index_, at({-kIndexLength / 2, 0, 0}, along_x), color(kSkin, true), !mask_pass);
+      renderer_->draw(palm_, at({palm_front - 0.045, 0.032, -0.004}), color(kSkin, true), !mask_pass);
+      for (int f = 1; f <= 3; ++f)  // curled: pointing down (-z) from the palm's front edge
+        renderer_->draw(curled_, at({palm_front - 0.004, 0.02 * f, -0.022}), color(kSkin, true), !mask_pass);
+      renderer_->draw(thumb_, at({palm_front - 0.02, -0.018, -0.01}, along_x), color(kSkin, true), !mask_pass);
+      if (marker_)  // glowing: unlit; not hand in the mask (the keyer sees it as a light, like the lamps)
+        renderer_->draw(led_, at(kMarkerOnFinger), mask_pass ? kBlack : marker_colour_, false);
     }
   }
 
@@ -344,7 +376,10 @@ class CameraSim final : public Component {
   std::unique_ptr<robot::PumaModel> model_;
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;
-  int table_ = -1, backdrop_ = -1, plate_ = -1, knob_ = -1, lamp_ = -1, palm_ = -1, finger_ = -1;
+  int table_ = -1, backdrop_ = -1, plate_ = -1, knob_ = -1, lamp_ = -1, palm_ = -1, index_ = -1, curled_ = -1,
+      thumb_ = -1, led_ = -1;
+  bool marker_ = false;
+  Eigen::Vector4f marker_colour_ = kWhite;
   std::vector<int> link_meshes_;
   robot::Vector6d q_ = robot::Vector6d::Zero();
   bool have_joints_ = false, have_hand_ = false;
@@ -366,7 +401,7 @@ class CameraSim final : public Component {
   Input<msg::JointState> joints_in_;
   Input<msg::PoseStamped> hand_in_;
   Output<msg::Image> image_, right_, true_mask_, true_depth_;
-  Output<msg::CameraInfo> info_;
+  Output<msg::CameraInfo> info_, right_info_;
   Output<msg::PoseStamped> true_eye_T_base_, true_eye_T_dev_;
 };
 

@@ -116,11 +116,12 @@ class PumaSim final : public Component {
                                    "N s/m, penalty damping of fingertip contact (pushes only)", Range{0, 1e5});
 
     ports_.declare(ctx);
-    hand_in_ = ctx.input<msg::PoseStamped>("hand_target", "where the user's fingertip is driven (base frame)",
-                                           Qos::reliable(4));
+    hand_in_ = ctx.input<msg::PoseStamped>(
+        "hand_target", "where the user's fingertip is driven, and the hand's orientation", Qos::reliable(4));
     wrench_out_ =
         ctx.output<msg::WrenchStamped>("wrench", "wrist F/T sensor, frame ft_sensor, about its origin", Qos::sensor(8));
-    hand_out_ = ctx.output<msg::PoseStamped>("hand_pose", "the fingertip's true position (base frame)");
+    hand_out_ = ctx.output<msg::PoseStamped>(
+        "hand_pose", "base_T_fingertip: the fingertip's true position, oriented as the target (x along the finger)");
 
     q0_ = to_vector6(q0);
     bias_ = to_vector6(bias);
@@ -188,10 +189,12 @@ class PumaSim final : public Component {
     }
     while (hand_in_.take(hand_msg_)) {
       const Eigen::Vector3d x = msgs::to_eigen(hand_msg_.pose().position());
-      if (x.allFinite())
-        hand_target_ = x;
+      Eigen::Quaterniond q = msgs::to_eigen(hand_msg_.pose().orientation());
+      q = q.norm() > 1e-6 ? q.normalized() : Eigen::Quaterniond::Identity();  // (a position only: unturned)
+      if (x.allFinite() && q.coeffs().allFinite())
+        hand_target_ = x, hand_q_ = q;  // the hand turns as the user turns it; only the fingertip touches
       else
-        reject(hand_in_, "a non-finite position");
+        reject(hand_in_, "a non-finite pose");
     }
     follower_->update(now.ns);
 
@@ -291,6 +294,7 @@ class PumaSim final : public Component {
     fill_header(hand_msg_out_.header(), now.ns, seq_, "base");
     hand_msg_out_.child_frame_id("hand");
     Eigen::Isometry3d hand = Eigen::Isometry3d::Identity();
+    hand.linear() = hand_q_.toRotationMatrix();
     hand.translation() = hand_x_;
     msgs::to_msg(hand, hand_msg_out_.pose());
     hand_out_.write(hand_msg_out_);
@@ -321,6 +325,7 @@ class PumaSim final : public Component {
   Vector6d tau_ = Vector6d::Zero();
   Eigen::Vector3d hand_x_ = Eigen::Vector3d::Zero(), hand_v_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hand_target_ = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond hand_q_ = Eigen::Quaterniond::Identity();  // the hand's orientation (as the target's)
   std::unique_ptr<SafetyGate> gate_;
   std::unique_ptr<SetpointFollower> follower_;
   bool started_ = false;

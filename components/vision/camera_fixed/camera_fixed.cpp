@@ -21,7 +21,8 @@ class CameraFixed final : public Component {
   void configure(Context& ctx) override {
     ctx.summary("camera-fixed mode: eye_T_base from a calibration file (OpenCV extrinsics), eye_T_dev by kinematics");
     const auto path = ctx.param<std::string>(
-        "extrinsics", "", "OpenCV FileStorage file with rvec/tvec (solvePnP's), eye_T_base or base_T_eye (cwd, then config/)");
+        "extrinsics", "",
+        "OpenCV FileStorage file with rvec/tvec (solvePnP's), eye_T_base or base_T_eye (cwd, then config/)");
     const auto urdf = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description with the frame dev");
     const double position_sigma =
         ctx.param<double>("position_sigma", 0.001, "the calibration's position uncertainty, m", Range{0, 1});

@@ -43,7 +43,8 @@ Eigen::Isometry3d load_eye_T_base(const std::string& path) {
     fs["rvec"] >> rvec;
     fs["tvec"] >> tvec;
     if (rvec.total() != 3 || tvec.total() != 3)
-      throw std::invalid_argument(where + ": expected rvec and tvec of 3 values each (solvePnP's X_eye = R X_base + t)");
+      throw std::invalid_argument(where +
+                                  ": expected rvec and tvec of 3 values each (solvePnP's X_eye = R X_base + t)");
     rvec.convertTo(rvec, CV_64F), tvec.convertTo(tvec, CV_64F);
     cv::Mat R;
     cv::Rodrigues(rvec.reshape(1, 3), R);

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "camera_model.hpp"
-#include "lamp_detector.hpp"
+#include "bright_blobs/blob_detector.hpp"
 #include "plate_markers.hpp"
 
 namespace wysiwyf::vision {

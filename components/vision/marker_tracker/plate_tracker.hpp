@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "camera_model.hpp"
-#include "lamp_detector.hpp"
+#include "bright_blobs/blob_detector.hpp"
 #include "plate_acquisition.hpp"
 #include "plate_markers.hpp"
 #include "frames/pose_covariance.hpp"
@@ -51,7 +51,7 @@ struct TrackerSettings {
   double prior_sigma_m = 0.02, prior_sigma_rad = 0.02;
   double start_velocity_sigma = 0.3, start_angular_sigma = 1.0;
   AcquisitionSettings acquisition;
-  LampDetector::Settings detector;
+  BlobDetector::Settings detector;
 };
 
 struct MatchedLamp {
@@ -104,7 +104,7 @@ class PlateTracker {
 
   PlateMarkers plate_;
   TrackerSettings s_;
-  LampDetector detector_;
+  BlobDetector detector_;
   PoseEkf ekf_;
   TrackState state_ = TrackState::kLost;
   FrameResult result_;

@@ -81,8 +81,13 @@ class StereoDepth final : public Component {
         "eye_T_dev", "optional: the device plate's pose; keyed points on it are not hand", Qos::sensor(4));
     depth_out_ =
         ctx.output<msg::Image>("depth", "metric depth of the left image, 32FC1, 0 where unknown", Qos::sensor(2));
-    hand_out_ = ctx.output<msg::PoseStamped>(
-        "hand_position", "the hand's 3D point (eye or base frame; orientation identity)", Qos::sensor(4));
+    hand_out_ = ctx.output<msg::HandPosition>(
+        "hand_position", "the hand's 3D point (base frame, or eye before eye_T_base) with covariance", Qos::sensor(4));
+    hand_sigma_ = ctx.param<double>(
+        "hand_sigma", 0.04,
+        "m: how far the keyed hand's point may be from the fingertip (the visible surface's centre is on the palm and "
+        "fingers), as noise",
+        Range{0.001, 1});
     if (!(box[0] < box[1] && box[2] < box[3] && box[4] < box[5]))
       ctx.reject("device_box", "each min must be below its max");
     if (!(s.min_depth < s.max_depth)) ctx.reject("max_depth", "must be larger than min_depth");
@@ -203,9 +208,11 @@ class StereoDepth final : public Component {
     if (!hand) return;  // no hand in view (or too little of it with depth)
     fill_header(hand_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, keyed_.header().seq(),
                 have_pose_ ? "base" : "eye");
-    hand_msg_.child_frame_id("hand");
     const Eigen::Vector3d p = have_pose_ ? Eigen::Vector3d(base_T_eye_ * hand->eye_p_hand) : hand->eye_p_hand;
-    msgs::to_msg(p, Eigen::Quaterniond::Identity(), hand_msg_.pose());
+    msgs::to_msg(p, hand_msg_.position());
+    for (std::size_t i = 0; i < 9; ++i) hand_msg_.covariance()[i] = i % 4 == 0 ? hand_sigma_ * hand_sigma_ : 0.0;
+    hand_msg_.status(msg::TRACKING_OK);
+    hand_msg_.source("stereo");
     hand_out_.write(hand_msg_);
   }
 
@@ -217,7 +224,7 @@ class StereoDepth final : public Component {
 
   std::optional<DisparityDepth> matcher_;
   HandPointOptions hand_;
-  double baseline_ = 0, info_baseline_ = 0;
+  double baseline_ = 0, info_baseline_ = 0, hand_sigma_ = 0.04;
   std::int64_t max_skew_ns_ = 0, depth_stamp_ = -1;
   Intrinsics K_;
   cv::Size K_size_;
@@ -227,12 +234,13 @@ class StereoDepth final : public Component {
   std::vector<Eigen::Vector3f> points_;
   msg::Image left_, right_, keyed_, depth_msg_;
   msg::CameraInfo info_, right_info_;
-  msg::PoseStamped pose_, hand_msg_;
+  msg::PoseStamped pose_;
+  msg::HandPosition hand_msg_;
   Input<msg::Image> left_in_, right_in_, keyed_in_;
   Input<msg::CameraInfo> info_in_, right_info_in_;
   Input<msg::PoseStamped> eye_T_base_in_, eye_T_dev_in_;
   Output<msg::Image> depth_out_;
-  Output<msg::PoseStamped> hand_out_;
+  Output<msg::HandPosition> hand_out_;
 };
 
 }  // namespace wysiwyf::vision

@@ -1,4 +1,4 @@
-#include "lamp_detector.hpp"
+#include "bright_blobs/blob_detector.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -21,8 +21,17 @@ double ring_mean(const cv::Mat& luma, const cv::Rect& r) {
 
 }  // namespace
 
-void LampDetector::luma_of(const cv::Mat& image, PixelLayout layout, cv::Rect roi, cv::Mat& luma) const {
+void BlobDetector::brightness_of(const cv::Mat& image, PixelLayout layout, cv::Rect roi, cv::Mat& luma) {
   const cv::Mat part = image(roi);
+  if (s_.brightness != Brightness::kLuma && layout != PixelLayout::kMono8) {
+    // The light's channel less the larger of the other two, saturated at 0.
+    int channel = s_.brightness == Brightness::kRedExcess ? 0 : s_.brightness == Brightness::kGreenExcess ? 1 : 2;
+    if (layout == PixelLayout::kBgr8) channel = 2 - channel;
+    cv::split(part, channels_);
+    cv::max(channels_[(channel + 1) % 3], channels_[(channel + 2) % 3], others_);
+    cv::subtract(channels_[channel], others_, luma);  // 8-bit: saturates at 0
+    return;
+  }
   switch (layout) {
     case PixelLayout::kMono8: luma = part; break;  // a view: nothing to convert
     case PixelLayout::kRgb8: cv::cvtColor(part, luma, cv::COLOR_RGB2GRAY); break;
@@ -30,7 +39,7 @@ void LampDetector::luma_of(const cv::Mat& image, PixelLayout layout, cv::Rect ro
   }
 }
 
-int LampDetector::blobs_of(const cv::Mat& luma, cv::Point origin, std::vector<Blob>& out) {
+int BlobDetector::blobs_of(const cv::Mat& luma, cv::Point origin, std::vector<Blob>& out) {
   cv::threshold(luma, mask_, s_.threshold, 255, cv::THRESH_BINARY);
   const int n = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
   int cut = 0;
@@ -68,18 +77,18 @@ int LampDetector::blobs_of(const cv::Mat& luma, cv::Point origin, std::vector<Bl
   return cut;
 }
 
-void LampDetector::detect_all(const cv::Mat& image, PixelLayout layout, std::vector<Blob>& out) {
+void BlobDetector::detect_all(const cv::Mat& image, PixelLayout layout, std::vector<Blob>& out) {
   if (image.empty()) return;
-  luma_of(image, layout, cv::Rect(0, 0, image.cols, image.rows), luma_);
+  brightness_of(image, layout, cv::Rect(0, 0, image.cols, image.rows), luma_);
   blobs_of(luma_, cv::Point(0, 0), out);
 }
 
-bool LampDetector::detect_in(const cv::Mat& image, PixelLayout layout, cv::Rect window, std::vector<Blob>& out) {
+bool BlobDetector::detect_in(const cv::Mat& image, PixelLayout layout, cv::Rect window, std::vector<Blob>& out) {
   const cv::Rect frame(0, 0, image.cols, image.rows);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const cv::Rect roi = window & frame;
     if (roi.width < 3 || roi.height < 3) return false;
-    luma_of(image, layout, roi, luma_);
+    brightness_of(image, layout, roi, luma_);
     const std::size_t before = out.size();
     const int cut = blobs_of(luma_, roi.tl(), out);
     if (cut == 0 || attempt == 1) return true;
