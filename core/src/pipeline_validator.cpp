@@ -35,6 +35,7 @@ struct PortUse {
   PortDirection direction;
   Location where;
   bool single_writer = false;
+  bool unmapped_optional = false;  // an optional input the pipeline did not connect to a topic
 };
 
 }  // namespace
@@ -94,8 +95,8 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     for (const auto& p : ctx.declared_ports()) {
       auto t = c.topics.find(p.name);
       const Location where = t != c.topics.end() ? t->second.where : c.where;
-      topics[c.topic_for(p.name)].push_back(
-          PortUse{c.name + "." + p.name, p.type_name, p.direction, where, p.qos.single_writer});
+      topics[c.topic_for(p.name)].push_back(PortUse{c.name + "." + p.name, p.type_name, p.direction, where,
+                                                    p.qos.single_writer, p.qos.optional && t == c.topics.end()});
     }
     result.described[c.name] = ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path,
                                                     ctx.declared_params(), ctx.declared_ports()};
@@ -112,10 +113,11 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         std::any_of(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
     if (!produced)
       for (const auto& use : uses)
-        result.warnings.push_back(
-            {use.where,
-             "no component of this pipeline publishes topic '" + topic + "' (read by " + use.label +
-                 "); it must come from another program"});  // An input that takes one writer (a robot's setpoint): every writer after the first is an error.
+        if (!use.unmapped_optional)
+          result.warnings.push_back({use.where, "no component of this pipeline publishes topic '" + topic +
+                                                    "' (read by " + use.label +
+                                                    "); it must come from another program"});
+    // An input that takes one writer (a robot's setpoint): every writer after the first is an error.
     const auto one_writer = std::find_if(uses.begin(), uses.end(), [](const PortUse& u) { return u.single_writer; });
     if (one_writer == uses.end()) continue;
     const PortUse* first_writer = nullptr;

@@ -65,8 +65,8 @@ class LedRig {
     msg::Image l, r;
     msg::CameraInfo li, ri;
     msg::PoseStamped pose;
-    EXPECT_TRUE(left_.take_latest(l) && right_.take_latest(r) && info_.take_latest(li) &&
-                right_info_.take_latest(ri) && eye_T_base_.take_latest(pose));
+    EXPECT_TRUE(left_.take_latest(l) && right_.take_latest(r) && info_.take_latest(li) && right_info_.take_latest(ri) &&
+                eye_T_base_.take_latest(pose));
     t_left_.write(l), t_right_.write(r), t_info_.write(li), t_right_info_.write(ri), t_pose_.write(pose);
     tracker_.tick(t);
     return hand_.take_latest(out);
@@ -118,9 +118,10 @@ TEST(FingertipTracker, FollowsTheLedOverAReachWithinItsStatedUncertainty) {
     worst_mahalanobis = std::max(worst_mahalanobis, m2);
     ++fixes;
   }
-  std::printf("[measured] %d fixes: the LED's centre within %.1f mm, the fingertip within %.1f mm; worst squared "
-              "Mahalanobis distance of the fingertip %.2f\n",
-              fixes, worst_led * 1e3, worst_tip * 1e3, worst_mahalanobis);
+  std::printf(
+      "[measured] %d fixes: the LED's centre within %.1f mm, the fingertip within %.1f mm; worst squared "
+      "Mahalanobis distance of the fingertip %.2f\n",
+      fixes, worst_led * 1e3, worst_tip * 1e3, worst_mahalanobis);
   // The LED's visible half-dome (5 mm; the finger hides the rest) centres 2 mm off its centre, and
   // a tenth of a pixel of disparity is 2.5 mm of depth at 1 m (fx 600, B 6 cm).
   EXPECT_LT(worst_led, 0.006);

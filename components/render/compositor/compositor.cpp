@@ -90,9 +90,10 @@ class Compositor final : public Component {
     hand_in_ = ctx.input<msg::Image>("hand", "the keyed hand, rgba8 premultiplied", Qos::sensor(2));
     real_depth_in_ =
         ctx.input<msg::Image>("real_depth", "metric depth of the real scene, 32FC1 (0: unknown)", Qos::sensor(2));
-    camera_in_ = ctx.input<msg::Image>("camera", "instead of hand: the camera image, rgb8 ...", Qos::sensor(2));
+    camera_in_ =
+        ctx.input<msg::Image>("camera", "instead of hand: the camera image, rgb8 ...", Qos::sensor(2).optional_input());
     mask_in_ = ctx.input<msg::Image>("hand_mask", "... and a hand mask, mono8 (a hardware keyer, or ground truth)",
-                                     Qos::sensor(2));
+                                     Qos::sensor(2).optional_input());
     out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
   }
 

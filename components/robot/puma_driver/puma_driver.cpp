@@ -65,7 +65,7 @@ class PumaDriver final : public Component {
     ports_.declare(ctx);
     wrench_in_ = ctx.input<msg::WrenchStamped>(
         "wrench", "the wrist F/T sensor (ft_netft), for the force limit; leave unconnected to go without",
-        Qos::sensor(16));
+        Qos::sensor(16).optional_input());
 
     dt_ = arm_.gate.dt;
     model_ = load_arm_model(ctx, arm_);

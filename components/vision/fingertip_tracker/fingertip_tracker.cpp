@@ -36,9 +36,8 @@ class FingertipTracker final : public Component {
                        : colour == "green" ? Brightness::kGreenExcess
                        : colour == "blue"  ? Brightness::kBlueExcess
                                            : Brightness::kLuma;
-    blobs.threshold =
-        ctx.param<int>("threshold", colour == "bright" ? 230 : 70, "brightness (0..255) above which a pixel is LED",
-                       Range{1, 254});
+    blobs.threshold = ctx.param<int>("threshold", colour == "bright" ? 230 : 70,
+                                     "brightness (0..255) above which a pixel is LED", Range{1, 254});
     blobs.min_area = ctx.param<int>("min_area", 2, "smallest LED blob, px", Range{1, 10000});
     blobs.max_area = ctx.param<int>("max_area", 1500, "largest LED blob, px", Range{1, 100000});
     blobs.min_fill = 0.3;
@@ -47,8 +46,8 @@ class FingertipTracker final : public Component {
         "marker_offset_sigma", 0.01,
         "m: where the LED sits from the fingertip's centre (on the nail, about a finger's radius away), as noise",
         Range{0, 0.1});
-    baseline_ = ctx.param<double>("baseline", 0.0, "the right camera along +x of the left, m (0: from right_camera_info)",
-                                  Range{0, 2});
+    baseline_ = ctx.param<double>("baseline", 0.0,
+                                  "the right camera along +x of the left, m (0: from right_camera_info)", Range{0, 2});
     min_depth_ = ctx.param<double>("min_depth", 0.2, "nearest LED looked for, m", Range{0.01, 100});
     max_depth_ = ctx.param<double>("max_depth", 3.0, "farthest LED looked for, m", Range{0.01, 100});
     row_tolerance_ = ctx.param<double>("row_tolerance", 1.5,
@@ -56,18 +55,20 @@ class FingertipTracker final : public Component {
                                        Range{0.1, 50});
     min_window_ = ctx.param<int>("min_window", 16, "search window half size at least, px", Range{2, 1000});
     max_window_ = ctx.param<int>("max_window", 120, "search window half size at most, px", Range{2, 2000});
-    lost_after_ = ctx.param<int>("lost_after", 3, "stereo pairs without the LED before the hand is LOST", Range{1, 1000});
+    lost_after_ =
+        ctx.param<int>("lost_after", 3, "stereo pairs without the LED before the hand is LOST", Range{1, 1000});
     max_skew_ns_ = static_cast<std::int64_t>(
         ctx.param<double>("max_skew_ms", 5.0, "left and right frames further apart in time are not paired, ms",
                           Range{0, 1000}) *
         1e6);
     left_in_ = ctx.input<msg::Image>("left", "left (reference) image, rectified: rgb8, bgr8 or mono8", Qos::sensor(2));
-    right_in_ = ctx.input<msg::Image>("right", "right image, rectified, displaced along +x of the left", Qos::sensor(2));
+    right_in_ =
+        ctx.input<msg::Image>("right", "right image, rectified, displaced along +x of the left", Qos::sensor(2));
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "the left camera's intrinsics (K)", Qos::sensor(2));
-    right_info_in_ = ctx.input<msg::CameraInfo>("right_camera_info", "the right camera's P: the baseline (P[3] = -fx B)",
-                                                Qos::sensor(2));
-    eye_T_base_in_ = ctx.input<msg::PoseStamped>("eye_T_base", "the camera's pose (tracker or calibration)",
-                                                 Qos::sensor(4));
+    right_info_in_ = ctx.input<msg::CameraInfo>(
+        "right_camera_info", "the right camera's P: the baseline (P[3] = -fx B)", Qos::sensor(2).optional_input());
+    eye_T_base_in_ =
+        ctx.input<msg::PoseStamped>("eye_T_base", "the camera's pose (tracker or calibration)", Qos::sensor(4));
     hand_out_ = ctx.output<msg::HandPosition>("hand", "the fingertip in base, with covariance; LOST when not seen",
                                               Qos::sensor(8));
     if (min_depth_ >= max_depth_) ctx.reject("max_depth", "must be larger than min_depth");
@@ -133,10 +134,11 @@ class FingertipTracker final : public Component {
       reject(right_in_, bad + " (a rectified pair has one encoding and size)");
       return false;
     }
-    const char* missing = camera_.fx <= 0       ? "no intrinsics yet (camera_info)"
-                          : camera_.baseline <= 0 ? "no baseline: set the baseline parameter or connect right_camera_info"
-                          : !have_pose_          ? "no camera pose yet (eye_T_base)"
-                                                 : nullptr;
+    const char* missing = camera_.fx <= 0 ? "no intrinsics yet (camera_info)"
+                          : camera_.baseline <= 0
+                              ? "no baseline: set the baseline parameter or connect right_camera_info"
+                          : !have_pose_ ? "no camera pose yet (eye_T_base)"
+                                        : nullptr;
     if (missing) {
       warn_once(std::string(missing) + "; stereo pairs are skipped until it comes");
       return false;
@@ -147,7 +149,9 @@ class FingertipTracker final : public Component {
   // The LED in both images of the pair, triangulated and published; false when it is not found.
   bool locate(std::int64_t stamp) {
     const std::string_view enc = left_.encoding().c_str();
-    const PixelLayout layout = enc == "rgb8" ? PixelLayout::kRgb8 : enc == "bgr8" ? PixelLayout::kBgr8 : PixelLayout::kMono8;
+    const PixelLayout layout = enc == "rgb8"   ? PixelLayout::kRgb8
+                               : enc == "bgr8" ? PixelLayout::kBgr8
+                                               : PixelLayout::kMono8;
     const cv::Mat left = image::view(left_), right = image::view(right_);
     // Left: in the window around the prediction; the whole image without a track or when it is not there.
     found_.clear();
@@ -156,18 +160,19 @@ class FingertipTracker final : public Component {
     if (tracking) {
       const double dt = static_cast<double>(stamp - last_ns_) * 1e-9;
       predicted = last_ + velocity_ * dt;
-      const double half = std::clamp(min_window_ + std::hypot(velocity_.x, velocity_.y) * dt, double(min_window_),
-                                     double(max_window_));
+      const double half =
+          std::clamp(min_window_ + std::hypot(velocity_.x, velocity_.y) * dt, double(min_window_), double(max_window_));
       const int h = static_cast<int>(std::ceil(half));
-      detector_.detect_in(left, layout,
-                          cv::Rect(static_cast<int>(predicted.x) - h, static_cast<int>(predicted.y) - h, 2 * h + 1, 2 * h + 1),
-                          found_);
+      detector_.detect_in(
+          left, layout,
+          cv::Rect(static_cast<int>(predicted.x) - h, static_cast<int>(predicted.y) - h, 2 * h + 1, 2 * h + 1), found_);
     }
     if (found_.empty()) detector_.detect_all(left, layout, found_);
     // Nearest the prediction; without a track, the one with a partner in the right image.
     std::sort(found_.begin(), found_.end(), [&](const Blob& a, const Blob& b) {
-      return tracking ? std::hypot(a.u - predicted.x, a.v - predicted.y) < std::hypot(b.u - predicted.x, b.v - predicted.y)
-                      : a.area > b.area;
+      return tracking
+                 ? std::hypot(a.u - predicted.x, a.v - predicted.y) < std::hypot(b.u - predicted.x, b.v - predicted.y)
+                 : a.area > b.area;
     });
     for (const Blob& l : found_) {
       const auto u_right = match_right(right, layout, l);
@@ -225,8 +230,8 @@ class FingertipTracker final : public Component {
 
   BlobDetector detector_;
   StereoCamera camera_;
-  double pixel_sigma_ = 0.3, offset_sigma_ = 0.01, baseline_ = 0, info_baseline_ = 0, min_depth_ = 0.2,
-         max_depth_ = 3, row_tolerance_ = 1.5;
+  double pixel_sigma_ = 0.3, offset_sigma_ = 0.01, baseline_ = 0, info_baseline_ = 0, min_depth_ = 0.2, max_depth_ = 3,
+         row_tolerance_ = 1.5;
   int min_window_ = 16, max_window_ = 120, lost_after_ = 3, misses_ = 0;
   std::int64_t max_skew_ns_ = 0;
   // the track, in the left image

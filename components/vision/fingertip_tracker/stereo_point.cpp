@@ -2,8 +2,7 @@
 
 namespace wysiwyf::vision {
 
-std::optional<StereoPoint> triangulate(const StereoCamera& c, double u, double v, double u_right,
-                                       double pixel_sigma) {
+std::optional<StereoPoint> triangulate(const StereoCamera& c, double u, double v, double u_right, double pixel_sigma) {
   const double d = u - u_right;
   if (!(d > 0) || c.baseline <= 0) return std::nullopt;
   const double z = c.fx * c.baseline / d;

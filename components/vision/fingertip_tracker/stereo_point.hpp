@@ -15,7 +15,7 @@ struct StereoCamera {
 };
 
 struct StereoPoint {
-  Eigen::Vector3d eye_p = Eigen::Vector3d::Zero();     // m, left camera frame
+  Eigen::Vector3d eye_p = Eigen::Vector3d::Zero();       // m, left camera frame
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, left camera axes
 };
 

@@ -81,7 +81,7 @@ class MarkerTracker final : public Component {
         ctx.param<double>("max_fix_rms", 2.0, "a PnP fix must reproject within this, px", Range{0.01, 100});
     image_in_ = ctx.input<msg::Image>("image", "camera image: rgb8, bgr8 or mono8", Qos::sensor(2));
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "intrinsics and distortion (unless `intrinsics` is set)",
-                                          Qos::sensor(2));
+                                          Qos::sensor(2).optional_input());
     joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints: the device's motion", Qos::sensor(64));
     eye_T_base_out_ =
         ctx.output<msg::PoseStamped>("eye_T_base", "where the robot base is seen from the camera", Qos::sensor(4));

@@ -71,22 +71,24 @@ class StereoDepth final : public Component {
     right_in_ = ctx.input<msg::Image>("right", "right image, rectified, displaced along +x, same encoding and size",
                                       Qos::sensor(2));
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "the left camera's intrinsics (K)", Qos::sensor(2));
-    right_info_in_ = ctx.input<msg::CameraInfo>(
-        "right_camera_info", "optional: the right camera's P gives the baseline (P[3] = -fx B)", Qos::sensor(2));
+    right_info_in_ = ctx.input<msg::CameraInfo>("right_camera_info",
+                                                "optional: the right camera's P gives the baseline (P[3] = -fx B)",
+                                                Qos::sensor(2).optional_input());
     keyed_in_ = ctx.input<msg::Image>("keyed", "optional: the keyer's rgba8 hand of the left image (alpha = hand)",
-                                      Qos::sensor(2));
+                                      Qos::sensor(2).optional_input());
     eye_T_base_in_ = ctx.input<msg::PoseStamped>(
-        "eye_T_base", "optional: the camera's pose; the hand is then given in base", Qos::sensor(4));
-    eye_T_dev_in_ = ctx.input<msg::PoseStamped>(
-        "eye_T_dev", "optional: the device plate's pose; keyed points on it are not hand", Qos::sensor(4));
+        "eye_T_base", "optional: the camera's pose; the hand is then given in base", Qos::sensor(4).optional_input());
+    eye_T_dev_in_ =
+        ctx.input<msg::PoseStamped>("eye_T_dev", "optional: the device plate's pose; keyed points on it are not hand",
+                                    Qos::sensor(4).optional_input());
     depth_out_ =
         ctx.output<msg::Image>("depth", "metric depth of the left image, 32FC1, 0 where unknown", Qos::sensor(2));
     hand_out_ = ctx.output<msg::HandPosition>(
         "hand_position", "the hand's 3D point (base frame, or eye before eye_T_base) with covariance", Qos::sensor(4));
     hand_sigma_ = ctx.param<double>(
-        "hand_sigma", 0.04,
-        "m: how far the keyed hand's point may be from the fingertip (the visible surface's centre is on the palm and "
-        "fingers), as noise",
+        "hand_sigma", 0.05,
+        "m: the hand point's standard deviation as the fingertip's (the visible surface's centre is on the palm, "
+        "10-15 cm behind a pointing fingertip: 3 sigma covers that)",
         Range{0.001, 1});
     if (!(box[0] < box[1] && box[2] < box[3] && box[4] < box[5]))
       ctx.reject("device_box", "each min must be below its max");

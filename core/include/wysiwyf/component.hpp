@@ -99,7 +99,7 @@ class Component {
 };
 
 // Bumped whenever the Component/Context/port layout changes incompatibly.
-constexpr std::uint32_t kAbiVersion = 2;
+constexpr std::uint32_t kAbiVersion = 3;
 
 // The C entry point's answer. abi_version stays the first field in every version.
 struct ComponentEntry {

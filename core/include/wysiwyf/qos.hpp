@@ -16,6 +16,9 @@ struct Qos {
   // An input that takes one writer only (a robot's setpoint): a second output port on its topic
   // is a validation error.
   bool single_writer = false;
+  // An input the component works without (an alternative source, a cross-check): left
+  // unconnected in a pipeline, it is not worth a warning (mapped to a topic nobody writes, it is).
+  bool optional = false;
 
   static Qos reliable(int depth = 4) { return Qos{Reliability::kReliable, Durability::kVolatile, depth, 0}; }
   // Latest-value streams (images, sensor data): lose a sample rather than wait for it.
@@ -23,6 +26,11 @@ struct Qos {
   Qos one_writer() const {
     Qos q = *this;
     q.single_writer = true;
+    return q;
+  }
+  Qos optional_input() const {
+    Qos q = *this;
+    q.optional = true;
     return q;
   }
 };
