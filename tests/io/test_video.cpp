@@ -100,6 +100,34 @@ TEST(Video, TheCameraTakesTheLensDistortionOut) {
   EXPECT_GT(std::hypot(seen[0].x - 290, seen[0].y - 215), 10) << "the lens must move the dot for this to test anything";
 }
 
+// The right camera of a rectified stereo pair (cv::stereoRectify's R and P): camera_info carries
+// P, whose P[0][3] = -fx B gives stereo readers the baseline, and K = P's left 3x3.
+TEST(Video, TheRightCameraOfARectifiedPairGivesItsBaseline) {
+  const auto dir = std::filesystem::path(WYSIWYF_TEST_SCRATCH_DIR) / "rectified";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  {
+    cv::FileStorage fs((dir / "right.yaml").string(), cv::FileStorage::WRITE);
+    fs << "image_width" << 320 << "image_height" << 240 << "camera_matrix"
+       << cv::Mat(cv::Matx33d(302, 0, 161, 0, 301, 118, 0, 0, 1)) << "distortion_coefficients"
+       << cv::Mat(std::vector<double>{0.01, 0, 0, 0, 0}).t() << "rectification_matrix" << cv::Mat(cv::Matx33d::eye())
+       << "projection_matrix" << cv::Mat(cv::Matx34d(300, 0, 160, -300 * 0.06, 0, 300, 120, 0, 0, 0, 1, 0));
+  }
+  cv::imwrite((dir / "frame_0.png").string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(30, 60, 90)));
+  Harness cam("camera",
+              "{source: " + (dir / "frame_%d.png").string() + ", calibration: " + (dir / "right.yaml").string() + "}",
+              25);
+  auto info = cam.watch<msg::CameraInfo>("camera_info");
+  cam.activate();
+  cam.tick(Time{0});
+  msg::CameraInfo ci;
+  ASSERT_TRUE(info.take_latest(ci));
+  EXPECT_DOUBLE_EQ(-ci.p()[3] / ci.p()[0], 0.06);
+  EXPECT_DOUBLE_EQ(ci.k()[0], 300);
+  EXPECT_DOUBLE_EQ(ci.k()[2], 160);
+  for (double d : ci.d()) EXPECT_EQ(d, 0.0);
+}
+
 TEST(Video, AMissingCameraSourceIsAClearErrorAtActivation) {
   Harness cam("camera", "{source: /nonexistent/clip.mp4}", 25);
   try {

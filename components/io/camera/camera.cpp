@@ -1,9 +1,11 @@
 // camera: a real camera (or a recording) through OpenCV's VideoCapture: a V4L2 device
 // ("/dev/video0" or "0"), a video file, or a GStreamer pipeline string. Intrinsics come from an
-// OpenCV calibration file (camera_matrix, distortion_coefficients); with `undistort` (the
-// default) the lens distortion is taken out of every frame (one remap through maps made once)
-// and camera_info says so (no distortion, the same K): the renderer draws a pinhole camera, and
-// the filmed hand must lie where the drawn scene does. A missing source is an error at
+// OpenCV calibration file (camera_matrix, distortion_coefficients; for a camera of a rectified
+// stereo pair also rectification_matrix and projection_matrix); with `undistort` (the default)
+// the lens distortion (and the rectifying rotation) is taken out of every frame (one remap
+// through maps made once) and camera_info says so (no distortion, K from P): the renderer draws a
+// pinhole camera, the filmed hand must lie where the drawn scene does, and a stereo matcher wants
+// rows to be epipolar lines. A missing source is an error at
 // activation; a source lost while running is reported and reopened, and the pipeline keeps
 // running.
 #include <opencv2/calib3d.hpp>
@@ -13,6 +15,7 @@
 
 #include "image/image_view.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::io {
@@ -23,8 +26,10 @@ class Camera final : public Component {
     ctx.summary("a camera, video file or GStreamer pipeline through OpenCV VideoCapture");
     source_ = ctx.param<std::string>("source", "0", "device index or path, video file, or GStreamer pipeline");
     backend_ = ctx.param_choice("backend", "any", "VideoCapture API", {"any", "v4l2", "ffmpeg", "gstreamer"});
-    calibration_ =
-        ctx.param<std::string>("calibration", "", "OpenCV calibration YAML (camera_matrix, distortion_coefficients)");
+    calibration_ = ctx.param<std::string>(
+        "calibration", "",
+        "OpenCV calibration YAML (camera_matrix, distortion_coefficients[, rectification_matrix, projection_matrix]); "
+        "cwd, then config/");
     at_end_ = ctx.param_choice("at_end", "stop", "when a file ends", {"stop", "loop", "hold"});
     reopen_s_ = ctx.param<double>("reopen_after", 1.0, "seconds without frames before reopening a lost source",
                                   Range{0.05, 60});
@@ -101,35 +106,57 @@ class Camera final : public Component {
     return index ? capture_.open(std::stoi(source_), api) : capture_.open(source_, api);
   }
 
+  // The calibration file: camera_matrix, distortion_coefficients, image_width/height; for one
+  // camera of a rectified stereo pair also rectification_matrix (R) and projection_matrix (P, 3x4:
+  // the right camera's P[0][3] = -fx B), as cv::stereoRectify gives them.
   void load_calibration() {
+    calibration_ = find_config_file(calibration_);  // throws, naming where it looked
     cv::FileStorage fs(calibration_, cv::FileStorage::READ);
     if (!fs.isOpened()) throw std::invalid_argument("calibration: cannot read '" + calibration_ + "'");
-    cv::Mat K, D;
+    const std::string where = "calibration '" + calibration_ + "'";
+    cv::Mat K, D, R, P;
     fs["camera_matrix"] >> K;
     fs["distortion_coefficients"] >> D;
-    if (K.rows != 3 || K.cols != 3)
-      throw std::invalid_argument("calibration '" + calibration_ + "': expected a 3x3 camera_matrix");
+    fs["rectification_matrix"] >> R;
+    fs["projection_matrix"] >> P;
+    if (K.rows != 3 || K.cols != 3) throw std::invalid_argument(where + ": expected a 3x3 camera_matrix");
+    if (!R.empty() && (R.rows != 3 || R.cols != 3))
+      throw std::invalid_argument(where + ": expected a 3x3 rectification_matrix");
+    if (!P.empty() && (P.rows != 3 || P.cols != 4))
+      throw std::invalid_argument(where + ": expected a 3x4 projection_matrix");
     K.convertTo(K, CV_64F);
+    if (!D.empty()) D.convertTo(D, CV_64F);
+    if (!R.empty()) R.convertTo(R, CV_64F);
+    if (!P.empty()) P.convertTo(P, CV_64F);
     info_msg_.width(static_cast<std::uint32_t>(static_cast<int>(fs["image_width"])));
     info_msg_.height(static_cast<std::uint32_t>(static_cast<int>(fs["image_height"])));
     info_msg_.distortion_model("plumb_bob");
     info_msg_.d().clear();
-    if (!D.empty()) D.convertTo(D, CV_64F);
     const bool distorted = !D.empty() && cv::countNonZero(D) > 0;
-    if (undistort_ && distorted) {
-      // Frames are remapped to the pinhole with the same K: camera_info then carries no distortion.
+    const bool rectified = !R.empty() || !P.empty();
+    const cv::Mat new_K = P.empty() ? K : P(cv::Rect(0, 0, 3, 3)).clone();
+    if (undistort_ && (distorted || rectified)) {
+      // Frames are remapped to the pinhole new_K (rotated by R for a rectified pair): camera_info
+      // then carries no distortion and no rotation.
       const cv::Size size(static_cast<int>(info_msg_.width()), static_cast<int>(info_msg_.height()));
       if (size.width <= 0 || size.height <= 0)
-        throw std::invalid_argument("calibration '" + calibration_ + "': expected image_width and image_height");
-      cv::initUndistortRectifyMap(K, D, cv::Mat(), K, size, CV_16SC2, map1_, map2_);
+        throw std::invalid_argument(where + ": expected image_width and image_height");
+      cv::initUndistortRectifyMap(K, D.empty() ? cv::Mat() : D, R, new_K, size, CV_16SC2, map1_, map2_);
       info_msg_.d().assign(5, 0.0);
+      for (int i = 0; i < 9; ++i) info_msg_.k()[i] = new_K.at<double>(i / 3, i % 3);
+      info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     } else {
       for (int i = 0; i < static_cast<int>(D.total()) && i < 14; ++i) info_msg_.d().push_back(D.at<double>(i));
+      for (int i = 0; i < 9; ++i) info_msg_.k()[i] = K.at<double>(i / 3, i % 3);
+      info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+      if (!R.empty())
+        for (int i = 0; i < 9; ++i) info_msg_.r()[i] = R.at<double>(i / 3, i % 3);
     }
-    for (int i = 0; i < 9; ++i) info_msg_.k()[i] = K.at<double>(i / 3, i % 3);
-    info_msg_.r() = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    info_msg_.p() = {
-        K.at<double>(0, 0), 0, K.at<double>(0, 2), 0, 0, K.at<double>(1, 1), K.at<double>(1, 2), 0, 0, 0, 1, 0};
+    if (!P.empty())
+      for (int i = 0; i < 12; ++i) info_msg_.p()[i] = P.at<double>(i / 4, i % 4);
+    else
+      info_msg_.p() = {
+          K.at<double>(0, 0), 0, K.at<double>(0, 2), 0, 0, K.at<double>(1, 1), K.at<double>(1, 2), 0, 0, 0, 1, 0};
   }
 
   std::string source_, backend_, calibration_, at_end_;
