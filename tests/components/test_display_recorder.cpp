@@ -3,7 +3,7 @@
 // robot's setpoint, the modes, the planner's status, the user's events). Used by tests only.
 // Columns of `samples`: t_ns, mode, planner_state, q0..5, qd0..5, hand xyz, plate xyz, plate
 // quaternion xyzw, setpoint xyz, target xyz, target quaternion xyzw, separation, speed_limit,
-// wrist force xyz, target feature.
+// wrist force xyz, target feature, tracked hand xyz and status (the last HandPosition).
 #include <cstdio>
 #include <fstream>
 
@@ -28,6 +28,7 @@ class TestDisplayRecorder final : public Component {
     planner_ = ctx.input<msg::PlannerStatus>("planner", "", Qos::reliable(64));
     events_ = ctx.input<msg::UserEvent>("events", "", Qos::reliable(64));
     wrench_ = ctx.input<msg::WrenchStamped>("wrench", "", Qos::reliable(8));
+    tracked_ = ctx.input<msg::HandPosition>("tracked_hand", "", Qos::reliable(8));
   }
 
   void tick(Time now) override {
@@ -40,6 +41,8 @@ class TestDisplayRecorder final : public Component {
     while (setpoint_.take(s_)) {
     }
     while (wrench_.take(w_)) {
+    }
+    while (tracked_.take(t_)) {
     }
     while (mode_.take(m_)) {
       if (m_.mode() != last_mode_) {
@@ -125,7 +128,9 @@ class TestDisplayRecorder final : public Component {
     }
     samples_text_ += ",";
     samples_text_ += p_.feature().c_str();
-    samples_text_ += "\n";
+    std::snprintf(row, sizeof row, ",%.9g,%.9g,%.9g,%d\n", t_.position().x(), t_.position().y(), t_.position().z(),
+                  static_cast<int>(t_.status()));
+    samples_text_ += row;
   }
 
   void deactivate() override {
@@ -145,6 +150,8 @@ class TestDisplayRecorder final : public Component {
   msg::PlannerStatus p_;
   msg::UserEvent e_;
   msg::WrenchStamped w_;
+  msg::HandPosition t_;
+  Input<msg::HandPosition> tracked_;
   Input<msg::JointState> joints_;
   Input<msg::PoseStamped> hand_, device_;
   Input<msg::CartesianSetpoint> setpoint_;

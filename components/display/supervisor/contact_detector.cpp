@@ -2,8 +2,8 @@
 
 namespace wysiwyf::display {
 
-ContactDetector::Event ContactDetector::update(std::int64_t now_ns, double force, double hand_distance,
-                                               bool in_contact) {
+ContactDetector::Event ContactDetector::update(std::int64_t now_ns, double force, double hand_distance, bool in_contact,
+                                               double hand_sigma) {
   const auto held = [&](std::int64_t& since, bool condition, double dwell) {
     if (!condition) {
       since = -1;
@@ -17,7 +17,7 @@ ContactDetector::Event ContactDetector::update(std::int64_t now_ns, double force
     below_since_ = -1;
     if (!held(above_since_, force > t_.contact_force, t_.contact_dwell)) return Event::kNone;
     above_since_ = -1;
-    return !hand_known || hand_distance <= t_.contact_distance ? Event::kTouch : Event::kForeignForce;
+    return !hand_known || hand_distance <= t_.contact_distance + 3 * hand_sigma ? Event::kTouch : Event::kForeignForce;
   }
   above_since_ = -1;
   if (!held(below_since_, force < t_.release_force, t_.release_dwell)) return Event::kNone;

@@ -21,10 +21,13 @@ class ContactDetector {
 
   explicit ContactDetector(ContactThresholds t = {}) : t_(t) {}
 
-  // One force sample (N, the user's) at now_ns; hand_distance < 0: no hand tracked. `in_contact`:
-  // the display's current view. kForeignForce: a force held on the plate while the tracked hand is
-  // far from it (something else touches the arm).
-  Event update(std::int64_t now_ns, double force, double hand_distance, bool in_contact);
+  // One force sample (N, the user's) at now_ns; hand_distance < 0: no hand tracked; hand_sigma:
+  // the tracker's standard deviation (m, its covariance's largest axis). `in_contact`: the
+  // display's current view. A touch needs the hand within contact_distance + 3 sigma (a tracker
+  // that says it is unsure may be that far off); kForeignForce: a force held on the plate while
+  // even that cannot explain it (something else touches the arm). A release needs the best
+  // estimate of the hand at least release_distance away.
+  Event update(std::int64_t now_ns, double force, double hand_distance, bool in_contact, double hand_sigma = 0);
   void reset() { above_since_ = below_since_ = -1; }
 
  private:

@@ -17,6 +17,7 @@
 // non-finite input, a setpoint from another source than its port's, a setpoint that jumps faster
 // than max_setpoint_speed, the arm, the planner or admittance_sim failing, a force on the plate
 // with the hand far from it.
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -166,6 +167,9 @@ class Supervisor final : public Component {
         continue;
       }
       hand_ = p, hand_ns_ = now_ns;
+      const auto& c = hand_msg_.covariance();
+      const double variance = std::max({c[0], c[4], c[8]});  // the largest axis, near enough
+      hand_sigma_ = std::isfinite(variance) && variance > 0 ? std::sqrt(variance) : 0.0;
     }
     while (robot_in_.take(robot_msg_)) robot_ns_ = now_ns;
     while (planner_in_.take(planner_msg_)) planner_ns_ = now_ns;
@@ -256,7 +260,7 @@ class Supervisor final : public Component {
         haptics::user_load(reading_, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
             .force.norm();
     const double hand_distance = now_ns - hand_ns_ <= 200'000'000 && hand_ns_ >= 0 ? plate_distance(hand_) : -1;
-    switch (detector_.update(now_ns, force, hand_distance, mode_ == msg::MODE_ADMITTANCE)) {
+    switch (detector_.update(now_ns, force, hand_distance, mode_ == msg::MODE_ADMITTANCE, hand_sigma_)) {
       case ContactDetector::Event::kTouch:
         attach(now_ns);
         enter(msg::MODE_ADMITTANCE, now_ns, "touch: " + std::to_string(force) + " N");
@@ -266,8 +270,8 @@ class Supervisor final : public Component {
         enter(msg::MODE_SURFACE, now_ns, "release");
         break;
       case ContactDetector::Event::kForeignForce:
-        bad(std::to_string(force) + " N on the plate with the hand " + std::to_string(hand_distance) +
-                " m away: something else touches the arm",
+        bad(std::to_string(force) + " N on the plate with the hand " + std::to_string(hand_distance) + " m (sigma " +
+                std::to_string(hand_sigma_) + " m) away: something else touches the arm",
             now_ns);
         break;
       case ContactDetector::Event::kNone: break;
@@ -378,6 +382,7 @@ class Supervisor final : public Component {
   bool have_reading_ = false, have_device_ = false;
   Eigen::Isometry3d device_ = Eigen::Isometry3d::Identity();
   Vec3 hand_ = Vec3::Zero();
+  double hand_sigma_ = 0;  // m, the tracker's stated uncertainty
   std::int64_t wrench_ns_ = -1, hand_ns_ = -1, robot_ns_ = -1, planner_ns_ = -1;
   std::map<std::string, Eigen::Isometry3d> base_T_obj_;
   // the mode

@@ -40,7 +40,8 @@ double sphere_entry(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Ei
 const haptics::DisplayFeature* FeatureChooser::choose(const haptics::Scene& scene,
                                                       const std::vector<Eigen::Isometry3d>& base_T_obj,
                                                       const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
-                                                      std::int64_t now_ns) {
+                                                      std::int64_t now_ns,
+                                                      const std::set<const haptics::DisplayFeature*>* unreachable) {
   // The predicted path: up to the horizon, or to where the hand would stop: entering an object,
   // or on a knob's tip (within its radius).
   double t_end = horizon_;
@@ -63,7 +64,7 @@ const haptics::DisplayFeature* FeatureChooser::choose(const haptics::Scene& scen
       const Eigen::Vector3d local = obj_T_base * p;
       if (f.in_front(local)) best = std::min(best, f.distance(local));  // (a face is touched from its outside)
     }
-    return best;
+    return unreachable && unreachable->count(&f) ? best + penalty_ : best;
   };
   const haptics::DisplayFeature* nearest = nullptr;
   double nearest_distance = std::numeric_limits<double>::infinity();

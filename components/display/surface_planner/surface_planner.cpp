@@ -21,6 +21,8 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <map>
+#include <set>
 #include <memory>
 
 #include "arm_clearance/arm_clearance.hpp"
@@ -63,7 +65,11 @@ class SurfacePlanner final : public Component {
     const double hysteresis = ctx.param<double>(
         "hysteresis", 0.03, "m another feature must be nearer the hand's path to take over", Range{0, 1});
     const double dwell = ctx.param<double>("switch_dwell", 0.1, "s it must stay nearer", Range{0, 5});
-    chooser_ = std::make_unique<FeatureChooser>(horizon, hysteresis, dwell);
+    const double penalty = ctx.param<double>(
+        "unreachable_penalty", 0.05,
+        "m a feature the arm cannot display counts farther from the hand's path (a tie goes to one it can)",
+        Range{0, 10});
+    chooser_ = std::make_unique<FeatureChooser>(horizon, hysteresis, dwell, penalty);
     accel_density_ = ctx.param<double>("hand_accel_density", 20.0, "the hand filter's white acceleration, (m/s^2)^2/Hz",
                                        Range{1e-3, 1e6});
     hand_timeout_ns_ = static_cast<std::int64_t>(
@@ -249,8 +255,13 @@ class SurfacePlanner final : public Component {
 
   // The feature the hand goes for; a new one (or its object moved) gets a new path.
   void choose_target(const Vec3& hand, std::int64_t now_ns) {
+    // The features found out of reach, while their objects have not moved since.
+    unreachable_set_.clear();
+    for (const auto& [feature, where] : unreachable_at_)
+      if ((base_T_obj_[static_cast<std::size_t>(feature->body)].translation() - where).norm() <= 0.002)
+        unreachable_set_.insert(feature);
     const haptics::DisplayFeature* f =
-        chooser_->choose(scene_, base_T_obj_, hand, hand_.significant_velocity(), now_ns);
+        chooser_->choose(scene_, base_T_obj_, hand, hand_.significant_velocity(), now_ns, &unreachable_set_);
     if (!f) return;
     const Eigen::Isometry3d& base_T_obj = base_T_obj_[static_cast<std::size_t>(f->body)];
     const bool moved = target_feature_ == f && (base_T_obj.translation() - planned_obj_.translation()).norm() > 0.002;
@@ -305,12 +316,14 @@ class SurfacePlanner final : public Component {
       if (why.empty()) {
         path_ = path;
         target_ = target;
+        unreachable_at_.erase(&f);
         return;
       }
       unreachable_ = why;
     }
     path_.clear();  // stay where it is
     target_ = cmd_;
+    unreachable_at_[&f] = base_T_obj.translation();
     warn_once("unreachable " + f.name, "'" + f.name + "' is out of the arm's reach: " + unreachable_);
   }
 
@@ -451,6 +464,8 @@ class SurfacePlanner final : public Component {
   double kappa_ = 0, separation_ = kInf, allowed_ = 0;
   const char* nearest_part_ = "";
   std::string unreachable_;
+  std::map<const haptics::DisplayFeature*, Vec3> unreachable_at_;  // where its object was when found out of reach
+  std::set<const haptics::DisplayFeature*> unreachable_set_;
   std::uint64_t seq_ = 0, setpoint_seq_ = 0;
   // messages and ports
   msg::HandPosition hand_msg_;

@@ -71,6 +71,11 @@ class CameraSim final : public Component {
     baseline_ = ctx.param<double>("stereo_baseline", 0.0,
                                   "0: mono; else also render a right camera this far along x, m", Range{0, 1});
     seed_ = ctx.param<int>("seed", 1, "noise seed", Range{0, 1e9});
+    plate_cloth_ =
+        ctx.param_choice("plate", "aluminium",
+                         "the plate as the paper's prototype has it (aluminium), or wrapped in the blue cloth like the "
+                         "arm (cloth: the keyer takes it out, the user sees the virtual face; lamps and knob stay)",
+                         {"aluminium", "cloth"}) == "cloth";
     marker_ =
         ctx.param<bool>("fingertip_marker", false,
                         "draw a bright LED on the index fingernail (5 mm, 6 mm behind the tip), for fingertip_tracker");
@@ -276,7 +281,7 @@ class CameraSim final : public Component {
       const Eigen::Isometry3d base_T_dev = model_->fk(q_, model_->frame("dev"));
       Eigen::Isometry3d plate = base_T_dev;
       plate.translate(Eigen::Vector3d(0, 0, -0.005));  // the plate's front face is the dev frame's z = 0
-      renderer_->draw(plate_, eye_T_base * plate, color(kAluminium, false), !mask_pass);
+      renderer_->draw(plate_, eye_T_base * plate, color(plate_cloth_ ? kCloth : kAluminium, false), !mask_pass);
       Eigen::Isometry3d knob = base_T_dev;
       knob.translate(Eigen::Vector3d(0, 0, 0.02));
       renderer_->draw(knob_, eye_T_base * knob, color(kAluminium, false), !mask_pass);
@@ -378,7 +383,7 @@ class CameraSim final : public Component {
   std::unique_ptr<OffscreenRenderer> renderer_;
   int table_ = -1, backdrop_ = -1, plate_ = -1, knob_ = -1, lamp_ = -1, palm_ = -1, index_ = -1, curled_ = -1,
       thumb_ = -1, led_ = -1;
-  bool marker_ = false;
+  bool marker_ = false, plate_cloth_ = false;
   Eigen::Vector4f marker_colour_ = kWhite;
   std::vector<int> link_meshes_;
   robot::Vector6d q_ = robot::Vector6d::Zero();
