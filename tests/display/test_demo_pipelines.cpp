@@ -79,8 +79,8 @@ TEST(DemoPipelines, TheSimulatedExperimentHitsEveryContact) {
   const auto dir = display_scratch();
   Loader loader({WYSIWYF_COMPONENT_DIR});
   const PipelineSpec spec = load_pipeline(
-      kPipelines + "demo-sim.yaml", {"domain=78", "dds.transport=local", "clock.pace=0",
-                                     "record.params.path=" + (dir / "demo.mp4").string()});
+      kPipelines + "demo-sim.yaml",
+      {"domain=78", "dds.transport=local", "clock.pace=0", "record.params.path=" + (dir / "demo.mp4").string()});
   std::ostringstream log;
   RunResult result;
   {
@@ -91,8 +91,9 @@ TEST(DemoPipelines, TheSimulatedExperimentHitsEveryContact) {
   EXPECT_NE(result.stop_reason.find("the user's script is done"), std::string::npos) << result.stop_reason;
   const std::string text = log.str();
   EXPECT_EQ(text.find("-> fault"), std::string::npos) << text;
-  const std::regex line(R"(\[metrics\] contact (\d+) \(([^)]*)\): (hit|MISS), plate still (-?\d+) ms before the finger, )"
-                        R"(([0-9.]+) mm / ([0-9.]+) deg)");
+  const std::regex line(
+      R"(\[metrics\] contact (\d+) \(([^)]*)\): (hit|MISS), plate still (-?\d+) ms before the finger, )"
+      R"(([0-9.]+) mm / ([0-9.]+) deg)");
   int contacts = 0;
   for (std::sregex_iterator it(text.begin(), text.end(), line), end; it != end; ++it) {
     const auto& m = *it;
@@ -134,7 +135,8 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
       joints.write(js);
       Eigen::Isometry3d tip = Eigen::Isometry3d::Identity();
       tip.linear() << -1, 0, 0, 0, -1, 0, 0, 0, 1;  // pointing along -x, the back of the hand up
-      tip.translation() = Eigen::Vector3d(1.1 - 0.25 * std::min(1.0, k / 40.0), 0.0, 0.2 - 0.08 * std::min(1.0, k / 40.0));
+      tip.translation() =
+          Eigen::Vector3d(1.1 - 0.25 * std::min(1.0, k / 40.0), 0.0, 0.2 - 0.08 * std::min(1.0, k / 40.0));
       msg::PoseStamped p;
       msgs::to_msg(tip, p.pose());
       hand.write(p);
@@ -143,9 +145,9 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
       ASSERT_TRUE(left.take_latest(l) && right.take_latest(r));
       for (auto [img, side] : {std::pair{&l, "left"}, std::pair{&r, "right"}}) {
         cv::Mat bgr;
-        cv::cvtColor(cv::Mat(static_cast<int>(img->height()), static_cast<int>(img->width()), CV_8UC3,
-                             img->data().data()),
-                     bgr, cv::COLOR_RGB2BGR);
+        cv::cvtColor(
+            cv::Mat(static_cast<int>(img->height()), static_cast<int>(img->width()), CV_8UC3, img->data().data()), bgr,
+            cv::COLOR_RGB2BGR);
         cv::imwrite((dir / (std::string(side) + "_" + std::to_string(k) + ".png")).string(), bgr);
       }
     }
@@ -167,7 +169,8 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
   robot::rdt::Emulator sensor(ft);
   sensor.set_wrench({weight.x(), weight.y(), weight.z(), torque.x(), torque.y(), torque.z()});
   // The real pipeline, pointed at them, with the loop recorder beside it.
-  const std::string yaml = "wysiwyf: 1\ninclude: [" + kPipelines + "demo-real.yaml]\ncomponents:\n"
+  const std::string yaml = "wysiwyf: 1\ninclude: [" + kPipelines +
+                           "demo-real.yaml]\ncomponents:\n"
                            "  rec: {type: test_display_recorder, rate: 1000, params: {samples: " +
                            (dir / "samples.csv").string() + ", events: " + (dir / "events.csv").string() +
                            "},\n    topics: {joint_state: robot/joint_state, device_pose: robot/device_pose, "
@@ -177,10 +180,10 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
       yaml, (dir / "real-with-recorder.yaml").string(),
       {"domain=79", "dds.transport=local", "clock.mode=sim", "clock.step=1ms", "clock.pace=1", "clock.duration=2s",
        "arm.params.host=127.0.0.1", "arm.params.port=" + std::to_string(controller.port()), "arm.params.lockstep=true",
-       "arm.params.reply_timeout=5", "wrench.params.host=127.0.0.1", "wrench.params.port=" + std::to_string(sensor.port()),
-       "camera.params.source=" + (dir / "left_%d.png").string(), "camera.params.backend=any",
-       "camera_right.params.source=" + (dir / "right_%d.png").string(), "camera_right.params.backend=any",
-       "record.params.path=" + (dir / "real.mp4").string(),
+       "arm.params.reply_timeout=5", "wrench.params.host=127.0.0.1",
+       "wrench.params.port=" + std::to_string(sensor.port()), "camera.params.source=" + (dir / "left_%d.png").string(),
+       "camera.params.backend=any", "camera_right.params.source=" + (dir / "right_%d.png").string(),
+       "camera_right.params.backend=any", "record.params.path=" + (dir / "real.mp4").string(),
        // The emulated sensor streams on the wall clock, the pipeline ticks on its paced sim clock:
        // on a loaded machine a 30 ms gap between readings in sim time is the machine's, not the wiring's.
        "supervisor.params.wrench_timeout=0.5"});
@@ -208,9 +211,10 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
     tracked += std::stoi(f[44]) == msg::TRACKING_OK;
     planned += f[40] == "cube +x knob";
   }
-  std::printf("[measured] real pipeline, 2 s: %llu commands applied by the emulated controller, %d ms with a tracked "
-              "hand, %d ms with the +x knob as the target\n",
-              static_cast<unsigned long long>(counters.commands_applied), tracked, planned);
+  std::printf(
+      "[measured] real pipeline, 2 s: %llu commands applied by the emulated controller, %d ms with a tracked "
+      "hand, %d ms with the +x knob as the target\n",
+      static_cast<unsigned long long>(counters.commands_applied), tracked, planned);
   EXPECT_GT(tracked, 1000);
   EXPECT_GT(planned, 500);
 }
