@@ -25,6 +25,7 @@ WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, Attachment)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, PlannerStatus)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, UserEvent)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, ContactReport)
+WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, HapticRegistration)
 
 namespace wysiwyf::msgs {
 
@@ -351,6 +352,15 @@ std::string to_yaml(const msg::ContactReport& m) {
   return y.text();
 }
 
+std::string to_yaml(const msg::HapticRegistration& m) {
+  Yaml y;
+  header(y, m.header());
+  y.kv("contact", m.contact()).str("feature", m.feature()).kv("samples", m.samples());
+  y.kv("p50_mm", m.p50_mm()).kv("p99_mm", m.p99_mm()).kv("max_mm", m.max_mm()).kv("max_deg", m.max_deg());
+  y.kv("onset_max_mm", m.onset_max_mm()).kv("onset_max_deg", m.onset_max_deg());
+  return y.text();
+}
+
 const MessageRegistry& registry() {
   static const MessageRegistry r = [] {
     MessageRegistry reg;
@@ -371,6 +381,7 @@ const MessageRegistry& registry() {
     reg.add<msg::PlannerStatus>(&to_yaml);
     reg.add<msg::UserEvent>(&to_yaml);
     reg.add<msg::ContactReport>(&to_yaml);
+    reg.add<msg::HapticRegistration>(&to_yaml);
     return reg;
   }();
   return r;

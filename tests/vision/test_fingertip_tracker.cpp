@@ -139,7 +139,9 @@ TEST(FingertipTracker, ALedNotSeenIsLostAndFoundAgain) {
       msg::HandPosition h;
       const bool published = rig.shoot(fingertip({0.9, 0.0, 0.15}, {-1, 0, 0}), h);
       EXPECT_EQ(published, k >= 2) << "pair " << k;
-      if (published) EXPECT_EQ(h.status(), msg::TRACKING_LOST);
+      if (published) {
+        EXPECT_EQ(h.status(), msg::TRACKING_LOST);
+      }
     }
   }
   LedRig rig(true);

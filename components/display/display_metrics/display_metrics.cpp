@@ -3,8 +3,18 @@
 // been still before the finger arrived, and how far the plate was from the pose that displays the
 // feature at that moment (mm, deg; the nearest of the plate's four turns about the face normal).
 // Published as ContactReports, logged one line each and summed up at the end.
+//
+// Haptic registration (with the supervisor's `attach`): while the device is attached to a virtual
+// object, every plate pose against where the attachment holds it on the moving object
+// (base_T_obj * obj_T_dev at the plate sample's stamp): p50/p99/max per attachment and over the
+// run, and the largest over the attachment's first onset_window (the object starting to move
+// under the push, the arm following). Published as HapticRegistration when the device lets go.
+#include <algorithm>
 #include <deque>
 #include <limits>
+#include <optional>
+
+#include "registration_stats.hpp"
 
 #include "scene/scene.hpp"
 #include "wysiwyf/component.hpp"
@@ -36,7 +46,15 @@ class DisplayMetrics final : public Component {
     events_in_ = ctx.input<msg::UserEvent>("events", "the user's touches and misses (user_sim)", Qos::reliable(64));
     device_in_ = ctx.input<msg::PoseStamped>("device_pose", "the plate's true pose base_T_dev", Qos::reliable(64));
     objects_in_ = ctx.input<msg::ObjectState>("objects", "the virtual objects", Qos::reliable(64));
+    onset_window_ns_ = static_cast<std::int64_t>(
+        ctx.param<double>("onset_window", 0.1, "s after attaching counted as the push's onset", Range{0.001, 10}) *
+        1e9);
+    attach_in_ = ctx.input<msg::Attachment>(
+        "attach", "optional: where the device holds the virtual object (the supervisor's): haptic registration",
+        Qos::reliable(16).optional_input());
     reports_out_ = ctx.output<msg::ContactReport>("contacts", "one report a contact", Qos::reliable(16));
+    registration_out_ = ctx.output<msg::HapticRegistration>(
+        "registration", "haptic registration over each attachment, when the device lets go", Qos::reliable(16));
     try {
       scene_ = haptics::load_scene(find_config_file(scene_path_));
     } catch (const std::exception& e) {
@@ -61,8 +79,19 @@ class DisplayMetrics final : public Component {
     while (!plate_.empty() && plate_.front().t < now.ns - history_ns_) plate_.pop_front();
     for (auto& h : objects_)
       while (h.size() > 1 && h[1].t < now.ns - history_ns_) h.pop_front();
-    while (events_in_.take(event_))
+    while (events_in_.take(event_)) {
+      if (event_.kind() == msg::USER_TOUCH) contact_ = event_.contact();
       if (event_.kind() == msg::USER_TOUCH || event_.kind() == msg::USER_MISS) measure(now);
+    }
+    while (attach_in_.take(attach_msg_)) {
+      const std::int64_t t = stamp(attach_msg_.header(), now);
+      if (attachment_) {
+        register_until(t);
+        finish_attachment(t);
+      }
+      if (attach_msg_.attached()) start_attachment(t);
+    }
+    if (attachment_) register_until(now.ns);
   }
 
   void activate() override { objects_.resize(scene_.models.size()); }
@@ -71,6 +100,11 @@ class DisplayMetrics final : public Component {
     int hits = 0;
     for (const auto& r : reports_) hits += r.hit() ? 1 : 0;
     log(std::to_string(reports_.size()) + " contact(s), " + std::to_string(hits) + " hit(s)");
+    if (attachment_) finish_attachment(plate_.empty() ? 0 : plate_.back().t);
+    if (run_.samples() > 0)
+      log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.percentile_mm(50)) +
+          " mm, p99 " + std::to_string(run_.percentile_mm(99)) + " mm, max " + std::to_string(run_.max_mm()) +
+          " mm / " + std::to_string(run_.max_deg()) + " deg over " + std::to_string(run_.samples()) + " samples");
   }
 
  private:
@@ -78,12 +112,9 @@ class DisplayMetrics final : public Component {
 
   // The newest sample at or before t (the oldest if none is).
   static const Sample* at(const std::deque<Sample>& h, std::int64_t t) {
-    const Sample* found = h.empty() ? nullptr : &h.front();
-    for (const auto& s : h) {
-      if (s.t > t) break;
-      found = &s;
-    }
-    return found;
+    if (h.empty()) return nullptr;
+    const auto after = std::upper_bound(h.begin(), h.end(), t, [](std::int64_t v, const Sample& s) { return v < s.t; });
+    return after == h.begin() ? &h.front() : &*(after - 1);
   }
 
   void measure(Time now) {
@@ -131,8 +162,80 @@ class DisplayMetrics final : public Component {
     reports_.push_back(r);
   }
 
+  struct Attachment {
+    std::size_t body = 0;
+    Eigen::Isometry3d obj_T_dev = Eigen::Isometry3d::Identity();
+    std::string feature;
+    std::int64_t since = 0, measured_until = 0;
+    RegistrationStats all, onset;
+  };
+
+  void start_attachment(std::int64_t t) {
+    const int body = scene_.body_index(attach_msg_.body().c_str());
+    if (body < 0 || !msgs::all_finite(attach_msg_.obj_T_dev())) {
+      reject(attach_in_, "an attachment to a body the scene does not have, or a non-finite obj_T_dev");
+      return;
+    }
+    attachment_.emplace();
+    attachment_->body = static_cast<std::size_t>(body);
+    attachment_->obj_T_dev = msgs::to_isometry(attach_msg_.obj_T_dev());
+    attachment_->feature = attach_msg_.feature().c_str();
+    attachment_->since = t;
+    attachment_->measured_until = t - 1;
+  }
+
+  // Every plate sample since the last one measured, up to t and to the newest object pose.
+  void register_until(std::int64_t t) {
+    Attachment& a = *attachment_;
+    const auto& object = objects_[a.body];
+    if (object.empty()) return;
+    t = std::min(t, object.back().t);
+    const std::int64_t from = std::max(a.measured_until, a.since - 1);
+    for (auto it = std::upper_bound(plate_.begin(), plate_.end(), from,
+                                    [](std::int64_t v, const Sample&s) { return v < s.t; });
+         it != plate_.end() && it->t <= t; ++it) {
+      const Sample& s = *it;
+      const RegistrationError e = registration_error(at(object, s.t)->pose * a.obj_T_dev, s.pose);
+      a.all.add(e, s.t);
+      run_.add(e, s.t);
+      if (s.t - a.since <= onset_window_ns_) a.onset.add(e, s.t);
+      a.measured_until = s.t;
+    }
+  }
+
+  void finish_attachment(std::int64_t t) {
+    const Attachment& a = *attachment_;
+    msg::HapticRegistration r;
+    fill_header(r.header(), t, registration_seq_++, "base");
+    r.contact(contact_);
+    r.feature(a.feature);
+    r.samples(static_cast<std::uint32_t>(a.all.samples()));
+    r.p50_mm(a.all.percentile_mm(50));
+    r.p99_mm(a.all.percentile_mm(99));
+    r.max_mm(a.all.max_mm());
+    r.max_deg(a.all.max_deg());
+    r.onset_max_mm(a.onset.max_mm());
+    r.onset_max_deg(a.onset.max_deg());
+    registration_out_.write(r);
+    log("contact " + std::to_string(contact_) + " (" + a.feature + ") attached " +
+        std::to_string(static_cast<double>(t - a.since) * 1e-9) + " s: plate from the held feature p50 " +
+        std::to_string(r.p50_mm()) + " mm, p99 " + std::to_string(r.p99_mm()) + " mm, max " +
+        std::to_string(r.max_mm()) + " mm (at " + std::to_string(static_cast<double>(a.all.max_mm_at()) * 1e-9) +
+        " s) / " + std::to_string(r.max_deg()) + " deg; onset max " + std::to_string(r.onset_max_mm()) + " mm / " +
+        std::to_string(r.onset_max_deg()) + " deg");
+    attachment_.reset();
+  }
+
   std::string scene_path_;
   haptics::Scene scene_;
+  std::int64_t onset_window_ns_ = 0;
+  std::optional<Attachment> attachment_;
+  RegistrationStats run_;
+  std::uint32_t contact_ = 0;
+  std::uint64_t registration_seq_ = 0;
+  msg::Attachment attach_msg_;
+  Input<msg::Attachment> attach_in_;
+  Output<msg::HapticRegistration> registration_out_;
   double still_speed_ = 0.002;
   std::int64_t history_ns_ = 0;
   std::deque<Sample> plate_;

@@ -26,6 +26,7 @@ WYSIWYF_MESSAGE(wysiwyf::msg, Attachment)
 WYSIWYF_MESSAGE(wysiwyf::msg, PlannerStatus)
 WYSIWYF_MESSAGE(wysiwyf::msg, UserEvent)
 WYSIWYF_MESSAGE(wysiwyf::msg, ContactReport)
+WYSIWYF_MESSAGE(wysiwyf::msg, HapticRegistration)
 
 namespace wysiwyf::msgs {
 
@@ -47,6 +48,7 @@ std::string to_yaml(const msg::Attachment& m);
 std::string to_yaml(const msg::PlannerStatus& m);
 std::string to_yaml(const msg::UserEvent& m);
 std::string to_yaml(const msg::ContactReport& m);
+std::string to_yaml(const msg::HapticRegistration& m);
 
 // Every port message type of this build, by DDS type name.
 const MessageRegistry& registry();
