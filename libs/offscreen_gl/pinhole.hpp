@@ -2,6 +2,8 @@
 // A pinhole camera as OpenCV defines it (x right, y down, z forward; pixel centres at integer
 // coordinates, u = fx X/Z + cx), turned into the OpenGL clip transform that rasterises exactly
 // there. Distortion is not rendered: images come out undistorted.
+#include <cmath>
+
 #include <Eigen/Core>
 
 namespace wysiwyf::render {
@@ -10,6 +12,15 @@ struct Pinhole {
   int width = 640, height = 480;
   double fx = 600, fy = 600, cx = 319.5, cy = 239.5;
   double near_m = 0.02, far_m = 20.0;
+
+  // A size of 16..4096 px and a finite K with fx, fy > 0 (what a camera_info must give).
+  bool usable() const {
+    return width >= 16 && height >= 16 && width <= 4096 && height <= 4096 && fx > 0 && fy > 0 && std::isfinite(fx) &&
+           std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy);
+  }
+  bool same_intrinsics(const Pinhole& o) const {
+    return width == o.width && height == o.height && fx == o.fx && fy == o.fy && cx == o.cx && cy == o.cy;
+  }
 
   // Clip coordinates from camera coordinates (OpenCV frame). Rows come out bottom-up in GL
   // window space; the renderer flips them on read-back so row 0 is the top, as in OpenCV.

@@ -103,6 +103,44 @@ TEST(Compositor, AZMarginKeepsRealThingsLyingOnTheVirtualSurfaceBehindIt) {
   }
 }
 
+TEST(Compositor, TheDeviceIsKeptOutAndOnlyAHandInFrontOfItShows) {
+  // Four keyed pixels over no virtual surface, the device 0.6 m away on the first three: the real
+  // depth there 0.55 m (a hand 5 cm in front: shown), 0.59 m (the device itself, 1 cm of stereo
+  // noise: hidden with a 3 cm device_margin), unknown (hidden); the fourth is off the device
+  // (shown). Without a real depth stream every device pixel is hidden.
+  for (bool with_depth : {true, false}) {
+    Harness h("compositor", "{device_margin: 0.03}", 60);
+    auto scene = h.feed<msg::Image>("scene");
+    auto scene_depth = h.feed<msg::Image>("scene_depth");
+    auto hand = h.feed<msg::Image>("hand");
+    auto real_depth = h.feed<msg::Image>("real_depth");
+    auto device = h.feed<msg::Image>("device_depth");
+    auto out = h.watch<msg::Image>("composite");
+    h.activate();
+    msg::Image s = image(4, 1, "rgb8", 3), sd = image(4, 1, "32FC1", 4), k = image(4, 1, "rgba8", 4),
+               rd = image(4, 1, "32FC1", 4), dd = image(4, 1, "32FC1", 4);
+    for (int u = 0; u < 4; ++u) {
+      s.data()[u * 3] = 200;
+      k.data()[u * 4 + 1] = 255, k.data()[u * 4 + 3] = 255;
+      if (u < 3) set_depth(dd, u, 0, 0.6f);
+    }
+    set_depth(rd, 0, 0, 0.55f);
+    set_depth(rd, 1, 0, 0.59f);
+    set_depth(rd, 3, 0, 0.8f);
+    scene.write(s), scene_depth.write(sd), hand.write(k), device.write(dd);
+    if (with_depth) real_depth.write(rd);
+    h.tick(Time{0});
+    msg::Image c;
+    ASSERT_TRUE(out.take_latest(c));
+    const std::uint8_t* p = c.data().data();
+    EXPECT_EQ(p[1], with_depth ? 255 : 0) << "a hand in front of the device";
+    EXPECT_EQ(p[4], 0) << "the device itself";
+    EXPECT_EQ(p[7], 0) << "the device, depth unknown";
+    EXPECT_EQ(p[10], 255) << "off the device";
+    EXPECT_EQ(p[9], 0);
+  }
+}
+
 TEST(Compositor, EveryPixelOfAWideImageIsTheRoundedBlend) {
   // 37 x 5 random pixels (the vectorised body, 16 at a time, and the scalar tail), alpha only and
   // z-keyed: each output channel is hand + round(scene (255 - alpha) / 255), with the hand and

@@ -16,6 +16,7 @@
 
 #include "offscreen_gl/gl_context.hpp"
 #include "offscreen_gl/offscreen_renderer.hpp"
+#include "device_geometry/device_mesh.hpp"
 #include "frames/look_at.hpp"
 #include "image/image_view.hpp"
 #include "puma_model/puma_model.hpp"
@@ -121,24 +122,15 @@ class CameraSim final : public Component {
     renderer_->set_light(Eigen::Vector3f(-0.3f, 0.8f, 0.6f), 0.45f);
     table_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(1.0f, 1.0f, 0.025f)));
     backdrop_ = renderer_->add_mesh(Mesh::plane(3.0f, 3.0f));
-    plate_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.1f, 0.1f, 0.005f)));
-    knob_ = renderer_->add_mesh(Mesh::cylinder(0.015f, 0.02f));
-    lamp_ = renderer_->add_mesh(Mesh::sphere(0.006f));
     palm_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(0.045f, 0.042f, 0.014f)));
     index_ =
         renderer_->add_mesh(Mesh::capsule(static_cast<float>(kFingerRadius), static_cast<float>(kIndexLength / 2)));
     curled_ = renderer_->add_mesh(Mesh::capsule(0.0095f, 0.012f));
     thumb_ = renderer_->add_mesh(Mesh::capsule(0.0105f, 0.022f));
     led_ = renderer_->add_mesh(Mesh::sphere(0.005f));
-    // The arm: one capsule per segment between joint origins (rigid: lengths are constant).
-    const robot::Vector6d q0 = robot::Vector6d::Zero();
-    const auto points = arm_points(q0);
-    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-      const double length = (points[i + 1] - points[i]).norm();
-      const float radius = i == 0 ? 0.09f : i == 1 ? 0.07f : i == 2 ? 0.055f : 0.04f;
-      link_meshes_.push_back(length > 1e-3 ? renderer_->add_mesh(Mesh::capsule(radius, static_cast<float>(length / 2)))
-                                           : -1);
-    }
+    // The arm and its device (libs/device_geometry): a mesh per shape, the sizes are constant.
+    device_ = std::make_unique<robot::DeviceGeometry>(*model_);
+    for (const auto& shape : device_->shapes()) device_meshes_.push_back(renderer_->add_mesh(device_mesh(shape)));
     rng_ = cv::RNG(static_cast<std::uint64_t>(seed_));
   }
 
@@ -235,13 +227,6 @@ class CameraSim final : public Component {
   }
 
  private:
-  std::vector<Eigen::Vector3d> arm_points(const robot::Vector6d& q) const {
-    std::vector<Eigen::Vector3d> p{Eigen::Vector3d(0, 0, -0.6)};  // the pedestal's foot
-    for (const char* f : {"link1", "link3", "link4", "flange"})
-      p.push_back(model_->fk(q, model_->frame(f)).translation());
-    return p;
-  }
-
   bool lamp_hidden(int marker) const {
     for (std::size_t i = 0; i + 2 < hidden_.size(); i += 3)
       if (t_ >= hidden_[i] && t_ < hidden_[i + 1] && static_cast<int>(hidden_[i + 2]) == marker) return true;
@@ -274,21 +259,26 @@ class CameraSim final : public Component {
     back.translation() = Eigen::Vector3d(1.8, 0, 0.5);
     renderer_->draw(backdrop_, eye_T_base * back, color(kCloth, false), !mask_pass);
     if (have_joints_) {
-      const auto p = arm_points(q_);
-      for (std::size_t i = 0; i + 1 < p.size(); ++i)
-        if (link_meshes_[i] >= 0)
-          renderer_->draw(link_meshes_[i], eye_T_base * segment_pose(p[i], p[i + 1]), color(kCloth, false), !mask_pass);
-      const Eigen::Isometry3d base_T_dev = model_->fk(q_, model_->frame("dev"));
-      Eigen::Isometry3d plate = base_T_dev;
-      plate.translate(Eigen::Vector3d(0, 0, -0.005));  // the plate's front face is the dev frame's z = 0
-      renderer_->draw(plate_, eye_T_base * plate, color(plate_cloth_ ? kCloth : kAluminium, false), !mask_pass);
-      Eigen::Isometry3d knob = base_T_dev;
-      knob.translate(Eigen::Vector3d(0, 0, 0.02));
-      renderer_->draw(knob_, eye_T_base * knob, color(kAluminium, false), !mask_pass);
-      for (int m = 0; m < 4; ++m)
-        if (!lamp_hidden(m))
-          renderer_->draw(lamp_, eye_T_base * model_->fk(q_, model_->frame("marker_" + std::to_string(m))),
-                          color(kLamp, false), false);
+      device_->poses(q_, device_poses_);
+      for (std::size_t i = 0; i < device_poses_.size(); ++i) {
+        const robot::DeviceShape& shape = device_->shapes()[i];
+        const Eigen::Isometry3d eye_T_shape = eye_T_base * device_poses_[i];
+        switch (shape.part) {
+          case robot::DeviceShape::Part::kLink:
+            renderer_->draw(device_meshes_[i], eye_T_shape, color(kCloth, false), !mask_pass);
+            break;
+          case robot::DeviceShape::Part::kPlate:
+            renderer_->draw(device_meshes_[i], eye_T_shape, color(plate_cloth_ ? kCloth : kAluminium, false),
+                            !mask_pass);
+            break;
+          case robot::DeviceShape::Part::kKnob:
+            renderer_->draw(device_meshes_[i], eye_T_shape, color(kAluminium, false), !mask_pass);
+            break;
+          case robot::DeviceShape::Part::kLamp:
+            if (!lamp_hidden(shape.index)) renderer_->draw(device_meshes_[i], eye_T_shape, color(kLamp, false), false);
+            break;
+        }
+      }
     }
     if (have_hand_) {
       // A pointing hand: the index finger out along x to the fingertip at the origin, the palm
@@ -381,11 +371,12 @@ class CameraSim final : public Component {
   std::unique_ptr<robot::PumaModel> model_;
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;
-  int table_ = -1, backdrop_ = -1, plate_ = -1, knob_ = -1, lamp_ = -1, palm_ = -1, index_ = -1, curled_ = -1,
-      thumb_ = -1, led_ = -1;
+  int table_ = -1, backdrop_ = -1, palm_ = -1, index_ = -1, curled_ = -1, thumb_ = -1, led_ = -1;
   bool marker_ = false, plate_cloth_ = false;
   Eigen::Vector4f marker_colour_ = kWhite;
-  std::vector<int> link_meshes_;
+  std::unique_ptr<robot::DeviceGeometry> device_;
+  std::vector<int> device_meshes_;
+  std::vector<Eigen::Isometry3d> device_poses_;
   robot::Vector6d q_ = robot::Vector6d::Zero();
   bool have_joints_ = false, have_hand_ = false;
   std::int64_t start_ns_ = -1;

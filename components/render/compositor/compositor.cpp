@@ -2,7 +2,10 @@
 // hand over the rendered virtual scene. The hand comes premultiplied (RGBA from chroma_keyer):
 // out = hand + (1 - alpha) * scene. When the real scene's depth is known (stereo), it z-keys per
 // pixel instead: the hand shows only where it is nearer than the virtual surface (section 3.2's
-// answer to the hand always being drawn on top).
+// answer to the hand always being drawn on top). With the device's depth (device_mask: the real
+// plate, knob, lamps and arm from the robot model), the device is kept out of the real layer:
+// a keyed pixel on the device shows only where the real depth puts something nearer than the
+// device (a finger on the plate), so depth decides only between the hand and the virtual scene.
 #include <opencv2/core.hpp>
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -94,6 +97,12 @@ class Compositor final : public Component {
         ctx.input<msg::Image>("camera", "instead of hand: the camera image, rgb8 ...", Qos::sensor(2).optional_input());
     mask_in_ = ctx.input<msg::Image>("hand_mask", "... and a hand mask, mono8 (a hardware keyer, or ground truth)",
                                      Qos::sensor(2).optional_input());
+    device_in_ = ctx.input<msg::Image>("device_depth",
+                                       "the real device's depth (device_mask), 32FC1: kept out of the real layer",
+                                       Qos::sensor(2).optional_input());
+    device_margin_ = static_cast<float>(ctx.param<double>(
+        "device_margin", 0.0, "m a keyed pixel on the device must be nearer than the device to count as hand",
+        Range{0, 0.1}));
     out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
   }
 
@@ -103,6 +112,7 @@ class Compositor final : public Component {
     if (take(camera_in_, camera_, {"rgb8"}) | take(mask_in_, mask_, {"mono8"})) fresh |= hand_from_mask();
     take(scene_depth_in_, scene_depth_, {"32FC1"});
     take(real_depth_in_, real_depth_, {"32FC1"});
+    take(device_in_, device_, {"32FC1"});
     if (!fresh || !scene_.usable) return;
     const std::uint32_t w = scene_.image.width(), h = scene_.image.height();
     // The composite is written straight into the outgoing message (sized once).
@@ -112,7 +122,12 @@ class Compositor final : public Component {
     if (same_size(hand_in_, hand_, w, h)) {
       const bool z_key =
           use_depth_ && same_size(real_depth_in_, real_depth_, w, h) && same_size(scene_depth_in_, scene_depth_, w, h);
-      blend(scene, image::view(hand_.image), z_key ? image::view(real_depth_.image) : cv::Mat(),
+      const bool real_known = same_size(real_depth_in_, real_depth_, w, h);
+      const cv::Mat hand = same_size(device_in_, device_, w, h)
+                               ? without_device(image::view(hand_.image), image::view(device_.image),
+                                                real_known ? image::view(real_depth_.image) : cv::Mat())
+                               : image::view(hand_.image);
+      blend(scene, hand, z_key ? image::view(real_depth_.image) : cv::Mat(),
             z_key ? image::view(scene_depth_.image) : cv::Mat(), margin_, out);
     } else {
       scene.copyTo(out);
@@ -145,6 +160,23 @@ class Compositor final : public Component {
     return false;
   }
 
+  // The hand layer without the device: cleared where the device is drawn, unless the real depth
+  // there is nearer than the device by device_margin (something in front of it: the hand).
+  // Without real depth every device pixel is cleared.
+  const cv::Mat& without_device(const cv::Mat& hand, const cv::Mat& device, const cv::Mat& real) {
+    cv::compare(device, 0.0f, device_pixels_, cv::CMP_GT);
+    if (!real.empty()) {
+      cv::subtract(device, device_margin_, device_front_);
+      cv::compare(real, device_front_, in_front_, cv::CMP_LT);
+      cv::compare(real, 0.0f, known_, cv::CMP_GT);
+      cv::bitwise_and(in_front_, known_, in_front_);
+      cv::bitwise_and(device_pixels_, ~in_front_, device_pixels_);
+    }
+    hand.copyTo(hand_clean_);
+    hand_clean_.setTo(cv::Scalar::all(0), device_pixels_);
+    return hand_clean_;
+  }
+
   // A premultiplied RGBA hand layer from a camera image and a 0/255 mask of the same size.
   bool hand_from_mask() {
     if (!camera_.usable || !same_size(mask_in_, mask_, camera_.image.width(), camera_.image.height())) return false;
@@ -162,11 +194,12 @@ class Compositor final : public Component {
   }
 
   bool use_depth_ = true;
-  float margin_ = 0.0f;
+  float margin_ = 0.0f, device_margin_ = 0.0f;
+  cv::Mat hand_clean_, device_pixels_, device_front_, in_front_, known_;  // reused each frame
   std::uint64_t seq_ = 0;
-  Stream scene_, scene_depth_, hand_, real_depth_, camera_, mask_;
+  Stream scene_, scene_depth_, hand_, real_depth_, camera_, mask_, device_;
   msg::Image out_msg_;
-  Input<msg::Image> scene_in_, scene_depth_in_, hand_in_, real_depth_in_, camera_in_, mask_in_;
+  Input<msg::Image> scene_in_, scene_depth_in_, hand_in_, real_depth_in_, camera_in_, mask_in_, device_in_;
   Output<msg::Image> out_;
 };
 

@@ -115,9 +115,7 @@ class Renderer final : public Component {
     Pinhole camera = camera_;
     camera.width = static_cast<int>(info_msg_.width()), camera.height = static_cast<int>(info_msg_.height());
     camera.fx = k[0], camera.fy = k[4], camera.cx = k[2], camera.cy = k[5];
-    if (camera.width < 16 || camera.height < 16 || camera.width > 4096 || camera.height > 4096 ||
-        !(camera.fx > 0 && camera.fy > 0 && std::isfinite(camera.fx) && std::isfinite(camera.fy) &&
-          std::isfinite(camera.cx) && std::isfinite(camera.cy)))
+    if (!camera.usable())
       return reject(info_in_, "a camera_info without a size of 16..4096 px or a finite K with fx, fy > 0");
     for (double d : info_msg_.d())
       if (d != 0.0) {
@@ -126,9 +124,7 @@ class Renderer final : public Component {
                   "camera's images should be undistorted (camera: undistort: true)");
         break;
       }
-    if (renderer_ && camera.width == camera_.width && camera.height == camera_.height && camera.fx == camera_.fx &&
-        camera.fy == camera_.fy && camera.cx == camera_.cx && camera.cy == camera_.cy)
-      return;
+    if (renderer_ && camera.same_intrinsics(camera_)) return;
     camera_ = camera;
     renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, samples_);
     meshes_.clear();

@@ -1,0 +1,19 @@
+#pragma once
+// A device shape as an offscreen_gl mesh (for the components that draw the device; they link
+// wysiwyf_offscreen_gl themselves).
+#include "device_geometry/device_geometry.hpp"
+#include "offscreen_gl/mesh.hpp"
+
+namespace wysiwyf::render {
+
+inline Mesh device_mesh(const robot::DeviceShape& s) {
+  switch (s.kind) {
+    case robot::DeviceShape::Kind::kCapsule: return Mesh::capsule(s.size.x(), s.size.y());
+    case robot::DeviceShape::Kind::kCylinder: return Mesh::cylinder(s.size.x(), s.size.y());
+    case robot::DeviceShape::Kind::kSphere: return Mesh::sphere(s.size.x());
+    case robot::DeviceShape::Kind::kBox: break;
+  }
+  return Mesh::box(s.size);
+}
+
+}  // namespace wysiwyf::render
