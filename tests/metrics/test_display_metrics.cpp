@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+
+#include <yaml-cpp/yaml.h>
 
 #include "scene/scene.hpp"
 #include "wysiwyf/harness.hpp"
@@ -102,6 +105,79 @@ TEST(DisplayMetrics, APlateOffByKnownAmountsReadsThemAtTheTouchAndWhileAttached)
   EXPECT_NEAR(r.onset_max_mm(), 3.0, 1e-6);
   EXPECT_NEAR(r.onset_max_deg(), 0.5, 1e-6);
   EXPECT_FALSE(registration.take(r)) << "one attachment, one report";
+}
+
+TEST(DisplayMetrics, ACameraPoseTurnedByATenthOfADegreeReadsItsPixelsAndTheSummaryHasThem) {
+  // The tracked camera pose turned 0.1 deg about the camera's y axis from the true one: the cube's
+  // corners are drawn about fx * 0.1 deg = 1.05 px off (exactly: their projections through both).
+  const haptics::Scene scene = haptics::load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/scenes/display_demo.yaml");
+  const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_summary.json";
+  std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
+  std::filesystem::remove(summary);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
+  auto objects = h.feed<msg::ObjectState>("objects");
+  auto tracked = h.feed<msg::PoseStamped>("eye_T_base");
+  auto truth = h.feed<msg::PoseStamped>("true_eye_T_base");
+  auto info = h.feed<msg::CameraInfo>("camera_info");
+  h.activate();
+  const std::array<double, 4> K{600, 600, 319.5, 239.5};
+  msg::CameraInfo ci;
+  ci.width(640), ci.height(480);
+  ci.k()[0] = K[0], ci.k()[4] = K[1], ci.k()[2] = K[2], ci.k()[5] = K[3], ci.k()[8] = 1;
+  info.write(ci);
+  // The demo's camera: at (1.6, -0.35, 0.7) looking at (0.75, 0, 0.15), OpenCV axes.
+  const Eigen::Vector3d eye(1.6, -0.35, 0.7), target(0.75, 0.0, 0.15);
+  const Eigen::Vector3d z = (target - eye).normalized(), x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  Eigen::Isometry3d base_T_eye = Eigen::Isometry3d::Identity();
+  base_T_eye.linear() << x, z.cross(x), z;
+  base_T_eye.translation() = eye;
+  const Eigen::Isometry3d true_eye_T_base = base_T_eye.inverse();
+  const Eigen::Isometry3d drawn_eye_T_base =
+      Eigen::Isometry3d(Eigen::AngleAxisd(0.1 * M_PI / 180, Eigen::Vector3d::UnitY())) * true_eye_T_base;
+  const int cube = scene.body_index("cube");
+  ASSERT_GE(cube, 0);
+  Eigen::Isometry3d base_T_cube = Eigen::Isometry3d::Identity();
+  base_T_cube.linear() = scene.initial[static_cast<std::size_t>(cube)].q.toRotationMatrix();
+  base_T_cube.translation() = scene.initial[static_cast<std::size_t>(cube)].x;
+  // The expected figures, from the corners' projections through both poses.
+  const Eigen::Vector3d half = scene.models[static_cast<std::size_t>(cube)].half_extents;
+  double want_px = 0, want_mm = 0;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d p = base_T_cube * Eigen::Vector3d(c & 1 ? half.x() : -half.x(), c & 2 ? half.y() : -half.y(),
+                                                            c & 4 ? half.z() : -half.z());
+    const Eigen::Vector3d a = drawn_eye_T_base * p, b = true_eye_T_base * p;
+    want_mm = std::max(want_mm, (a - b).norm() * 1e3);
+    want_px =
+        std::max(want_px, std::hypot(K[0] * (a.x() / a.z() - b.x() / b.z()), K[1] * (a.y() / a.z() - b.y() / b.z())));
+  }
+  EXPECT_NEAR(want_px, 600 * 0.1 * M_PI / 180, 0.1) << "about fx times the angle";
+  for (int k = 0; k < 10; ++k) {
+    const std::int64_t ns = k * 40 * kMs;
+    msg::ObjectState o;
+    fill_header(o.header(), ns, static_cast<std::uint64_t>(k), "base");
+    o.child_frame_id("cube");
+    msgs::to_msg(base_T_cube, o.pose());
+    objects.write(o);
+    msg::PoseStamped a, b;
+    fill_header(a.header(), ns, static_cast<std::uint64_t>(k), "eye");
+    fill_header(b.header(), ns, static_cast<std::uint64_t>(k), "eye");
+    msgs::to_msg(drawn_eye_T_base, a.pose());
+    msgs::to_msg(true_eye_T_base, b.pose());
+    tracked.write(a);
+    truth.write(b);
+    h.tick(Time{ns});
+  }
+  h.deactivate();
+  const YAML::Node j = YAML::LoadFile(summary);  // JSON is YAML
+  const YAML::Node v = j["visual_registration"];
+  ASSERT_TRUE(v.IsMap()) << summary;
+  EXPECT_EQ(v["images"].as<int>(), 10);
+  EXPECT_NEAR(v["p50_px"].as<double>(), want_px, 1e-6);
+  EXPECT_NEAR(v["max_px"].as<double>(), want_px, 1e-6);
+  EXPECT_NEAR(v["p99_mm"].as<double>(), want_mm, 1e-6);
+  EXPECT_TRUE(j["contacts"].IsSequence());
+  EXPECT_EQ(j["haptic_registration"]["run"]["samples"].as<int>(), 0);
 }
 
 TEST(DisplayMetrics, AnAttachmentToAnUnknownBodyIsRefusedNotMeasured) {

@@ -9,7 +9,16 @@
 // (base_T_obj * obj_T_dev at the plate sample's stamp): p50/p99/max per attachment and over the
 // run, and the largest over the attachment's first onset_window (the object starting to move
 // under the push, the arm following). Published as HapticRegistration when the device lets go.
+//
+// Visual registration (with the tracked `eye_T_base`, the simulator's `true_eye_T_base` and
+// `camera_info`): for every image, the dynamic bodies' corners drawn through the tracked camera
+// pose against the true one: the largest offset in mm (camera frame) and in pixels, p50/p99/max
+// over the run, logged at the end.
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <sstream>
 #include <deque>
 #include <limits>
 #include <optional>
@@ -46,12 +55,21 @@ class DisplayMetrics final : public Component {
     events_in_ = ctx.input<msg::UserEvent>("events", "the user's touches and misses (user_sim)", Qos::reliable(64));
     device_in_ = ctx.input<msg::PoseStamped>("device_pose", "the plate's true pose base_T_dev", Qos::reliable(64));
     objects_in_ = ctx.input<msg::ObjectState>("objects", "the virtual objects", Qos::reliable(64));
+    summary_path_ = ctx.param<std::string>(
+        "summary", "", "a JSON file written at the end with every figure (units in the keys); empty: none");
     onset_window_ns_ = static_cast<std::int64_t>(
         ctx.param<double>("onset_window", 0.1, "s after attaching counted as the push's onset", Range{0.001, 10}) *
         1e9);
     attach_in_ = ctx.input<msg::Attachment>(
         "attach", "optional: where the device holds the virtual object (the supervisor's): haptic registration",
         Qos::reliable(16).optional_input());
+    tracked_in_ = ctx.input<msg::PoseStamped>(
+        "eye_T_base", "optional: the camera pose the display draws from (the tracker's), for visual registration",
+        Qos::reliable(16).optional_input());
+    true_in_ = ctx.input<msg::PoseStamped>("true_eye_T_base", "optional: the true camera pose (camera_sim's)",
+                                           Qos::reliable(16).optional_input());
+    info_in_ = ctx.input<msg::CameraInfo>("camera_info", "optional: the camera's intrinsics (pixels)",
+                                          Qos::sensor(2).optional_input());
     reports_out_ = ctx.output<msg::ContactReport>("contacts", "one report a contact", Qos::reliable(16));
     registration_out_ = ctx.output<msg::HapticRegistration>(
         "registration", "haptic registration over each attachment, when the device lets go", Qos::reliable(16));
@@ -92,6 +110,7 @@ class DisplayMetrics final : public Component {
       if (attach_msg_.attached()) start_attachment(t);
     }
     if (attachment_) register_until(now.ns);
+    measure_visual(now);
   }
 
   void activate() override { objects_.resize(scene_.models.size()); }
@@ -101,10 +120,17 @@ class DisplayMetrics final : public Component {
     for (const auto& r : reports_) hits += r.hit() ? 1 : 0;
     log(std::to_string(reports_.size()) + " contact(s), " + std::to_string(hits) + " hit(s)");
     if (attachment_) finish_attachment(plate_.empty() ? 0 : plate_.back().t);
-    if (run_.samples() > 0)
-      log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.percentile_mm(50)) +
-          " mm, p99 " + std::to_string(run_.percentile_mm(99)) + " mm, max " + std::to_string(run_.max_mm()) +
-          " mm / " + std::to_string(run_.max_deg()) + " deg over " + std::to_string(run_.samples()) + " samples");
+    if (visual_mm_.samples() > 0)
+      log("visual registration (the moving bodies' corners, tracked against true camera pose) over " +
+          std::to_string(visual_mm_.samples()) + " images: p50 " + std::to_string(visual_mm_.percentile(50)) +
+          " mm / " + std::to_string(visual_px_.percentile(50)) + " px, p99 " +
+          std::to_string(visual_mm_.percentile(99)) + " mm / " + std::to_string(visual_px_.percentile(99)) +
+          " px, max " + std::to_string(visual_mm_.max()) + " mm / " + std::to_string(visual_px_.max()) + " px");
+    if (run_.mm.samples() > 0)
+      log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.mm.percentile(50)) +
+          " mm, p99 " + std::to_string(run_.mm.percentile(99)) + " mm, max " + std::to_string(run_.mm.max()) +
+          " mm / " + std::to_string(run_.deg.max()) + " deg over " + std::to_string(run_.mm.samples()) + " samples");
+    if (!summary_path_.empty()) write_summary();
   }
 
  private:
@@ -162,6 +188,97 @@ class DisplayMetrics final : public Component {
     reports_.push_back(r);
   }
 
+  // Each tracked pose against the true pose of the same image (equal stamps).
+  void measure_visual(Time now) {
+    if (info_in_.take_latest(info_msg_)) K_ = {info_msg_.k()[0], info_msg_.k()[4], info_msg_.k()[2], info_msg_.k()[5]};
+    while (true_in_.take(pose_msg_))
+      if (msgs::all_finite(pose_msg_.pose()))
+        true_poses_.push_back({stamp(pose_msg_.header(), now), msgs::to_isometry(pose_msg_.pose())});
+    while (true_poses_.size() > 64) true_poses_.pop_front();
+    while (tracked_in_.take(pose_msg_)) {
+      if (!msgs::all_finite(pose_msg_.pose())) {
+        reject(tracked_in_, "a non-finite pose");
+        continue;
+      }
+      tracked_.push_back({stamp(pose_msg_.header(), now), msgs::to_isometry(pose_msg_.pose())});
+    }
+    // No pixels without intrinsics; no truth on real hardware: nothing to keep.
+    while (!tracked_.empty() && (!(K_[0] > 0) || tracked_.size() > 64)) tracked_.pop_front();
+    while (!tracked_.empty()) {
+      const Sample& drawn = tracked_.front();
+      const auto truth =
+          std::find_if(true_poses_.begin(), true_poses_.end(), [&](const Sample& s) { return s.t == drawn.t; });
+      if (truth == true_poses_.end()) {
+        if (true_poses_.empty() || true_poses_.back().t <= drawn.t) break;  // may still come
+        tracked_.pop_front();                                               // never coming
+        continue;
+      }
+      corners_.clear();
+      for (std::size_t b = 0; b < scene_.models.size(); ++b) {
+        if (!scene_.models[b].dynamic || objects_[b].empty()) continue;
+        const Eigen::Isometry3d base_T_obj = at(objects_[b], drawn.t)->pose;
+        const Vec3 h = scene_.models[b].half_extents;
+        for (int c = 0; c < 8; ++c)
+          corners_.push_back(base_T_obj * Vec3(c & 1 ? h.x() : -h.x(), c & 2 ? h.y() : -h.y(), c & 4 ? h.z() : -h.z()));
+      }
+      if (!corners_.empty()) {
+        const VisualError e = visual_error(drawn.pose, truth->pose, corners_, K_);
+        visual_mm_.add(e.mm, drawn.t);
+        visual_px_.add(e.px, drawn.t);
+      }
+      tracked_.pop_front();
+    }
+  }
+
+  static std::string number(double v) {
+    if (!std::isfinite(v)) return "null";
+    std::ostringstream o;
+    o.precision(9);
+    o << v;
+    return o.str();
+  }
+  static std::string quoted(const std::string& text) {
+    std::string q = "\"";
+    for (char c : text) q += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+    return q + "\"";
+  }
+
+  // Every figure of the run, units in the keys: the run report's summary.json.
+  void write_summary() {
+    std::ostringstream j;
+    j << "{\n  \"contacts\": [";
+    for (std::size_t i = 0; i < reports_.size(); ++i) {
+      const auto& r = reports_[i];
+      j << (i ? "," : "") << "\n    {\"contact\": " << r.contact() << ", \"feature\": " << quoted(r.feature().c_str())
+        << ", \"hit\": " << (r.hit() ? "true" : "false")
+        << ", \"still_before_ms\": " << number(r.still_before_s() * 1e3) << ", \"offset_mm\": " << number(r.offset_mm())
+        << ", \"angle_deg\": " << number(r.angle_deg()) << "}";
+    }
+    j << "\n  ],\n  \"haptic_registration\": {\n    \"attachments\": [";
+    for (std::size_t i = 0; i < registrations_.size(); ++i) {
+      const auto& r = registrations_[i];
+      j << (i ? "," : "") << "\n      {\"contact\": " << r.contact() << ", \"feature\": " << quoted(r.feature().c_str())
+        << ", \"samples\": " << r.samples() << ", \"p50_mm\": " << number(r.p50_mm())
+        << ", \"p99_mm\": " << number(r.p99_mm()) << ", \"max_mm\": " << number(r.max_mm())
+        << ", \"max_deg\": " << number(r.max_deg()) << ", \"onset_max_mm\": " << number(r.onset_max_mm())
+        << ", \"onset_max_deg\": " << number(r.onset_max_deg()) << "}";
+    }
+    j << "\n    ],\n    \"run\": {\"samples\": " << run_.mm.samples()
+      << ", \"p50_mm\": " << number(run_.mm.percentile(50)) << ", \"p99_mm\": " << number(run_.mm.percentile(99))
+      << ", \"max_mm\": " << number(run_.mm.max()) << ", \"max_deg\": " << number(run_.deg.max()) << "}\n  },\n";
+    j << "  \"visual_registration\": {\"images\": " << visual_mm_.samples()
+      << ", \"p50_mm\": " << number(visual_mm_.percentile(50)) << ", \"p99_mm\": " << number(visual_mm_.percentile(99))
+      << ", \"max_mm\": " << number(visual_mm_.max()) << ", \"p50_px\": " << number(visual_px_.percentile(50))
+      << ", \"p99_px\": " << number(visual_px_.percentile(99)) << ", \"max_px\": " << number(visual_px_.max())
+      << "}\n}\n";
+    std::ofstream out(summary_path_);
+    out << j.str();
+    if (!out)
+      warn_once("summary", "could not write the summary to '" + summary_path_ + "'");
+    else
+      log("summary: " + summary_path_);
+  }
+
   struct Attachment {
     std::size_t body = 0;
     Eigen::Isometry3d obj_T_dev = Eigen::Isometry3d::Identity();
@@ -209,18 +326,19 @@ class DisplayMetrics final : public Component {
     fill_header(r.header(), t, registration_seq_++, "base");
     r.contact(contact_);
     r.feature(a.feature);
-    r.samples(static_cast<std::uint32_t>(a.all.samples()));
-    r.p50_mm(a.all.percentile_mm(50));
-    r.p99_mm(a.all.percentile_mm(99));
-    r.max_mm(a.all.max_mm());
-    r.max_deg(a.all.max_deg());
-    r.onset_max_mm(a.onset.max_mm());
-    r.onset_max_deg(a.onset.max_deg());
+    r.samples(static_cast<std::uint32_t>(a.all.mm.samples()));
+    r.p50_mm(a.all.mm.percentile(50));
+    r.p99_mm(a.all.mm.percentile(99));
+    r.max_mm(a.all.mm.max());
+    r.max_deg(a.all.deg.max());
+    r.onset_max_mm(a.onset.mm.max());
+    r.onset_max_deg(a.onset.deg.max());
     registration_out_.write(r);
+    registrations_.push_back(r);
     log("contact " + std::to_string(contact_) + " (" + a.feature + ") attached " +
         std::to_string(static_cast<double>(t - a.since) * 1e-9) + " s: plate from the held feature p50 " +
         std::to_string(r.p50_mm()) + " mm, p99 " + std::to_string(r.p99_mm()) + " mm, max " +
-        std::to_string(r.max_mm()) + " mm (at " + std::to_string(static_cast<double>(a.all.max_mm_at()) * 1e-9) +
+        std::to_string(r.max_mm()) + " mm (at " + std::to_string(static_cast<double>(a.all.mm.max_at()) * 1e-9) +
         " s) / " + std::to_string(r.max_deg()) + " deg; onset max " + std::to_string(r.onset_max_mm()) + " mm / " +
         std::to_string(r.onset_max_deg()) + " deg");
     attachment_.reset();
@@ -233,6 +351,16 @@ class DisplayMetrics final : public Component {
   RegistrationStats run_;
   std::uint32_t contact_ = 0;
   std::uint64_t registration_seq_ = 0;
+  std::string summary_path_;
+  std::vector<msg::HapticRegistration> registrations_;
+  std::deque<Sample> tracked_, true_poses_;
+  std::array<double, 4> K_{};
+  std::vector<Vec3> corners_;
+  Percentiles visual_mm_, visual_px_;
+  msg::PoseStamped pose_msg_;
+  msg::CameraInfo info_msg_;
+  Input<msg::PoseStamped> tracked_in_, true_in_;
+  Input<msg::CameraInfo> info_in_;
   msg::Attachment attach_msg_;
   Input<msg::Attachment> attach_in_;
   Output<msg::HapticRegistration> registration_out_;

@@ -10,17 +10,30 @@ RegistrationError registration_error(const Eigen::Isometry3d& want, const Eigen:
           Eigen::Quaterniond(want.linear()).angularDistance(Eigen::Quaterniond(plate.linear())) * 180 / M_PI};
 }
 
-void RegistrationStats::add(RegistrationError e, std::int64_t t_ns) {
-  mm_.push_back(e.mm);
-  if (e.mm > max_mm_) max_mm_ = e.mm, max_at_ = t_ns;
-  max_deg_ = std::max(max_deg_, e.deg);
+VisualError visual_error(const Eigen::Isometry3d& tracked_eye_T_base, const Eigen::Isometry3d& true_eye_T_base,
+                         const std::vector<Eigen::Vector3d>& base_points, const std::array<double, 4>& K) {
+  VisualError e;
+  for (const Eigen::Vector3d& p : base_points) {
+    const Eigen::Vector3d drawn = tracked_eye_T_base * p, truth = true_eye_T_base * p;
+    if (drawn.z() <= 0 || truth.z() <= 0) continue;
+    e.mm = std::max(e.mm, (drawn - truth).norm() * 1e3);
+    const Eigen::Vector2d a(K[0] * drawn.x() / drawn.z() + K[2], K[1] * drawn.y() / drawn.z() + K[3]);
+    const Eigen::Vector2d b(K[0] * truth.x() / truth.z() + K[2], K[1] * truth.y() / truth.z() + K[3]);
+    e.px = std::max(e.px, (a - b).norm());
+  }
+  return e;
 }
 
-double RegistrationStats::percentile_mm(double p) const {
-  if (mm_.empty()) return 0;
-  const auto rank = static_cast<std::size_t>(std::ceil(std::clamp(p, 0.0, 100.0) / 100 * mm_.size()));
-  const auto k = mm_.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
-  std::nth_element(mm_.begin(), k, mm_.end());
+void Percentiles::add(double value, std::int64_t t_ns) {
+  if (values_.empty() || value > max_) max_ = value, max_at_ = t_ns;
+  values_.push_back(value);
+}
+
+double Percentiles::percentile(double p) const {
+  if (values_.empty()) return 0;
+  const auto rank = static_cast<std::size_t>(std::ceil(std::clamp(p, 0.0, 100.0) / 100 * values_.size()));
+  const auto k = values_.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
+  std::nth_element(values_.begin(), k, values_.end());
   return *k;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-// Haptic registration while the device is attached to a virtual object: the real plate against
-// where the attachment holds it on the moving object (base_T_obj * obj_T_dev), sample by sample,
-// summed up as percentiles.
+// Registration errors and their statistics. Haptic: the real plate against where the attachment
+// holds it on the moving virtual object (base_T_obj * obj_T_dev). Visual: where the virtual
+// object's points are drawn (the tracked camera pose) against where they should be (the true
+// one), in mm in the camera frame and in pixels.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -17,20 +19,34 @@ struct RegistrationError {
 
 RegistrationError registration_error(const Eigen::Isometry3d& want, const Eigen::Isometry3d& plate);
 
-class RegistrationStats {
+struct VisualError {
+  double mm = 0;  // the largest offset of a point as drawn from where it should be, camera frame
+  double px = 0;  // the largest offset of its image
+};
+
+// Over `base_points`, drawn through tracked_eye_T_base instead of true_eye_T_base, seen by a
+// pinhole camera K = (fx, fy, cx, cy). Points behind the camera are skipped.
+VisualError visual_error(const Eigen::Isometry3d& tracked_eye_T_base, const Eigen::Isometry3d& true_eye_T_base,
+                         const std::vector<Eigen::Vector3d>& base_points, const std::array<double, 4>& K);
+
+// Samples of one error, for nearest-rank percentiles and the largest with its time.
+class Percentiles {
  public:
-  void add(RegistrationError e, std::int64_t t_ns = 0);
-  std::size_t samples() const { return mm_.size(); }
-  // Nearest-rank percentile of the position errors, p in [0, 100]; 0 without samples.
-  double percentile_mm(double p) const;
-  double max_mm() const { return max_mm_; }
-  double max_deg() const { return max_deg_; }
-  std::int64_t max_mm_at() const { return max_at_; }  // when the largest position error was
+  void add(double value, std::int64_t t_ns = 0);
+  std::size_t samples() const { return values_.size(); }
+  double percentile(double p) const;  // p in [0, 100]; 0 without samples
+  double max() const { return max_; }
+  std::int64_t max_at() const { return max_at_; }
 
  private:
-  mutable std::vector<double> mm_;  // reordered by percentile_mm
-  double max_mm_ = 0, max_deg_ = 0;
+  mutable std::vector<double> values_;  // reordered by percentile()
+  double max_ = 0;
   std::int64_t max_at_ = 0;
+};
+
+struct RegistrationStats {
+  Percentiles mm, deg;
+  void add(RegistrationError e, std::int64_t t_ns) { mm.add(e.mm, t_ns), deg.add(e.deg, t_ns); }
 };
 
 }  // namespace wysiwyf::display
