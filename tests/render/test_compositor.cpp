@@ -104,41 +104,45 @@ TEST(Compositor, AZMarginKeepsRealThingsLyingOnTheVirtualSurfaceBehindIt) {
 }
 
 TEST(Compositor, TheDeviceIsKeptOutAndOnlyAHandInFrontOfItShows) {
-  // Four keyed pixels over no virtual surface, the device 0.6 m away on the first three: the real
-  // depth there 0.55 m (a hand 5 cm in front: shown), 0.59 m (the device itself, 1 cm of stereo
-  // noise: hidden with a 3 cm device_margin), unknown (hidden); the fourth is off the device
-  // (shown). Without a real depth stream every device pixel is hidden.
-  for (bool with_depth : {true, false}) {
-    Harness h("compositor", "{device_margin: 0.03}", 60);
-    auto scene = h.feed<msg::Image>("scene");
-    auto scene_depth = h.feed<msg::Image>("scene_depth");
-    auto hand = h.feed<msg::Image>("hand");
-    auto real_depth = h.feed<msg::Image>("real_depth");
-    auto device = h.feed<msg::Image>("device_depth");
-    auto out = h.watch<msg::Image>("composite");
-    h.activate();
-    msg::Image s = image(4, 1, "rgb8", 3), sd = image(4, 1, "32FC1", 4), k = image(4, 1, "rgba8", 4),
-               rd = image(4, 1, "32FC1", 4), dd = image(4, 1, "32FC1", 4);
-    for (int u = 0; u < 4; ++u) {
-      s.data()[u * 3] = 200;
-      k.data()[u * 4 + 1] = 255, k.data()[u * 4 + 3] = 255;
-      if (u < 3) set_depth(dd, u, 0, 0.6f);
+  // Keyed pixels over no virtual surface, in a repeating pattern of four (37 wide: the vector
+  // path and the scalar tail): the device 0.6 m away on the first three, the real depth there
+  // 0.55 m (a hand 5 cm in front: shown), 0.59 m (the device itself, 1 cm of stereo noise:
+  // hidden with a 3 cm device_margin), unknown (hidden); the fourth is off the device (shown).
+  // Without a real depth stream every device pixel is hidden. With z-keying on or off alike.
+  constexpr int kWidth = 37;
+  for (bool with_depth : {true, false})
+    for (bool virtual_depth : {true, false}) {
+      Harness h("compositor", "{device_margin: 0.03}", 60);
+      auto scene = h.feed<msg::Image>("scene");
+      auto scene_depth = h.feed<msg::Image>("scene_depth");
+      auto hand = h.feed<msg::Image>("hand");
+      auto real_depth = h.feed<msg::Image>("real_depth");
+      auto device = h.feed<msg::Image>("device_depth");
+      auto out = h.watch<msg::Image>("composite");
+      h.activate();
+      msg::Image s = image(kWidth, 1, "rgb8", 3), sd = image(kWidth, 1, "32FC1", 4), k = image(kWidth, 1, "rgba8", 4),
+                 rd = image(kWidth, 1, "32FC1", 4), dd = image(kWidth, 1, "32FC1", 4);
+      for (int u = 0; u < kWidth; ++u) {
+        s.data()[u * 3] = 200;
+        k.data()[u * 4 + 1] = 255, k.data()[u * 4 + 3] = 255;
+        if (u % 4 < 3) set_depth(dd, u, 0, 0.6f);
+        if (u % 4 == 0) set_depth(rd, u, 0, 0.55f);
+        if (u % 4 == 1) set_depth(rd, u, 0, 0.59f);
+        if (u % 4 == 3) set_depth(rd, u, 0, 0.8f);
+      }
+      scene.write(s), hand.write(k), device.write(dd);
+      if (virtual_depth) scene_depth.write(sd);
+      if (with_depth) real_depth.write(rd);
+      h.tick(Time{0});
+      msg::Image c;
+      ASSERT_TRUE(out.take_latest(c));
+      const std::uint8_t* p = c.data().data();
+      for (int u = 0; u < kWidth; ++u) {
+        const bool shown = u % 4 == 3 || (u % 4 == 0 && with_depth);
+        EXPECT_EQ(p[3 * u + 1], shown ? 255 : 0) << "pixel " << u << (with_depth ? " with" : " without") << " depth";
+        EXPECT_EQ(p[3 * u], shown ? 0 : 200) << "pixel " << u;
+      }
     }
-    set_depth(rd, 0, 0, 0.55f);
-    set_depth(rd, 1, 0, 0.59f);
-    set_depth(rd, 3, 0, 0.8f);
-    scene.write(s), scene_depth.write(sd), hand.write(k), device.write(dd);
-    if (with_depth) real_depth.write(rd);
-    h.tick(Time{0});
-    msg::Image c;
-    ASSERT_TRUE(out.take_latest(c));
-    const std::uint8_t* p = c.data().data();
-    EXPECT_EQ(p[1], with_depth ? 255 : 0) << "a hand in front of the device";
-    EXPECT_EQ(p[4], 0) << "the device itself";
-    EXPECT_EQ(p[7], 0) << "the device, depth unknown";
-    EXPECT_EQ(p[10], 255) << "off the device";
-    EXPECT_EQ(p[9], 0);
-  }
 }
 
 TEST(Compositor, EveryPixelOfAWideImageIsTheRoundedBlend) {

@@ -19,32 +19,60 @@ namespace wysiwyf::render {
 
 namespace {
 
+// The depths a blend consults (empty: not there). real: the real scene's (0 unknown); virt: the
+// rendered scene's (0 nothing); device: the real device's (0 not there).
+struct Depths {
+  cv::Mat real, virt, device;
+  float margin = 0, device_margin = 0;
+};
+
+// Whether the device hides a keyed pixel: the device is there and the real depth does not put
+// something nearer than it by device_margin (unknown or absent real depth: hidden).
+inline unsigned device_hides(float device, const float* real, int x, float device_margin) {
+  return device > 0.0f && !(real && real[x] > 0.0f && real[x] < device - device_margin);
+}
+
 // out = hand + scene (255 - alpha) / 255 per channel, exactly rounded, in one pass over the
 // rows with OpenCV's universal intrinsics (16 pixels at a time; OpenCV's multiply/merge/add
-// chain made five passes and a float conversion). With both depths, the hand counts only where
-// no virtual surface (depth > 0) is nearer than the real one (depth > 0) plus `margin`.
-template <bool kZKey>
-void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
-                float margin, cv::Mat& composite) {
+// chain made five passes and a float conversion). kZKey: the hand counts only where no virtual
+// surface (depth > 0) is nearer than the real one (depth > 0) plus `margin`. kDevice: nor where
+// the device hides it (device_hides).
+template <bool kZKey, bool kDevice>
+void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::Mat& composite) {
   for (int y = 0; y < scene.rows; ++y) {
     const std::uint8_t* sc = scene.ptr<std::uint8_t>(y);
     std::uint8_t* out = composite.ptr<std::uint8_t>(y);
     const std::uint8_t* h = hand.ptr<std::uint8_t>(y);
-    const float* real = kZKey ? real_depth.ptr<float>(y) : nullptr;
-    const float* virt = kZKey ? virtual_depth.ptr<float>(y) : nullptr;
+    const float* real = d.real.empty() ? nullptr : d.real.ptr<float>(y);
+    const float* virt = kZKey ? d.virt.ptr<float>(y) : nullptr;
+    const float* dev = kDevice ? d.device.ptr<float>(y) : nullptr;
     int x = 0;
 #if CV_SIMD128
     const cv::v_uint8x16 full = cv::v_setall_u8(255);
+    const cv::v_float32x4 zero = cv::v_setall_f32(0.0f), m = cv::v_setall_f32(d.margin),
+                          dm = cv::v_setall_f32(d.device_margin);
     for (; x + 16 <= scene.cols; x += 16) {
       cv::v_uint8x16 hr, hg, hb, ha, sr, sg, sb;
       cv::v_load_deinterleave(h + 4 * x, hr, hg, hb, ha);
       cv::v_load_deinterleave(sc + 3 * x, sr, sg, sb);
-      if constexpr (kZKey) {
-        const cv::v_float32x4 zero = cv::v_setall_f32(0.0f), m = cv::v_setall_f32(margin);
+      if constexpr (kZKey || kDevice) {
         cv::v_uint32x4 hidden[4];
         for (int k = 0; k < 4; ++k) {
-          const cv::v_float32x4 vz = cv::v_load(virt + x + 4 * k), rz = cv::v_load(real + x + 4 * k);
-          hidden[k] = cv::v_reinterpret_as_u32((vz > zero) & (rz > zero) & (vz < rz + m));
+          cv::v_float32x4 gone = cv::v_reinterpret_as_f32(cv::v_setzero_u32());
+          if constexpr (kZKey) {
+            const cv::v_float32x4 vz = cv::v_load(virt + x + 4 * k), rz = cv::v_load(real + x + 4 * k);
+            gone = gone | ((vz > zero) & (rz > zero) & (vz < rz + m));
+          }
+          if constexpr (kDevice) {
+            const cv::v_float32x4 dz = cv::v_load(dev + x + 4 * k);
+            cv::v_float32x4 on = dz > zero;
+            if (real) {
+              const cv::v_float32x4 rz = cv::v_load(real + x + 4 * k);
+              on = on & ~((rz > zero) & (rz < dz - dm));
+            }
+            gone = gone | on;
+          }
+          hidden[k] = cv::v_reinterpret_as_u32(gone);
         }
         const cv::v_uint8x16 keep = ~cv::v_pack(cv::v_pack(hidden[0], hidden[1]), cv::v_pack(hidden[2], hidden[3]));
         hr = hr & keep, hg = hg & keep, hb = hb & keep, ha = ha & keep;
@@ -56,8 +84,9 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_d
     }
 #endif
     for (; x < scene.cols; ++x) {
-      unsigned keep = 1;  // 0 where the virtual surface hides the hand
-      if constexpr (kZKey) keep = !(virt[x] > 0.0f && real[x] > 0.0f && virt[x] < real[x] + margin);
+      unsigned keep = 1;  // 0 where the virtual surface or the device hides the hand
+      if constexpr (kZKey) keep = !(virt[x] > 0.0f && real[x] > 0.0f && virt[x] < real[x] + d.margin);
+      if constexpr (kDevice) keep &= !device_hides(dev[x], real, x, d.device_margin);
       const unsigned a = h[4 * x + 3] * keep, inverse = 255u - a;
       for (int c = 0; c < 3; ++c) {
         const unsigned blended = h[4 * x + c] * keep + image::mul_div255(sc[3 * x + c], inverse);
@@ -67,12 +96,16 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_d
   }
 }
 
-void blend(const cv::Mat& scene, const cv::Mat& hand, const cv::Mat& real_depth, const cv::Mat& virtual_depth,
-           float margin, cv::Mat& composite) {
-  if (real_depth.empty())
-    blend_rows<false>(scene, hand, real_depth, virtual_depth, margin, composite);
+void blend(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, bool z_key, cv::Mat& composite) {
+  const bool device = !d.device.empty();
+  if (z_key && device)
+    blend_rows<true, true>(scene, hand, d, composite);
+  else if (z_key)
+    blend_rows<true, false>(scene, hand, d, composite);
+  else if (device)
+    blend_rows<false, true>(scene, hand, d, composite);
   else
-    blend_rows<true>(scene, hand, real_depth, virtual_depth, margin, composite);
+    blend_rows<false, false>(scene, hand, d, composite);
 }
 
 }  // namespace
@@ -120,15 +153,13 @@ class Compositor final : public Component {
     fill_header(out_msg_.header(), now.ns, seq_++, scene_.image.header().frame_id().c_str());
     const cv::Mat scene = image::view(scene_.image);
     if (same_size(hand_in_, hand_, w, h)) {
-      const bool z_key =
-          use_depth_ && same_size(real_depth_in_, real_depth_, w, h) && same_size(scene_depth_in_, scene_depth_, w, h);
-      const bool real_known = same_size(real_depth_in_, real_depth_, w, h);
-      const cv::Mat hand = same_size(device_in_, device_, w, h)
-                               ? without_device(image::view(hand_.image), image::view(device_.image),
-                                                real_known ? image::view(real_depth_.image) : cv::Mat())
-                               : image::view(hand_.image);
-      blend(scene, hand, z_key ? image::view(real_depth_.image) : cv::Mat(),
-            z_key ? image::view(scene_depth_.image) : cv::Mat(), margin_, out);
+      Depths d;
+      d.margin = margin_, d.device_margin = device_margin_;
+      if (same_size(real_depth_in_, real_depth_, w, h)) d.real = image::view(real_depth_.image);
+      const bool z_key = use_depth_ && !d.real.empty() && same_size(scene_depth_in_, scene_depth_, w, h);
+      if (z_key) d.virt = image::view(scene_depth_.image);
+      if (same_size(device_in_, device_, w, h)) d.device = image::view(device_.image);
+      blend(scene, image::view(hand_.image), d, z_key, out);
     } else {
       scene.copyTo(out);
     }
@@ -160,23 +191,6 @@ class Compositor final : public Component {
     return false;
   }
 
-  // The hand layer without the device: cleared where the device is drawn, unless the real depth
-  // there is nearer than the device by device_margin (something in front of it: the hand).
-  // Without real depth every device pixel is cleared.
-  const cv::Mat& without_device(const cv::Mat& hand, const cv::Mat& device, const cv::Mat& real) {
-    cv::compare(device, 0.0f, device_pixels_, cv::CMP_GT);
-    if (!real.empty()) {
-      cv::subtract(device, device_margin_, device_front_);
-      cv::compare(real, device_front_, in_front_, cv::CMP_LT);
-      cv::compare(real, 0.0f, known_, cv::CMP_GT);
-      cv::bitwise_and(in_front_, known_, in_front_);
-      cv::bitwise_and(device_pixels_, ~in_front_, device_pixels_);
-    }
-    hand.copyTo(hand_clean_);
-    hand_clean_.setTo(cv::Scalar::all(0), device_pixels_);
-    return hand_clean_;
-  }
-
   // A premultiplied RGBA hand layer from a camera image and a 0/255 mask of the same size.
   bool hand_from_mask() {
     if (!camera_.usable || !same_size(mask_in_, mask_, camera_.image.width(), camera_.image.height())) return false;
@@ -195,7 +209,6 @@ class Compositor final : public Component {
 
   bool use_depth_ = true;
   float margin_ = 0.0f, device_margin_ = 0.0f;
-  cv::Mat hand_clean_, device_pixels_, device_front_, in_front_, known_;  // reused each frame
   std::uint64_t seq_ = 0;
   Stream scene_, scene_depth_, hand_, real_depth_, camera_, mask_, device_;
   msg::Image out_msg_;
