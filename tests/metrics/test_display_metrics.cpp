@@ -180,6 +180,48 @@ TEST(DisplayMetrics, ACameraPoseTurnedByATenthOfADegreeReadsItsPixelsAndTheSumma
   EXPECT_EQ(j["haptic_registration"]["run"]["samples"].as<int>(), 0);
 }
 
+TEST(DisplayMetrics, BleedThroughCountsTheDevicesOwnPixelsTheUserSees) {
+  // A 10 x 10 px device; the compositor shows 9 px inside it, one on its outline (where the
+  // image's blur mixes the device with its neighbours: not counted) and 5 off it. Two frames:
+  // the second shows nothing of the device. A shown image whose frame has no truth is skipped.
+  const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_bleed.json";
+  std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
+  std::filesystem::remove(summary);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
+  auto shown = h.feed<msg::Image>("shown");
+  auto device = h.feed<msg::Image>("true_device_mask");
+  h.activate();
+  const auto mono = [](std::int64_t stamp) {
+    msg::Image m;
+    fill_header(m.header(), stamp, 0, "eye");
+    m.width(20), m.height(20), m.encoding("mono8"), m.step(20);
+    m.data().assign(400, 0);
+    return m;
+  };
+  for (int frame = 0; frame < 3; ++frame) {
+    const std::int64_t stamp = (frame + 1) * 40 * kMs;
+    msg::Image d = mono(stamp), a = mono(frame == 2 ? stamp + 1 : stamp);
+    for (int v = 5; v < 15; ++v)
+      for (int u = 5; u < 15; ++u) d.data()[static_cast<std::size_t>(v * 20 + u)] = 255;
+    if (frame == 0) {
+      for (int v = 7; v < 10; ++v)
+        for (int u = 7; u < 10; ++u) a.data()[static_cast<std::size_t>(v * 20 + u)] = 200;
+      a.data()[5 * 20 + 5] = 255;                                               // the outline
+      for (int u = 0; u < 5; ++u) a.data()[static_cast<std::size_t>(u)] = 255;  // off the device
+    }
+    device.write(d);
+    shown.write(a);
+    h.tick(Time{stamp});
+  }
+  h.deactivate();
+  const YAML::Node b = YAML::LoadFile(summary)["bleed_through"];
+  ASSERT_TRUE(b.IsMap()) << summary;
+  EXPECT_EQ(b["images"].as<int>(), 2) << "the third frame has no truth";
+  EXPECT_EQ(b["images_with_any"].as<int>(), 1);
+  EXPECT_EQ(b["max_px"].as<double>(), 9.0);
+}
+
 TEST(DisplayMetrics, AnAttachmentToAnUnknownBodyIsRefusedNotMeasured) {
   Loader loader({WYSIWYF_COMPONENT_DIR});
   Harness h("display_metrics", "{scene: scenes/display_demo.yaml}", 1000, &loader);

@@ -30,6 +30,7 @@ TEST(DeviceMask, CoversEveryKeyedPixelOfTheRealDevice) {
   auto image = cam.watch<msg::Image>("image");
   auto info = cam.watch<msg::CameraInfo>("camera_info");
   auto eye_T_base = cam.watch<msg::PoseStamped>("true_eye_T_base");
+  auto true_device = cam.watch<msg::Image>("true_device_mask");
   auto key_in = keyer.feed<msg::Image>("image");
   auto hand = keyer.watch<msg::Image>("hand");
   auto mask_joints = mask.feed<msg::JointState>("joint_state");
@@ -51,10 +52,11 @@ TEST(DeviceMask, CoversEveryKeyedPixelOfTheRealDevice) {
     for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
     joints.write(js);
     cam.tick(t);
-    msg::Image img, keyed, dev;
+    msg::Image img, keyed, dev, truth;
     msg::CameraInfo ci;
     msg::PoseStamped pose;
-    ASSERT_TRUE(image.take_latest(img) && info.take_latest(ci) && eye_T_base.take_latest(pose));
+    ASSERT_TRUE(image.take_latest(img) && info.take_latest(ci) && eye_T_base.take_latest(pose) &&
+                true_device.take_latest(truth));
     key_in.write(img);
     keyer.tick(t);
     ASSERT_TRUE(hand.take_latest(keyed));
@@ -72,6 +74,10 @@ TEST(DeviceMask, CoversEveryKeyedPixelOfTheRealDevice) {
                 keyed_device, outside, cv::countNonZero(device));
     EXPECT_GT(keyed_device, 50) << "the knob and the plate are seen and keyed";
     EXPECT_EQ(outside, 0) << "pose " << k;
+    // camera_sim's own truth of where the device is seen lies inside it too, and is most of it.
+    const cv::Mat seen = view(truth, CV_8UC1) > 127;
+    EXPECT_EQ(cv::countNonZero(seen & ~device), 0) << "pose " << k;
+    EXPECT_GT(cv::countNonZero(seen), cv::countNonZero(device) / 2) << "pose " << k;
     // Its depth is the device's: within a few cm of the plate's distance from the camera.
     const Eigen::Isometry3d eye_T_dev = msgs::to_isometry(pose.pose()) * model.fk(q, model.frame("dev"));
     double lo = 0, hi = 0;

@@ -14,6 +14,10 @@
 // `camera_info`): for every image, the dynamic bodies' corners drawn through the tracked camera
 // pose against the true one: the largest offset in mm (camera frame) and in pixels, p50/p99/max
 // over the run, logged at the end.
+//
+// Bleed-through (with the compositor's `shown` alpha and camera_sim's `true_device_mask`): per
+// image, the pixels of the real device that the user sees (shown alpha > 127 where the device,
+// not the hand, is in front); the user should see only the virtual scene and the hand.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -23,6 +27,10 @@
 #include <limits>
 #include <optional>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "image/image_view.hpp"
 #include "registration_stats.hpp"
 
 #include "scene/scene.hpp"
@@ -70,6 +78,11 @@ class DisplayMetrics final : public Component {
                                            Qos::reliable(16).optional_input());
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "optional: the camera's intrinsics (pixels)",
                                           Qos::sensor(2).optional_input());
+    shown_in_ = ctx.input<msg::Image>("shown", "optional: the compositor's real-layer alpha (publish_shown), mono8",
+                                      Qos::reliable(8).optional_input());
+    device_mask_in_ =
+        ctx.input<msg::Image>("true_device_mask", "optional: where the device is seen (camera_sim's), mono8",
+                              Qos::reliable(8).optional_input());
     reports_out_ = ctx.output<msg::ContactReport>("contacts", "one report a contact", Qos::reliable(16));
     registration_out_ = ctx.output<msg::HapticRegistration>(
         "registration", "haptic registration over each attachment, when the device lets go", Qos::reliable(16));
@@ -111,6 +124,7 @@ class DisplayMetrics final : public Component {
     }
     if (attachment_) register_until(now.ns);
     measure_visual(now);
+    measure_bleed();
   }
 
   void activate() override { objects_.resize(scene_.models.size()); }
@@ -126,6 +140,10 @@ class DisplayMetrics final : public Component {
           " mm / " + std::to_string(visual_px_.percentile(50)) + " px, p99 " +
           std::to_string(visual_mm_.percentile(99)) + " mm / " + std::to_string(visual_px_.percentile(99)) +
           " px, max " + std::to_string(visual_mm_.max()) + " mm / " + std::to_string(visual_px_.max()) + " px");
+    if (bleed_px_.samples() > 0)
+      log("bleed-through (real device pixels the user sees) over " + std::to_string(bleed_px_.samples()) +
+          " images: " + std::to_string(bleed_frames_) + " with any, p99 " + std::to_string(bleed_px_.percentile(99)) +
+          " px, max " + std::to_string(bleed_px_.max()) + " px");
     if (run_.mm.samples() > 0)
       log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.mm.percentile(50)) +
           " mm, p99 " + std::to_string(run_.mm.percentile(99)) + " mm, max " + std::to_string(run_.mm.max()) +
@@ -270,6 +288,9 @@ class DisplayMetrics final : public Component {
       << ", \"p50_mm\": " << number(visual_mm_.percentile(50)) << ", \"p99_mm\": " << number(visual_mm_.percentile(99))
       << ", \"max_mm\": " << number(visual_mm_.max()) << ", \"p50_px\": " << number(visual_px_.percentile(50))
       << ", \"p99_px\": " << number(visual_px_.percentile(99)) << ", \"max_px\": " << number(visual_px_.max())
+      << "},\n";
+    j << "  \"bleed_through\": {\"images\": " << bleed_px_.samples() << ", \"images_with_any\": " << bleed_frames_
+      << ", \"p99_px\": " << number(bleed_px_.percentile(99)) << ", \"max_px\": " << number(bleed_px_.max())
       << "}\n}\n";
     std::ofstream out(summary_path_);
     out << j.str();
@@ -277,6 +298,37 @@ class DisplayMetrics final : public Component {
       warn_once("summary", "could not write the summary to '" + summary_path_ + "'");
     else
       log("summary: " + summary_path_);
+  }
+
+  // Each shown alpha against the device mask of the same camera frame (equal stamps).
+  void measure_bleed() {
+    while (device_mask_in_.take(image_msg_)) {
+      if (!image::problem(image_msg_, {"mono8"}).empty()) {
+        reject(device_mask_in_, image::problem(image_msg_, {"mono8"}));
+        continue;
+      }
+      device_masks_.push_back(image_msg_);
+      if (device_masks_.size() > 8) device_masks_.pop_front();
+    }
+    while (shown_in_.take(image_msg_)) {
+      if (!image::problem(image_msg_, {"mono8"}).empty()) {
+        reject(shown_in_, image::problem(image_msg_, {"mono8"}));
+        continue;
+      }
+      const auto mask = std::find_if(device_masks_.begin(), device_masks_.end(), [&](const msg::Image& m) {
+        return m.header().stamp_ns() == image_msg_.header().stamp_ns();
+      });
+      if (mask == device_masks_.end() || mask->width() != image_msg_.width() || mask->height() != image_msg_.height())
+        continue;  // its frame's truth is gone or never came
+      // The device's own pixels, not its outline: at an edge the image's blur and the keyer's soft
+      // matte mix it with what is next to it (the hand over it, the cloth around it).
+      cv::erode(image::view(*mask), inner_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+      cv::Mat seen = image::view(image_msg_) > 127;
+      seen &= inner_;
+      const int bleed = cv::countNonZero(seen);
+      bleed_px_.add(bleed, image_msg_.header().stamp_ns());
+      bleed_frames_ += bleed > 0 ? 1 : 0;
+    }
   }
 
   struct Attachment {
@@ -352,6 +404,12 @@ class DisplayMetrics final : public Component {
   std::uint32_t contact_ = 0;
   std::uint64_t registration_seq_ = 0;
   std::string summary_path_;
+  std::deque<msg::Image> device_masks_;
+  cv::Mat inner_;
+  msg::Image image_msg_;
+  Percentiles bleed_px_;
+  std::size_t bleed_frames_ = 0;
+  Input<msg::Image> shown_in_, device_mask_in_;
   std::vector<msg::HapticRegistration> registrations_;
   std::deque<Sample> tracked_, true_poses_;
   std::array<double, 4> K_{};

@@ -39,7 +39,7 @@ Eigen::Isometry3d segment_pose(const Eigen::Vector3d& a, const Eigen::Vector3d& 
 }
 
 const Eigen::Vector4f kCloth(0.10f, 0.16f, 0.62f, 1), kAluminium(0.72f, 0.72f, 0.74f, 1), kLamp(1.0f, 0.97f, 0.85f, 1),
-    kSkin(0.86f, 0.62f, 0.50f, 1), kBlack(0, 0, 0, 1), kWhite(1, 1, 1, 1);
+    kSkin(0.86f, 0.62f, 0.50f, 1), kBlack(0, 0, 0, 1), kWhite(1, 1, 1, 1), kMaskDevice(0, 0, 1, 1);
 
 // The hand, in the fingertip's frame (x along the pointing index finger, z out of the back of the
 // hand, the origin the fingertip sphere's centre, as puma_sim simulates it): finger segments and
@@ -107,6 +107,9 @@ class CameraSim final : public Component {
     true_eye_T_dev_ = ctx.output<msg::PoseStamped>("true_eye_T_dev", "ground truth", Qos::sensor(4));
     true_mask_ =
         ctx.output<msg::Image>("true_hand_mask", "ground truth: 255 where the hand is seen, mono8", Qos::sensor(2));
+    true_device_mask_ = ctx.output<msg::Image>(
+        "true_device_mask", "ground truth: 255 where the device (arm, plate, knob, lamps) is seen, mono8",
+        Qos::sensor(2));
     true_depth_ = ctx.output<msg::Image>("true_depth", "ground truth metric depth, 32FC1", Qos::sensor(2));
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
@@ -168,15 +171,20 @@ class CameraSim final : public Component {
     renderer_->read_depth(depth_);
     renderer_->read_rgb(rgb_);
     if (exposure_ > 0) expose(now, rgb_, [&](std::int64_t) { return eye_T_base; });
-    render(eye_T_base, true);  // the hand alone, white, everything else black: the true mask
+    render(eye_T_base, true);  // the hand white, the device blue, everything else black: the true masks
     renderer_->read_rgb(mask_rgb_);
-    cv::Mat mask;
-    cv::extractChannel(cv::Mat(camera_.height, camera_.width, CV_8UC3, mask_rgb_.data()), mask, 0);
+    cv::Mat mask, device_mask;
+    const cv::Mat mask_rgb(camera_.height, camera_.width, CV_8UC3, mask_rgb_.data());
+    cv::extractChannel(mask_rgb, mask, 0);
     cv::threshold(mask, mask, 127, 255, cv::THRESH_BINARY);
+    cv::extractChannel(mask_rgb, device_mask, 2);
+    cv::threshold(device_mask, device_mask, 127, 255, cv::THRESH_BINARY);
+    device_mask &= ~mask;
     cv::Mat img(camera_.height, camera_.width, CV_8UC3, rgb_.data());
     finish(img, mask, gain);
     publish_image(image_, img, "rgb8", now);
     publish_image(true_mask_, mask, "mono8", now);
+    publish_image(true_device_mask_, device_mask, "mono8", now);
     publish_image(true_depth_, cv::Mat(camera_.height, camera_.width, CV_32FC1, depth_.data()), "32FC1", now);
     if (baseline_ > 0) {
       Eigen::Isometry3d eye_T_right = Eigen::Isometry3d::Identity();
@@ -247,9 +255,10 @@ class CameraSim final : public Component {
     return frames::look_at(lerp(1), lerp(4));
   }
 
-  // One pass of the scene; mask_pass: the hand white and unlit, everything else black.
+  // One pass of the scene; mask_pass: unlit, the hand white, the device blue, everything else black.
   void render(const Eigen::Isometry3d& eye_T_base, bool mask_pass) {
     auto color = [&](const Eigen::Vector4f& c, bool is_hand) { return mask_pass ? (is_hand ? kWhite : kBlack) : c; };
+    auto device_color = [&](const Eigen::Vector4f& c) { return mask_pass ? kMaskDevice : c; };
     renderer_->begin(mask_pass ? Eigen::Vector4f(0, 0, 0, 1) : kCloth * 0.8f);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(0.6, 0, -0.025);
@@ -265,17 +274,17 @@ class CameraSim final : public Component {
         const Eigen::Isometry3d eye_T_shape = eye_T_base * device_poses_[i];
         switch (shape.part) {
           case robot::DeviceShape::Part::kLink:
-            renderer_->draw(device_meshes_[i], eye_T_shape, color(kCloth, false), !mask_pass);
+            renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kCloth), !mask_pass);
             break;
           case robot::DeviceShape::Part::kPlate:
-            renderer_->draw(device_meshes_[i], eye_T_shape, color(plate_cloth_ ? kCloth : kAluminium, false),
+            renderer_->draw(device_meshes_[i], eye_T_shape, device_color(plate_cloth_ ? kCloth : kAluminium),
                             !mask_pass);
             break;
           case robot::DeviceShape::Part::kKnob:
-            renderer_->draw(device_meshes_[i], eye_T_shape, color(kAluminium, false), !mask_pass);
+            renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kAluminium), !mask_pass);
             break;
           case robot::DeviceShape::Part::kLamp:
-            if (!lamp_hidden(shape.index)) renderer_->draw(device_meshes_[i], eye_T_shape, color(kLamp, false), false);
+            if (!lamp_hidden(shape.index)) renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kLamp), false);
             break;
         }
       }
@@ -396,7 +405,7 @@ class CameraSim final : public Component {
   msg::CameraInfo info_msg_;
   Input<msg::JointState> joints_in_;
   Input<msg::PoseStamped> hand_in_;
-  Output<msg::Image> image_, right_, true_mask_, true_depth_;
+  Output<msg::Image> image_, right_, true_mask_, true_device_mask_, true_depth_;
   Output<msg::CameraInfo> info_, right_info_;
   Output<msg::PoseStamped> true_eye_T_base_, true_eye_T_dev_;
 };

@@ -37,8 +37,9 @@ inline unsigned device_hides(float device, const float* real, int x, float devic
 // chain made five passes and a float conversion). kZKey: the hand counts only where no virtual
 // surface (depth > 0) is nearer than the real one (depth > 0) plus `margin`. kDevice: nor where
 // the device hides it (device_hides).
+// shown (optional, mono8): the alpha of the real layer as blended.
 template <bool kZKey, bool kDevice>
-void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::Mat& composite) {
+void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::Mat& composite, cv::Mat* shown) {
   for (int y = 0; y < scene.rows; ++y) {
     const std::uint8_t* sc = scene.ptr<std::uint8_t>(y);
     std::uint8_t* out = composite.ptr<std::uint8_t>(y);
@@ -46,6 +47,7 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::
     const float* real = d.real.empty() ? nullptr : d.real.ptr<float>(y);
     const float* virt = kZKey ? d.virt.ptr<float>(y) : nullptr;
     const float* dev = kDevice ? d.device.ptr<float>(y) : nullptr;
+    std::uint8_t* alpha = shown ? shown->ptr<std::uint8_t>(y) : nullptr;
     int x = 0;
 #if CV_SIMD128
     const cv::v_uint8x16 full = cv::v_setall_u8(255);
@@ -77,6 +79,7 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::
         const cv::v_uint8x16 keep = ~cv::v_pack(cv::v_pack(hidden[0], hidden[1]), cv::v_pack(hidden[2], hidden[3]));
         hr = hr & keep, hg = hg & keep, hb = hb & keep, ha = ha & keep;
       }
+      if (alpha) cv::v_store(alpha + x, ha);
       const cv::v_uint8x16 inverse = full - ha;
       // (+ saturates on 8 bits; the sum cannot pass 255 anyway: the hand is premultiplied)
       cv::v_store_interleave(out + 3 * x, hr + image::mul_div255(sr, inverse), hg + image::mul_div255(sg, inverse),
@@ -88,6 +91,7 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::
       if constexpr (kZKey) keep = !(virt[x] > 0.0f && real[x] > 0.0f && virt[x] < real[x] + d.margin);
       if constexpr (kDevice) keep &= !device_hides(dev[x], real, x, d.device_margin);
       const unsigned a = h[4 * x + 3] * keep, inverse = 255u - a;
+      if (alpha) alpha[x] = static_cast<std::uint8_t>(a);
       for (int c = 0; c < 3; ++c) {
         const unsigned blended = h[4 * x + c] * keep + image::mul_div255(sc[3 * x + c], inverse);
         out[3 * x + c] = static_cast<std::uint8_t>(blended > 255u ? 255u : blended);
@@ -96,16 +100,16 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::
   }
 }
 
-void blend(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, bool z_key, cv::Mat& composite) {
+void blend(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, bool z_key, cv::Mat& composite, cv::Mat* shown) {
   const bool device = !d.device.empty();
   if (z_key && device)
-    blend_rows<true, true>(scene, hand, d, composite);
+    blend_rows<true, true>(scene, hand, d, composite, shown);
   else if (z_key)
-    blend_rows<true, false>(scene, hand, d, composite);
+    blend_rows<true, false>(scene, hand, d, composite, shown);
   else if (device)
-    blend_rows<false, true>(scene, hand, d, composite);
+    blend_rows<false, true>(scene, hand, d, composite, shown);
   else
-    blend_rows<false, false>(scene, hand, d, composite);
+    blend_rows<false, false>(scene, hand, d, composite, shown);
 }
 
 }  // namespace
@@ -137,6 +141,10 @@ class Compositor final : public Component {
         "device_margin", 0.0, "m a keyed pixel on the device must be nearer than the device to count as hand",
         Range{0, 0.1}));
     out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
+    publish_shown_ = ctx.param<bool>("publish_shown", false, "publish `shown` (for metrics)");
+    shown_out_ = ctx.output<msg::Image>(
+        "shown", "with publish_shown: the real layer's alpha as blended, mono8, stamped with the hand image's stamp",
+        Qos::sensor(2));
   }
 
   void tick(Time now) override {
@@ -159,7 +167,13 @@ class Compositor final : public Component {
       const bool z_key = use_depth_ && !d.real.empty() && same_size(scene_depth_in_, scene_depth_, w, h);
       if (z_key) d.virt = image::view(scene_depth_.image);
       if (same_size(device_in_, device_, w, h)) d.device = image::view(device_.image);
-      blend(scene, image::view(hand_.image), d, z_key, out);
+      cv::Mat shown;
+      if (publish_shown_) {
+        shown = image::allocate(shown_msg_, static_cast<int>(w), static_cast<int>(h), "mono8");
+        fill_header(shown_msg_.header(), hand_.image.header().stamp_ns(), seq_, "eye");
+      }
+      blend(scene, image::view(hand_.image), d, z_key, out, publish_shown_ ? &shown : nullptr);
+      if (publish_shown_) shown_out_.write(shown_msg_);
     } else {
       scene.copyTo(out);
     }
@@ -203,12 +217,16 @@ class Compositor final : public Component {
     const cv::Mat channels[] = {premultiplied, mask};
     int from_to[] = {0, 0, 1, 1, 2, 2, 3, 3};
     cv::mixChannels(channels, 2, &rgba, 1, from_to, 4);
+    hand_.image.header(camera_.image.header());  // the camera's stamp: the frame it shows
     hand_.usable = true;
     return true;
   }
 
   bool use_depth_ = true;
   float margin_ = 0.0f, device_margin_ = 0.0f;
+  bool publish_shown_ = false;
+  msg::Image shown_msg_;
+  Output<msg::Image> shown_out_;
   std::uint64_t seq_ = 0;
   Stream scene_, scene_depth_, hand_, real_depth_, camera_, mask_, device_;
   msg::Image out_msg_;
