@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/validator.hpp"
 
 namespace wysiwyf {
@@ -109,8 +110,10 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         error(use.where, "topic '" + topic + "': port " + use.label + " carries " + use.type + " but port " +
                              first.label + " (" + first.where.str() + ") carries " + first.type +
                              "; expected one message type per topic");
-    const bool produced =
-        std::any_of(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
+    // The kernel itself publishes every component's diagnostics.
+    const bool produced = topic == kDiagnosticsTopic || std::any_of(uses.begin(), uses.end(), [](const PortUse& u) {
+                            return u.direction == PortDirection::kOutput;
+                          });
     if (!produced)
       for (const auto& use : uses)
         if (!use.unmapped_optional)

@@ -10,7 +10,10 @@
 
 #include "scene/scene.hpp"
 #include "wysiwyf/harness.hpp"
+#include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/loader.hpp"
+#include "wysiwyf/pipeline_spec.hpp"
+#include "wysiwyf/validator.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::test {
@@ -220,6 +223,47 @@ TEST(DisplayMetrics, BleedThroughCountsTheDevicesOwnPixelsTheUserSees) {
   EXPECT_EQ(b["images"].as<int>(), 2) << "the third frame has no truth";
   EXPECT_EQ(b["images_with_any"].as<int>(), 1);
   EXPECT_EQ(b["max_px"].as<double>(), 9.0);
+}
+
+TEST(DisplayMetrics, LoopHealthKeepsTheWorstTickAndTheLatestCounts) {
+  const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_health.json";
+  std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
+  std::filesystem::remove(summary);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
+  auto diagnostics = h.feed<kernel_msgs::Diagnostics>("diagnostics");
+  h.activate();
+  // Two one-second windows of a 1 kHz component: p99 40 then 25 us, 3 then 5 samples dropped.
+  for (int w = 0; w < 2; ++w) {
+    kernel_msgs::Diagnostics d;
+    fill_header(d.header(), (w + 1) * 1000 * kMs, static_cast<std::uint64_t>(w), "");
+    d.instance("physics"), d.type("admittance_sim");
+    d.rate_hz(1000), d.tick_rate_hz(w == 0 ? 998 : 1000);
+    d.tick_time_p99_us(w == 0 ? 40 : 25), d.tick_time_max_us(w == 0 ? 90 : 60);
+    d.ticks(static_cast<std::uint64_t>(1000 * (w + 1))), d.dropped_samples(w == 0 ? 3 : 5);
+    diagnostics.write(d);
+    h.tick(Time{(w + 1) * 1000 * kMs});
+  }
+  h.deactivate();
+  const YAML::Node c = YAML::LoadFile(summary)["loop_health"]["physics"];
+  ASSERT_TRUE(c.IsMap()) << summary;
+  EXPECT_EQ(c["type"].as<std::string>(), "admittance_sim");
+  EXPECT_EQ(c["achieved_hz"].as<double>(), 1000.0);
+  EXPECT_EQ(c["tick_p99_us"].as<double>(), 40.0) << "the worst window";
+  EXPECT_EQ(c["tick_max_us"].as<double>(), 90.0);
+  EXPECT_EQ(c["ticks"].as<int>(), 2000);
+  EXPECT_EQ(c["dropped"].as<int>(), 5) << "the latest (the counts are cumulative)";
+}
+
+TEST(DisplayMetrics, ReadingTheKernelsDiagnosticsIsNotAnUnpublishedTopic) {
+  const std::string yaml =
+      "wysiwyf: 1\nname: health\nclock: {mode: sim, step: 1ms}\ncomponents:\n"
+      "  metrics: {type: display_metrics, rate: 100, params: {scene: scenes/display_demo.yaml},\n"
+      "            topics: {diagnostics: wysiwyf/diagnostics}}\n";
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  const ValidationResult v = validate_pipeline(load_pipeline_from_string(yaml, "health.yaml"), loader);
+  ASSERT_TRUE(v.ok());
+  for (const auto& w : v.warnings) EXPECT_EQ(w.str().find("wysiwyf/diagnostics"), std::string::npos) << w.str();
 }
 
 TEST(DisplayMetrics, AnAttachmentToAnUnknownBodyIsRefusedNotMeasured) {

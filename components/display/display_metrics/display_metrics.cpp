@@ -18,6 +18,10 @@
 // Bleed-through (with the compositor's `shown` alpha and camera_sim's `true_device_mask`): per
 // image, the pixels of the real device that the user sees (shown alpha > 127 where the device,
 // not the hand, is in front); the user should see only the virtual scene and the hand.
+//
+// Loop health (with the kernel's `diagnostics`): per component, its configured and achieved
+// rate, the worst tick p99 and max over the windows, overruns, dropped and rejected samples,
+// warnings; in the summary.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,6 +29,7 @@
 #include <sstream>
 #include <deque>
 #include <limits>
+#include <map>
 #include <optional>
 
 #include <opencv2/core.hpp>
@@ -35,6 +40,7 @@
 
 #include "scene/scene.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 
@@ -83,6 +89,9 @@ class DisplayMetrics final : public Component {
     device_mask_in_ =
         ctx.input<msg::Image>("true_device_mask", "optional: where the device is seen (camera_sim's), mono8",
                               Qos::reliable(8).optional_input());
+    diagnostics_in_ = ctx.input<kernel_msgs::Diagnostics>(
+        "diagnostics", "optional: the kernel's per-component diagnostics (wysiwyf/diagnostics), for loop health",
+        Qos::reliable(256).optional_input());
     reports_out_ = ctx.output<msg::ContactReport>("contacts", "one report a contact", Qos::reliable(16));
     registration_out_ = ctx.output<msg::HapticRegistration>(
         "registration", "haptic registration over each attachment, when the device lets go", Qos::reliable(16));
@@ -125,6 +134,17 @@ class DisplayMetrics final : public Component {
     if (attachment_) register_until(now.ns);
     measure_visual(now);
     measure_bleed();
+    while (diagnostics_in_.take(diagnostics_msg_)) {
+      Health& c = health_[diagnostics_msg_.instance().c_str()];
+      c.type = diagnostics_msg_.type().c_str();
+      c.rate_hz = diagnostics_msg_.rate_hz();
+      c.tick_rate_hz = diagnostics_msg_.tick_rate_hz();
+      c.tick_p99_us = std::max(c.tick_p99_us, diagnostics_msg_.tick_time_p99_us());
+      c.tick_max_us = std::max(c.tick_max_us, diagnostics_msg_.tick_time_max_us());
+      c.ticks = diagnostics_msg_.ticks(), c.overruns = diagnostics_msg_.overruns();
+      c.dropped = diagnostics_msg_.dropped_samples(), c.rejected = diagnostics_msg_.rejected_samples();
+      c.warnings = diagnostics_msg_.warnings();
+    }
   }
 
   void activate() override { objects_.resize(scene_.models.size()); }
@@ -291,7 +311,17 @@ class DisplayMetrics final : public Component {
       << "},\n";
     j << "  \"bleed_through\": {\"images\": " << bleed_px_.samples() << ", \"images_with_any\": " << bleed_frames_
       << ", \"p99_px\": " << number(bleed_px_.percentile(99)) << ", \"max_px\": " << number(bleed_px_.max())
-      << "}\n}\n";
+      << "},\n  \"loop_health\": {";
+    bool first = true;
+    for (const auto& [name, c] : health_) {
+      j << (first ? "" : ",") << "\n    " << quoted(name) << ": {\"type\": " << quoted(c.type)
+        << ", \"rate_hz\": " << number(c.rate_hz) << ", \"achieved_hz\": " << number(c.tick_rate_hz)
+        << ", \"tick_p99_us\": " << number(c.tick_p99_us) << ", \"tick_max_us\": " << number(c.tick_max_us)
+        << ", \"ticks\": " << c.ticks << ", \"overruns\": " << c.overruns << ", \"dropped\": " << c.dropped
+        << ", \"rejected\": " << c.rejected << ", \"warnings\": " << c.warnings << "}";
+      first = false;
+    }
+    j << (health_.empty() ? "" : "\n  ") << "}\n}\n";
     std::ofstream out(summary_path_);
     out << j.str();
     if (!out)
@@ -403,6 +433,15 @@ class DisplayMetrics final : public Component {
   RegistrationStats run_;
   std::uint32_t contact_ = 0;
   std::uint64_t registration_seq_ = 0;
+  // One component's health, from the kernel's diagnostics (the latest; worst tick figures).
+  struct Health {
+    std::string type;
+    double rate_hz = 0, tick_rate_hz = 0, tick_p99_us = 0, tick_max_us = 0;
+    std::uint64_t ticks = 0, overruns = 0, dropped = 0, rejected = 0, warnings = 0;
+  };
+  std::map<std::string, Health> health_;
+  kernel_msgs::Diagnostics diagnostics_msg_;
+  Input<kernel_msgs::Diagnostics> diagnostics_in_;
   std::string summary_path_;
   std::deque<msg::Image> device_masks_;
   cv::Mat inner_;
