@@ -358,6 +358,7 @@ std::string to_yaml(const msg::HapticRegistration& m) {
   y.kv("contact", m.contact()).str("feature", m.feature()).kv("samples", m.samples());
   y.kv("p50_mm", m.p50_mm()).kv("p99_mm", m.p99_mm()).kv("max_mm", m.max_mm()).kv("max_deg", m.max_deg());
   y.kv("onset_max_mm", m.onset_max_mm()).kv("onset_max_deg", m.onset_max_deg());
+  y.kv("peak_force_n", m.peak_force_n()).kv("push_force_n", m.push_force_n());
   return y.text();
 }
 

@@ -42,6 +42,7 @@ TEST(DisplayMetrics, APlateOffByKnownAmountsReadsThemAtTheTouchAndWhileAttached)
   auto objects = h.feed<msg::ObjectState>("objects");
   auto events = h.feed<msg::UserEvent>("events");
   auto attach = h.feed<msg::Attachment>("attach");
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
   auto contacts = h.watch<msg::ContactReport>("contacts");
   auto registration = h.watch<msg::HapticRegistration>("registration");
   h.activate();
@@ -66,6 +67,28 @@ TEST(DisplayMetrics, APlateOffByKnownAmountsReadsThemAtTheTouchAndWhileAttached)
     fill_header(d.header(), ns, static_cast<std::uint64_t>(k), "base");
     msgs::to_msg(plate(t), d.pose());
     device.write(d);
+    {  // The wrist reading: the tool's weight, plus the user's 4 N push along the plate's normal
+       // while attached, 7 N at one instant (the peak), and 30 N after letting go (not counted).
+      const Eigen::Matrix3d base_R_sensor = plate(t).linear() * scene.device.dev_T_sensor.linear();
+      const double user = k == 500 ? 7.0 : k > 100 && k < 900 ? 4.0 : k > 950 ? 30.0 : 0.0;
+      const Eigen::Vector3d f =
+          base_R_sensor.transpose() * (scene.device.tool_mass * scene.gravity - user * plate(t).linear().col(2));
+      const Eigen::Vector3d torque =
+          scene.device.tool_com.cross(base_R_sensor.transpose() * (scene.device.tool_mass * scene.gravity));
+      msg::WrenchStamped w;
+      fill_header(w.header(), ns, static_cast<std::uint64_t>(k), "ft_sensor");
+      msgs::to_msg(f, torque, w.wrench());
+      wrench.write(w);
+    }
+    if (k == 95) {  // the push begins, meant to be 4 N
+      msg::UserEvent e;
+      fill_header(e.header(), ns, 0, "base");
+      e.kind(msg::USER_PUSH);
+      e.contact(1);
+      e.feature(kFeature);
+      e.force(4.0);
+      events.write(e);
+    }
     if (k == 90) {  // the finger arrives
       msg::UserEvent e;
       fill_header(e.header(), ns, 0, "base");
@@ -107,6 +130,8 @@ TEST(DisplayMetrics, APlateOffByKnownAmountsReadsThemAtTheTouchAndWhileAttached)
   EXPECT_NEAR(r.max_deg(), 0.5, 1e-6);
   EXPECT_NEAR(r.onset_max_mm(), 3.0, 1e-6);
   EXPECT_NEAR(r.onset_max_deg(), 0.5, 1e-6);
+  EXPECT_NEAR(r.peak_force_n(), 7.0, 1e-6) << "the user's force, the tool's weight taken out";
+  EXPECT_EQ(r.push_force_n(), 4.0);
   EXPECT_FALSE(registration.take(r)) << "one attachment, one report";
 }
 

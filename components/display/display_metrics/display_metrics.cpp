@@ -39,6 +39,7 @@
 #include "registration_stats.hpp"
 
 #include "scene/scene.hpp"
+#include "scene/tool_load.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -89,6 +90,9 @@ class DisplayMetrics final : public Component {
     device_mask_in_ =
         ctx.input<msg::Image>("true_device_mask", "optional: where the device is seen (camera_sim's), mono8",
                               Qos::reliable(8).optional_input());
+    wrench_in_ = ctx.input<msg::WrenchStamped>(
+        "wrench", "optional: the wrist sensor's reading, for the user's peak force while attached",
+        Qos::reliable(256).optional_input());
     diagnostics_in_ = ctx.input<kernel_msgs::Diagnostics>(
         "diagnostics", "optional: the kernel's per-component diagnostics (wysiwyf/diagnostics), for loop health",
         Qos::reliable(256).optional_input());
@@ -119,8 +123,20 @@ class DisplayMetrics final : public Component {
     while (!plate_.empty() && plate_.front().t < now.ns - history_ns_) plate_.pop_front();
     for (auto& h : objects_)
       while (h.size() > 1 && h[1].t < now.ns - history_ns_) h.pop_front();
+    while (wrench_in_.take(wrench_msg_)) {
+      if (!msgs::all_finite(wrench_msg_.wrench()) || plate_.empty()) continue;
+      // The user's force: the reading less the tool's weight, in the sensor's orientation.
+      const haptics::SensorReading reading{msgs::to_eigen(wrench_msg_.wrench().force()),
+                                           msgs::to_eigen(wrench_msg_.wrench().torque())};
+      const Eigen::Matrix3d base_R_sensor = plate_.back().pose.linear() * scene_.device.dev_T_sensor.linear();
+      const double force =
+          haptics::user_load(reading, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
+              .force.norm();
+      if (attachment_) attachment_->peak_force = std::max(attachment_->peak_force, force);
+    }
     while (events_in_.take(event_)) {
       if (event_.kind() == msg::USER_TOUCH) contact_ = event_.contact();
+      if (event_.kind() == msg::USER_PUSH) push_force_ = event_.force();
       if (event_.kind() == msg::USER_TOUCH || event_.kind() == msg::USER_MISS) measure(now);
     }
     while (attach_in_.take(attach_msg_)) {
@@ -299,7 +315,8 @@ class DisplayMetrics final : public Component {
         << ", \"samples\": " << r.samples() << ", \"p50_mm\": " << number(r.p50_mm())
         << ", \"p99_mm\": " << number(r.p99_mm()) << ", \"max_mm\": " << number(r.max_mm())
         << ", \"max_deg\": " << number(r.max_deg()) << ", \"onset_max_mm\": " << number(r.onset_max_mm())
-        << ", \"onset_max_deg\": " << number(r.onset_max_deg()) << "}";
+        << ", \"onset_max_deg\": " << number(r.onset_max_deg()) << ", \"peak_force_n\": " << number(r.peak_force_n())
+        << ", \"push_force_n\": " << number(r.push_force_n()) << "}";
     }
     j << "\n    ],\n    \"run\": {\"samples\": " << run_.mm.samples()
       << ", \"p50_mm\": " << number(run_.mm.percentile(50)) << ", \"p99_mm\": " << number(run_.mm.percentile(99))
@@ -367,6 +384,7 @@ class DisplayMetrics final : public Component {
     std::string feature;
     std::int64_t since = 0, measured_until = 0;
     RegistrationStats all, onset;
+    double peak_force = -1;  // N, the user's largest force while attached (-1: no wrench)
   };
 
   void start_attachment(std::int64_t t) {
@@ -415,6 +433,8 @@ class DisplayMetrics final : public Component {
     r.max_deg(a.all.deg.max());
     r.onset_max_mm(a.onset.mm.max());
     r.onset_max_deg(a.onset.deg.max());
+    r.peak_force_n(a.peak_force);
+    r.push_force_n(push_force_);
     registration_out_.write(r);
     registrations_.push_back(r);
     log("contact " + std::to_string(contact_) + " (" + a.feature + ") attached " +
@@ -422,7 +442,8 @@ class DisplayMetrics final : public Component {
         std::to_string(r.p50_mm()) + " mm, p99 " + std::to_string(r.p99_mm()) + " mm, max " +
         std::to_string(r.max_mm()) + " mm (at " + std::to_string(static_cast<double>(a.all.mm.max_at()) * 1e-9) +
         " s) / " + std::to_string(r.max_deg()) + " deg; onset max " + std::to_string(r.onset_max_mm()) + " mm / " +
-        std::to_string(r.onset_max_deg()) + " deg");
+        std::to_string(r.onset_max_deg()) + " deg; peak force " + std::to_string(r.peak_force_n()) + " N (push " +
+        std::to_string(r.push_force_n()) + " N)");
     attachment_.reset();
   }
 
@@ -432,6 +453,9 @@ class DisplayMetrics final : public Component {
   std::optional<Attachment> attachment_;
   RegistrationStats run_;
   std::uint32_t contact_ = 0;
+  double push_force_ = -1;  // N, the user's last push target (user_sim's PUSH event)
+  msg::WrenchStamped wrench_msg_;
+  Input<msg::WrenchStamped> wrench_in_;
   std::uint64_t registration_seq_ = 0;
   // One component's health, from the kernel's diagnostics (the latest; worst tick figures).
   struct Health {
