@@ -208,7 +208,7 @@ TEST(DisplayMetrics, ACameraPoseTurnedByATenthOfADegreeReadsItsPixelsAndTheSumma
   EXPECT_EQ(j["haptic_registration"]["run"]["samples"].as<int>(), 0);
 }
 
-TEST(DisplayMetrics, BleedThroughCountsTheDevicesOwnPixelsTheUserSees) {
+TEST(DisplayMetrics, BleedThroughAndLatencyReadTheirKnownAnswers) {
   // A 10 x 10 px device; the compositor shows 9 px inside it, one on its outline (where the
   // image's blur mixes the device with its neighbours: not counted) and 5 off it. Two frames:
   // the second shows nothing of the device. A shown image whose frame has no truth is skipped.
@@ -219,6 +219,7 @@ TEST(DisplayMetrics, BleedThroughCountsTheDevicesOwnPixelsTheUserSees) {
   Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
   auto shown = h.feed<msg::Image>("shown");
   auto device = h.feed<msg::Image>("true_device_mask");
+  auto composite = h.feed<msg::Image>("composite");
   h.activate();
   const auto mono = [](std::int64_t stamp) {
     msg::Image m;
@@ -238,9 +239,14 @@ TEST(DisplayMetrics, BleedThroughCountsTheDevicesOwnPixelsTheUserSees) {
       a.data()[5 * 20 + 5] = 255;                                               // the outline
       for (int u = 0; u < 5; ++u) a.data()[static_cast<std::size_t>(u)] = 255;  // off the device
     }
+    // The composite of that frame, made 25 ms after the camera took it (same seq as its alpha).
+    a.header().seq(static_cast<std::uint64_t>(frame));
+    msg::Image c = mono(stamp + 25 * kMs);
+    c.header().seq(static_cast<std::uint64_t>(frame));
     device.write(d);
+    composite.write(c);
     shown.write(a);
-    h.tick(Time{stamp});
+    h.tick(Time{stamp + 25 * kMs});
   }
   h.deactivate();
   const YAML::Node b = YAML::LoadFile(summary)["bleed_through"];
@@ -248,6 +254,10 @@ TEST(DisplayMetrics, BleedThroughCountsTheDevicesOwnPixelsTheUserSees) {
   EXPECT_EQ(b["images"].as<int>(), 2) << "the third frame has no truth";
   EXPECT_EQ(b["images_with_any"].as<int>(), 1);
   EXPECT_EQ(b["max_px"].as<double>(), 9.0);
+  const YAML::Node l = YAML::LoadFile(summary)["visual_latency"];
+  EXPECT_EQ(l["images"].as<int>(), 3);
+  EXPECT_NEAR(l["camera_to_composite_p50_ms"].as<double>(), 25.0, 1e-9);
+  EXPECT_NEAR(l["camera_to_composite_max_ms"].as<double>(), 25.0, 1e-9);
 }
 
 TEST(DisplayMetrics, LoopHealthKeepsTheWorstTickAndTheLatestCounts) {

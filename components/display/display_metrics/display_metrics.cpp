@@ -85,6 +85,9 @@ class DisplayMetrics final : public Component {
                                            Qos::reliable(16).optional_input());
     info_in_ = ctx.input<msg::CameraInfo>("camera_info", "optional: the camera's intrinsics (pixels)",
                                           Qos::sensor(2).optional_input());
+    composite_in_ = ctx.input<msg::Image>(
+        "composite", "optional: the compositor's output (its stamp: when it was made), for the visual latency",
+        Qos::reliable(4).optional_input());
     shown_in_ = ctx.input<msg::Image>("shown", "optional: the compositor's real-layer alpha (publish_shown), mono8",
                                       Qos::reliable(8).optional_input());
     device_mask_in_ =
@@ -176,6 +179,10 @@ class DisplayMetrics final : public Component {
           " mm / " + std::to_string(visual_px_.percentile(50)) + " px, p99 " +
           std::to_string(visual_mm_.percentile(99)) + " mm / " + std::to_string(visual_px_.percentile(99)) +
           " px, max " + std::to_string(visual_mm_.max()) + " mm / " + std::to_string(visual_px_.max()) + " px");
+    if (latency_ms_.samples() > 0)
+      log("visual latency, camera frame to composite (sim time): p50 " + std::to_string(latency_ms_.percentile(50)) +
+          " ms, max " + std::to_string(latency_ms_.max()) + " ms over " + std::to_string(latency_ms_.samples()) +
+          " images");
     if (bleed_px_.samples() > 0)
       log("bleed-through (real device pixels the user sees) over " + std::to_string(bleed_px_.samples()) +
           " images: " + std::to_string(bleed_frames_) + " with any, p99 " + std::to_string(bleed_px_.percentile(99)) +
@@ -328,7 +335,10 @@ class DisplayMetrics final : public Component {
       << "},\n";
     j << "  \"bleed_through\": {\"images\": " << bleed_px_.samples() << ", \"images_with_any\": " << bleed_frames_
       << ", \"p99_px\": " << number(bleed_px_.percentile(99)) << ", \"max_px\": " << number(bleed_px_.max())
-      << "},\n  \"loop_health\": {";
+      << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples()
+      << ", \"camera_to_composite_p50_ms\": " << number(latency_ms_.percentile(50))
+      << ", \"camera_to_composite_p99_ms\": " << number(latency_ms_.percentile(99))
+      << ", \"camera_to_composite_max_ms\": " << number(latency_ms_.max()) << "},\n  \"loop_health\": {";
     bool first = true;
     for (const auto& [name, c] : health_) {
       j << (first ? "" : ",") << "\n    " << quoted(name) << ": {\"type\": " << quoted(c.type)
@@ -357,11 +367,20 @@ class DisplayMetrics final : public Component {
       device_masks_.push_back(image_msg_);
       if (device_masks_.size() > 8) device_masks_.pop_front();
     }
+    // Composites by seq: when each was made, for the latency from its camera frame (the shown's stamp).
+    while (composite_in_.take(composite_msg_)) {
+      made_at_.emplace_back(composite_msg_.header().seq(), composite_msg_.header().stamp_ns());
+      if (made_at_.size() > 16) made_at_.pop_front();
+    }
     while (shown_in_.take(image_msg_)) {
       if (!image::problem(image_msg_, {"mono8"}).empty()) {
         reject(shown_in_, image::problem(image_msg_, {"mono8"}));
         continue;
       }
+      for (const auto& [seq, made] : made_at_)
+        if (seq == image_msg_.header().seq() && made >= image_msg_.header().stamp_ns())
+          latency_ms_.add(static_cast<double>(made - image_msg_.header().stamp_ns()) * 1e-6,
+                          image_msg_.header().stamp_ns());
       const auto mask = std::find_if(device_masks_.begin(), device_masks_.end(), [&](const msg::Image& m) {
         return m.header().stamp_ns() == image_msg_.header().stamp_ns();
       });
@@ -468,6 +487,10 @@ class DisplayMetrics final : public Component {
   Input<kernel_msgs::Diagnostics> diagnostics_in_;
   std::string summary_path_;
   std::deque<msg::Image> device_masks_;
+  std::deque<std::pair<std::uint64_t, std::int64_t>> made_at_;  // composite seq, its stamp
+  Percentiles latency_ms_;
+  msg::Image composite_msg_;
+  Input<msg::Image> composite_in_;
   cv::Mat inner_;
   msg::Image image_msg_;
   Percentiles bleed_px_;

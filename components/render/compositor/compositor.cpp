@@ -143,7 +143,9 @@ class Compositor final : public Component {
     out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
     publish_shown_ = ctx.param<bool>("publish_shown", false, "publish `shown` (for metrics)");
     shown_out_ = ctx.output<msg::Image>(
-        "shown", "with publish_shown: the real layer's alpha as blended, mono8, stamped with the hand image's stamp",
+        "shown",
+        "with publish_shown: the real layer's alpha as blended, mono8, stamped with the hand image's stamp "
+        "(the camera's), with the composite's seq",
         Qos::sensor(2));
   }
 
@@ -158,7 +160,8 @@ class Compositor final : public Component {
     const std::uint32_t w = scene_.image.width(), h = scene_.image.height();
     // The composite is written straight into the outgoing message (sized once).
     cv::Mat out = image::allocate(out_msg_, static_cast<int>(w), static_cast<int>(h), "rgb8");
-    fill_header(out_msg_.header(), now.ns, seq_++, scene_.image.header().frame_id().c_str());
+    const std::uint64_t seq = seq_++;  // the composite's and its `shown` alpha's
+    fill_header(out_msg_.header(), now.ns, seq, scene_.image.header().frame_id().c_str());
     const cv::Mat scene = image::view(scene_.image);
     if (same_size(hand_in_, hand_, w, h)) {
       Depths d;
@@ -170,7 +173,7 @@ class Compositor final : public Component {
       cv::Mat shown;
       if (publish_shown_) {
         shown = image::allocate(shown_msg_, static_cast<int>(w), static_cast<int>(h), "mono8");
-        fill_header(shown_msg_.header(), hand_.image.header().stamp_ns(), seq_, "eye");
+        fill_header(shown_msg_.header(), hand_.image.header().stamp_ns(), seq, "eye");
       }
       blend(scene, image::view(hand_.image), d, z_key, out, publish_shown_ ? &shown : nullptr);
       if (publish_shown_) shown_out_.write(shown_msg_);
