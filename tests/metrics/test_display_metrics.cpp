@@ -260,6 +260,64 @@ TEST(DisplayMetrics, BleedThroughAndLatencyReadTheirKnownAnswers) {
   EXPECT_NEAR(l["camera_to_composite_max_ms"].as<double>(), 25.0, 1e-9);
 }
 
+TEST(DisplayMetrics, AForceOnsetThreeFramesAfterTheVisualContactReadsThreeFrames) {
+  // 25 frames a second, each composited as it is taken; the finger reaches the surface at 120 ms
+  // (the frame taken then shows it), the wrist force passes 1 N only at 240 ms: the user saw the
+  // contact 120 ms, three frames, before feeling it.
+  const haptics::Scene scene = haptics::load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/scenes/display_demo.yaml");
+  const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_timing.json";
+  std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
+  std::filesystem::remove(summary);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
+  auto device = h.feed<msg::PoseStamped>("device_pose");
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
+  auto events = h.feed<msg::UserEvent>("events");
+  auto shown = h.feed<msg::Image>("shown");
+  auto composite = h.feed<msg::Image>("composite");
+  h.activate();
+  const Eigen::Isometry3d plate = base_T_cube(0) * scene.feature(kFeature)->obj_T_plate;
+  const Eigen::Matrix3d base_R_sensor = plate.linear() * scene.device.dev_T_sensor.linear();
+  for (int k = 0; k <= 400; ++k) {
+    const std::int64_t ns = k * kMs;
+    msg::PoseStamped d;
+    fill_header(d.header(), ns, static_cast<std::uint64_t>(k), "base");
+    msgs::to_msg(plate, d.pose());
+    device.write(d);
+    const double user = k >= 240 ? 3.0 : 0.0;
+    const Eigen::Vector3d weight = base_R_sensor.transpose() * (scene.device.tool_mass * scene.gravity);
+    msg::WrenchStamped w;
+    fill_header(w.header(), ns, static_cast<std::uint64_t>(k), "ft_sensor");
+    msgs::to_msg(Eigen::Vector3d(weight - user * base_R_sensor.transpose() * plate.linear().col(2)),
+                 Eigen::Vector3d(scene.device.tool_com.cross(weight)), w.wrench());
+    wrench.write(w);
+    if (k == 120) {
+      msg::UserEvent e;
+      fill_header(e.header(), ns, 0, "base");
+      e.kind(msg::USER_TOUCH);
+      e.contact(1);
+      e.feature(kFeature);
+      events.write(e);
+    }
+    if (k % 40 == 0) {  // a frame, composited at once
+      msg::Image a, c;
+      fill_header(a.header(), ns, static_cast<std::uint64_t>(k), "eye");
+      fill_header(c.header(), ns, static_cast<std::uint64_t>(k), "eye");
+      a.width(1), a.height(1), a.encoding("mono8"), a.step(1), a.data().assign(1, 0);
+      c.width(1), c.height(1), c.encoding("rgb8"), c.step(3), c.data().assign(3, 0);
+      composite.write(c);
+      shown.write(a);
+    }
+    h.tick(Time{ns});
+  }
+  h.deactivate();
+  const YAML::Node t = YAML::LoadFile(summary)["contact_timing"];
+  ASSERT_TRUE(t.IsSequence() && t.size() == 1) << summary;
+  EXPECT_NEAR(t[0]["force_rise_after_touch_ms"].as<double>(), 120.0, 1e-9);
+  EXPECT_NEAR(t[0]["seen_after_touch_ms"].as<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(t[0]["seen_after_force_frames"].as<double>(), -3.0, 1e-9);
+}
+
 TEST(DisplayMetrics, LoopHealthKeepsTheWorstTickAndTheLatestCounts) {
   const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_health.json";
   std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);

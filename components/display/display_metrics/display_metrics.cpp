@@ -19,6 +19,10 @@
 // image, the pixels of the real device that the user sees (shown alpha > 127 where the device,
 // not the hand, is in front); the user should see only the virtual scene and the hand.
 //
+// Contact timing (with `wrench`, `shown` and `composite`): per touch, when the force rose and when
+// the user first saw the finger there (the first composite of a camera frame taken at or after
+// the touch): ms and frames.
+//
 // Loop health (with the kernel's `diagnostics`): per component, its configured and achieved
 // rate, the worst tick p99 and max over the windows, overruns, dropped and rejected samples,
 // warnings; in the summary.
@@ -96,6 +100,8 @@ class DisplayMetrics final : public Component {
     wrench_in_ = ctx.input<msg::WrenchStamped>(
         "wrench", "optional: the wrist sensor's reading, for the user's peak force while attached",
         Qos::reliable(256).optional_input());
+    force_onset_ =
+        ctx.param<double>("force_onset", 1.0, "N: the user's force from which a contact is felt", Range{0.01, 100});
     diagnostics_in_ = ctx.input<kernel_msgs::Diagnostics>(
         "diagnostics", "optional: the kernel's per-component diagnostics (wysiwyf/diagnostics), for loop health",
         Qos::reliable(256).optional_input());
@@ -136,9 +142,13 @@ class DisplayMetrics final : public Component {
           haptics::user_load(reading, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
               .force.norm();
       if (attachment_) attachment_->peak_force = std::max(attachment_->peak_force, force);
+      forces_.emplace_back(stamp(wrench_msg_.header(), now), force);
     }
     while (events_in_.take(event_)) {
-      if (event_.kind() == msg::USER_TOUCH) contact_ = event_.contact();
+      if (event_.kind() == msg::USER_TOUCH) {
+        contact_ = event_.contact();
+        timings_.push_back({event_.contact(), event_.feature().c_str(), stamp(event_.header(), now)});
+      }
       if (event_.kind() == msg::USER_PUSH) push_force_ = event_.force();
       if (event_.kind() == msg::USER_TOUCH || event_.kind() == msg::USER_MISS) measure(now);
     }
@@ -153,6 +163,9 @@ class DisplayMetrics final : public Component {
     if (attachment_) register_until(now.ns);
     measure_visual(now);
     measure_bleed();
+    time_contacts();
+    while (!forces_.empty() && forces_.front().first < now.ns - history_ns_) forces_.pop_front();
+    while (!frames_.empty() && frames_.front().first < now.ns - history_ns_) frames_.pop_front();
     while (diagnostics_in_.take(diagnostics_msg_)) {
       Health& c = health_[diagnostics_msg_.instance().c_str()];
       c.type = diagnostics_msg_.type().c_str();
@@ -179,6 +192,11 @@ class DisplayMetrics final : public Component {
           " mm / " + std::to_string(visual_px_.percentile(50)) + " px, p99 " +
           std::to_string(visual_mm_.percentile(99)) + " mm / " + std::to_string(visual_px_.percentile(99)) +
           " px, max " + std::to_string(visual_mm_.max()) + " mm / " + std::to_string(visual_px_.max()) + " px");
+    for (const auto& c : timings_)
+      if (c.done)
+        log("contact " + std::to_string(c.contact) + " timing: the force rose " +
+            std::to_string(static_cast<double>(c.force_at - c.touch) * 1e-6) + " ms after the touch, the user saw it " +
+            std::to_string(static_cast<double>(c.seen_at - c.touch) * 1e-6) + " ms after it");
     if (latency_ms_.samples() > 0)
       log("visual latency, camera frame to composite (sim time): p50 " + std::to_string(latency_ms_.percentile(50)) +
           " ms, max " + std::to_string(latency_ms_.max()) + " ms over " + std::to_string(latency_ms_.samples()) +
@@ -338,7 +356,19 @@ class DisplayMetrics final : public Component {
       << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples()
       << ", \"camera_to_composite_p50_ms\": " << number(latency_ms_.percentile(50))
       << ", \"camera_to_composite_p99_ms\": " << number(latency_ms_.percentile(99))
-      << ", \"camera_to_composite_max_ms\": " << number(latency_ms_.max()) << "},\n  \"loop_health\": {";
+      << ", \"camera_to_composite_max_ms\": " << number(latency_ms_.max()) << "},\n  \"contact_timing\": [";
+    bool first_timing = true;
+    for (const auto& c : timings_) {
+      if (!c.done) continue;
+      const double ms = static_cast<double>(c.seen_at - c.force_at) * 1e-6;
+      j << (first_timing ? "" : ",") << "\n    {\"contact\": " << c.contact << ", \"feature\": " << quoted(c.feature)
+        << ", \"force_rise_after_touch_ms\": " << number(static_cast<double>(c.force_at - c.touch) * 1e-6)
+        << ", \"seen_after_touch_ms\": " << number(static_cast<double>(c.seen_at - c.touch) * 1e-6)
+        << ", \"seen_after_force_ms\": " << number(ms) << ", \"seen_after_force_frames\": "
+        << number(c.frame_period > 0 ? ms * 1e6 / static_cast<double>(c.frame_period) : -1) << "}";
+      first_timing = false;
+    }
+    j << (first_timing ? "" : "\n  ") << "],\n  \"loop_health\": {";
     bool first = true;
     for (const auto& [name, c] : health_) {
       j << (first ? "" : ",") << "\n    " << quoted(name) << ": {\"type\": " << quoted(c.type)
@@ -355,6 +385,31 @@ class DisplayMetrics final : public Component {
       warn_once("summary", "could not write the summary to '" + summary_path_ + "'");
     else
       log("summary: " + summary_path_);
+  }
+
+  // Contact timing: for each touch, when the wrist force rose past force_onset (from 0.1 s before
+  // the touch) and when the user first saw it: the first composite of a camera frame taken at or
+  // after the touch. Positive: the eye learns later than the hand.
+  void time_contacts() {
+    for (auto& c : timings_) {
+      if (c.done) continue;
+      if (c.force_at < 0)
+        for (const auto& [t, f] : forces_)
+          if (t >= c.touch - 100'000'000 && f > force_onset_) {
+            c.force_at = t;
+            break;
+          }
+      if (c.seen_at < 0)
+        for (const auto& [taken, made] : frames_)
+          if (taken >= c.touch) {
+            c.seen_at = made, c.frame_period = frame_period();
+            break;
+          }
+      c.done = c.force_at >= 0 && c.seen_at >= 0;
+    }
+  }
+  std::int64_t frame_period() const {
+    return frames_.size() > 1 ? frames_.back().first - frames_[frames_.size() - 2].first : 0;
   }
 
   // Each shown alpha against the device mask of the same camera frame (equal stamps).
@@ -379,8 +434,9 @@ class DisplayMetrics final : public Component {
       }
       for (const auto& [seq, made] : made_at_)
         if (seq == image_msg_.header().seq() && made >= image_msg_.header().stamp_ns())
-          latency_ms_.add(static_cast<double>(made - image_msg_.header().stamp_ns()) * 1e-6,
-                          image_msg_.header().stamp_ns());
+          frames_.emplace_back(image_msg_.header().stamp_ns(), made),
+              latency_ms_.add(static_cast<double>(made - image_msg_.header().stamp_ns()) * 1e-6,
+                              image_msg_.header().stamp_ns());
       const auto mask = std::find_if(device_masks_.begin(), device_masks_.end(), [&](const msg::Image& m) {
         return m.header().stamp_ns() == image_msg_.header().stamp_ns();
       });
@@ -488,6 +544,16 @@ class DisplayMetrics final : public Component {
   std::string summary_path_;
   std::deque<msg::Image> device_masks_;
   std::deque<std::pair<std::uint64_t, std::int64_t>> made_at_;  // composite seq, its stamp
+  std::deque<std::pair<std::int64_t, std::int64_t>> frames_;    // camera stamp, when its composite was made
+  std::deque<std::pair<std::int64_t, double>> forces_;          // the user's force, N, by stamp
+  struct ContactTiming {
+    std::uint32_t contact = 0;
+    std::string feature;
+    std::int64_t touch = 0, force_at = -1, seen_at = -1, frame_period = 0;
+    bool done = false;
+  };
+  std::vector<ContactTiming> timings_;
+  double force_onset_ = 1.0;
   Percentiles latency_ms_;
   msg::Image composite_msg_;
   Input<msg::Image> composite_in_;
