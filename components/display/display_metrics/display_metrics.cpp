@@ -44,6 +44,7 @@
 
 #include "scene/scene.hpp"
 #include "scene/tool_load.hpp"
+#include "wysiwyf/camera_info.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -269,7 +270,12 @@ class DisplayMetrics final : public Component {
 
   // Each tracked pose against the true pose of the same image (equal stamps).
   void measure_visual(Time now) {
-    if (info_in_.take_latest(info_msg_)) K_ = {info_msg_.k()[0], info_msg_.k()[4], info_msg_.k()[2], info_msg_.k()[5]};
+    if (info_in_.take_latest(info_msg_)) {
+      if (const auto K = msgs::intrinsics(info_msg_))
+        K_ = {K->fx, K->fy, K->cx, K->cy};
+      else
+        reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
+    }
     while (true_in_.take(pose_msg_))
       if (msgs::all_finite(pose_msg_.pose()))
         true_poses_.push_back({stamp(pose_msg_.header(), now), msgs::to_isometry(pose_msg_.pose())});
@@ -393,12 +399,19 @@ class DisplayMetrics final : public Component {
   void time_contacts() {
     for (auto& c : timings_) {
       if (c.done) continue;
-      if (c.force_at < 0)
-        for (const auto& [t, f] : forces_)
-          if (t >= c.touch - 100'000'000 && f > force_onset_) {
-            c.force_at = t;
+      if (c.force_at < 0) {
+        // Only the samples not looked at yet (the stamps rise).
+        const std::int64_t from = std::max(c.touch - 100'000'000, c.forces_seen_until + 1);
+        auto it = std::lower_bound(forces_.begin(), forces_.end(), from,
+                                   [](const auto& sample, std::int64_t t) { return sample.first < t; });
+        for (; it != forces_.end(); ++it) {
+          c.forces_seen_until = it->first;
+          if (it->second > force_onset_) {
+            c.force_at = it->first;
             break;
           }
+        }
+      }
       if (c.seen_at < 0)
         for (const auto& [taken, made] : frames_)
           if (taken >= c.touch) {
@@ -419,7 +432,7 @@ class DisplayMetrics final : public Component {
         reject(device_mask_in_, image::problem(image_msg_, {"mono8"}));
         continue;
       }
-      device_masks_.push_back(image_msg_);
+      device_masks_.push_back(std::move(image_msg_));  // (take() refills it)
       if (device_masks_.size() > 8) device_masks_.pop_front();
     }
     // Composites by seq: when each was made, for the latency from its camera frame (the shown's stamp).
@@ -550,6 +563,7 @@ class DisplayMetrics final : public Component {
     std::uint32_t contact = 0;
     std::string feature;
     std::int64_t touch = 0, force_at = -1, seen_at = -1, frame_period = 0;
+    std::int64_t forces_seen_until = -1;  // the newest force sample looked at
     bool done = false;
   };
   std::vector<ContactTiming> timings_;

@@ -74,11 +74,7 @@ class CameraFixed final : public Component {
     pose_msg_.child_frame_id(child);
     msgs::to_msg(eye_T_x, pose_msg_.pose());
     pose_out.write(pose_msg_);
-    cov_msg_.header() = pose_msg_.header();
-    cov_msg_.child_frame_id(child);
-    cov_msg_.pose() = pose_msg_.pose();
-    for (int r = 0; r < 6; ++r)
-      for (int c = 0; c < 6; ++c) cov_msg_.covariance()[static_cast<std::size_t>(6 * r + c)] = cov(r, c);
+    msgs::to_msg(pose_msg_, cov, cov_msg_);
     cov_out.write(cov_msg_);
   }
 

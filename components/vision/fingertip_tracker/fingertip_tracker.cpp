@@ -16,6 +16,7 @@
 #include "bright_blobs/blob_detector.hpp"
 #include "image/image_view.hpp"
 #include "stereo_point.hpp"
+#include "wysiwyf/camera_info.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -92,17 +93,14 @@ class FingertipTracker final : public Component {
  private:
   void read_calibration() {
     while (info_in_.take(info_)) {
-      const auto& k = info_.k();
-      if (k[0] > 0 && k[4] > 0 && std::isfinite(k[0]) && std::isfinite(k[4]) && std::isfinite(k[2]) &&
-          std::isfinite(k[5]))
-        camera_.fx = k[0], camera_.fy = k[4], camera_.cx = k[2], camera_.cy = k[5];
+      if (const auto K = msgs::intrinsics(info_))
+        camera_.fx = K->fx, camera_.fy = K->fy, camera_.cx = K->cx, camera_.cy = K->cy;
       else
         reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
     }
     while (right_info_in_.take(right_info_)) {
-      const double fx = right_info_.p()[0], tx = right_info_.p()[3];
-      if (fx > 0 && tx < 0)
-        info_baseline_ = -tx / fx;
+      if (const auto baseline = msgs::stereo_baseline(right_info_))
+        info_baseline_ = *baseline;
       else
         reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
     }

@@ -12,6 +12,7 @@
 #include "disparity_depth.hpp"
 #include "hand_point.hpp"
 #include "image/image_view.hpp"
+#include "wysiwyf/camera_info.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -118,17 +119,14 @@ class StereoDepth final : public Component {
  private:
   void read_calibration() {
     while (info_in_.take(info_)) {
-      const auto& k = info_.k();
-      if (k[0] > 0 && k[4] > 0 && std::isfinite(k[2]) && std::isfinite(k[5]))
-        K_ = Intrinsics{k[0], k[4], k[2], k[5]},
-        K_size_ = cv::Size(static_cast<int>(info_.width()), static_cast<int>(info_.height()));
+      if (const auto K = msgs::intrinsics(info_))
+        K_ = Intrinsics{K->fx, K->fy, K->cx, K->cy}, K_size_ = cv::Size(K->width, K->height);
       else
         reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
     }
     while (right_info_in_.take(right_info_)) {
-      const double fx = right_info_.p()[0], tx = right_info_.p()[3];
-      if (fx > 0 && tx < 0)
-        info_baseline_ = -tx / fx;
+      if (const auto baseline = msgs::stereo_baseline(right_info_))
+        info_baseline_ = *baseline;
       else
         reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
     }

@@ -53,6 +53,17 @@ inline Vector6d to_vector6(const geometry_msgs::Wrench& w) {
 }
 inline void to_msg(const Vector6d& v, geometry_msgs::Wrench& w) { to_msg(v.head<3>(), v.tail<3>(), w); }
 
+// `pose` (its header, child frame and pose) with its 6x6 covariance (row-major; the order of the
+// PoseWithCovariance's comment) as a PoseWithCovariance.
+inline void to_msg(const msg::PoseStamped& pose, const Eigen::Matrix<double, 6, 6>& covariance,
+                   msg::PoseWithCovariance& out) {
+  out.header() = pose.header();
+  out.child_frame_id(pose.child_frame_id());
+  out.pose() = pose.pose();
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) out.covariance()[static_cast<std::size_t>(6 * r + c)] = covariance(r, c);
+}
+
 // A six-joint arm's positions as one vector.
 inline Vector6d joint_positions(const msg::JointState& m) { return Eigen::Map<const Vector6d>(m.position().data()); }
 
