@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "scene/body.hpp"
+#include "scene/scene.hpp"
 
 namespace wysiwyf::haptics {
 
@@ -36,6 +37,14 @@ inline BodyWrench user_wrench_on_body(const SensorReading& measured, const Eigen
   w.force = R * user.force;
   w.torque = R * user.torque + (world_T_sensor.translation() - body_com).cross(w.force);
   return w;
+}
+
+// The user's load alone for the scene's device with its plate at base_T_dev (the sensor at
+// base_T_dev * dev_T_sensor, carrying the device's tool).
+inline SensorReading user_load(const SensorReading& measured, const Eigen::Isometry3d& base_T_dev,
+                               const DeviceAttachment& device, const Vec3& gravity) {
+  return user_load(measured, base_T_dev.linear() * device.dev_T_sensor.linear(), device.tool_mass, device.tool_com,
+                   gravity);
 }
 
 }  // namespace wysiwyf::haptics

@@ -138,10 +138,7 @@ class DisplayMetrics final : public Component {
       // The user's force: the reading less the tool's weight, in the sensor's orientation.
       const haptics::SensorReading reading{msgs::to_eigen(wrench_msg_.wrench().force()),
                                            msgs::to_eigen(wrench_msg_.wrench().torque())};
-      const Eigen::Matrix3d base_R_sensor = plate_.back().pose.linear() * scene_.device.dev_T_sensor.linear();
-      const double force =
-          haptics::user_load(reading, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
-              .force.norm();
+      const double force = haptics::user_load(reading, plate_.back().pose, scene_.device, scene_.gravity).force.norm();
       if (attachment_) attachment_->peak_force = std::max(attachment_->peak_force, force);
       forces_.emplace_back(stamp(wrench_msg_.header(), now), force);
     }

@@ -255,10 +255,7 @@ class Supervisor final : public Component {
   void watch_contact(std::int64_t now_ns) {
     if (mode_ == msg::MODE_FAULT || !have_reading_ || !have_device_) return;
     // The user's force: the reading less the tool's weight, in the sensor's true orientation.
-    const Eigen::Matrix3d base_R_sensor = device_.linear() * scene_.device.dev_T_sensor.linear();
-    const double force =
-        haptics::user_load(reading_, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
-            .force.norm();
+    const double force = haptics::user_load(reading_, device_, scene_.device, scene_.gravity).force.norm();
     const double hand_distance = now_ns - hand_ns_ <= 200'000'000 && hand_ns_ >= 0 ? plate_distance(hand_) : -1;
     switch (detector_.update(now_ns, force, hand_distance, mode_ == msg::MODE_ADMITTANCE, hand_sigma_)) {
       case ContactDetector::Event::kTouch:

@@ -112,10 +112,7 @@ class Overlay final : public Component {
       text[1] = std::string(planner_msg_.feature().c_str()) + ", " + planner_state(planner_msg_.state());
     double force = -1;
     if (have_reading_ && have_device_) {
-      const Eigen::Matrix3d base_R_sensor = device_.linear() * scene_.device.dev_T_sensor.linear();
-      force =
-          haptics::user_load(reading_, base_R_sensor, scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
-              .force.norm();
+      force = haptics::user_load(reading_, device_, scene_.device, scene_.gravity).force.norm();
       char buf[32];
       std::snprintf(buf, sizeof buf, "force %.1f N", force);
       text[2] = buf;
