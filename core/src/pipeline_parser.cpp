@@ -1,5 +1,6 @@
 // Reads pipeline files: YAML syntax, the schema, include: and --set, with a file:line:column for
 // every problem. Checks that need the component libraries are in pipeline_validator.cpp.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -67,8 +68,8 @@ namespace {
 const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain", "clock", "dds", "components"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
-const std::vector<std::string> kComponentKeys = {"type",     "rate",   "process", "enabled", "spin",
-                                                 "priority", "params", "topics",  "qos"};
+const std::vector<std::string> kComponentKeys = {"type",     "rate",    "process", "enabled", "spin",
+                                                 "priority", "trigger", "params",  "topics",  "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
 
@@ -379,6 +380,7 @@ class Parser {
       else
         c.priority.assign(p, at(m, file));
     }
+    if (const YAML::Node m = n["trigger"]) apply_trigger(m, file, label, c);
     if (const YAML::Node m = n["params"]; m && !m.IsNull() && expect_map(m, file, label + " params")) {
       check_duplicates(m, file);
       for (auto it = m.begin(); it != m.end(); ++it) {
@@ -411,6 +413,25 @@ class Parser {
           apply_qos(it->second, file, label + " qos of port '" + port + "'", c.qos[port]);
       }
     }
+  }
+
+  // trigger: port, or [port, ...]: the inputs whose samples tick the component.
+  void apply_trigger(const YAML::Node& m, const std::string& file, const std::string& label, ComponentSpec& c) {
+    std::vector<std::string> ports;
+    bool ok = m.IsScalar() || m.IsSequence();
+    if (m.IsScalar()) ports.push_back(m.Scalar());
+    if (m.IsSequence())
+      for (const auto& e : m) {
+        if (!e.IsScalar()) ok = false;
+        if (e.IsScalar()) ports.push_back(e.Scalar());
+      }
+    if (!ok || ports.empty() ||
+        std::any_of(ports.begin(), ports.end(), [](const std::string& p) { return p.empty(); })) {
+      error(at(m, file), label + " trigger: found " + describe_node(m) +
+                             "; expected an input port name, or a list of them, whose samples tick the component");
+      return;
+    }
+    c.trigger.assign(ports, at(m, file));
   }
 
   void apply_qos(const YAML::Node& n, const std::string& file, const std::string& label, QosOverride& q) {

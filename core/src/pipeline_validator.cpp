@@ -88,6 +88,16 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         error(c.topic_keys.at(port), "unknown port '" + port + "' for " + label + "; expected one of " +
                                          (port_names.empty() ? "(it has no ports)" : join(port_names)) +
                                          did_you_mean(port, port_names));
+    if (c.is_triggered()) {
+      std::vector<std::string> inputs;
+      for (const auto& p : ctx.declared_ports())
+        if (p.direction == PortDirection::kInput) inputs.push_back(p.name);
+      for (const auto& port : c.trigger.value)
+        if (std::find(inputs.begin(), inputs.end(), port) == inputs.end())
+          error(c.trigger.where,
+                "trigger '" + port + "' of " + label + " is not one of its input ports; expected one of " +
+                    (inputs.empty() ? "(it has no inputs)" : join(inputs)) + did_you_mean(port, inputs));
+    }
     for (const auto& [port, where] : c.qos_where)
       if (std::find(port_names.begin(), port_names.end(), port) == port_names.end())
         error(where, "qos for unknown port '" + port + "' of " + label + "; expected one of " + join(port_names) +

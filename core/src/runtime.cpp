@@ -1,5 +1,5 @@
 // The executor: lifecycle, the sim (lockstep) and real (one periodic thread per component)
-// clocks, diagnostics, and clean stops on faults and signals.
+// clocks, data-triggered ticks on both, diagnostics, and clean stops on faults and signals.
 #include "wysiwyf/runtime.hpp"
 
 #include <pthread.h>
@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "dds_bridge.hpp"
+#include "wysiwyf/detail/doorbell.hpp"
 #include "tick_stats.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/tick_deadline.hpp"
@@ -55,6 +56,7 @@ struct Slot final : ComponentHost {
   std::string last_error;
   std::uint64_t diag_seq = 0;
   std::vector<const detail::QueueCounters*> inputs;
+  std::unique_ptr<detail::Doorbell> doorbell;  // data-triggered: rung by its trigger inputs
   // What the component reported (from its tick thread: under health_mutex).
   std::mutex health_mutex;
   std::set<std::string> warned;
@@ -119,6 +121,8 @@ struct Runtime::Impl final : RunHost {
     if (!stopping.load()) stop_reason = component.empty() ? reason : "stopped by " + component + ": " + reason;
     stopping.store(true);
     stop_cv.notify_all();
+    for (auto& slot : slots)
+      if (slot->doorbell) slot->doorbell->stop();
   }
   void log(const std::string& component, const std::string& message) override {
     std::lock_guard<std::mutex> lock(log_mutex);
@@ -161,6 +165,30 @@ struct Runtime::Impl final : RunHost {
         slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
     slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
   }
+
+  // Sim clock: the data-triggered components whose inputs got samples tick now, in file order,
+  // pass after pass until none is rung (a chain runs as one wave in the producer's step).
+  void serve_triggered(std::int64_t t) {
+    if (!any_triggered) return;
+    for (int pass = 0;; ++pass) {
+      bool ticked = false;
+      for (auto& slot : slots) {
+        if (!slot->doorbell || !slot->doorbell->take()) continue;
+        if (pass >= kMaxTriggerPasses) {
+          fail(*slot, "tick at t=" + std::to_string(t) + " ns",
+               "its trigger inputs still got samples after " + std::to_string(kMaxTriggerPasses) +
+                   " passes in one step; expected data-triggered components without a loop among their triggers");
+          return;
+        }
+        tick(*slot, Time{t});
+        ticked = true;
+        if (!fault.empty()) return;
+      }
+      if (!ticked) return;
+    }
+  }
+  static constexpr int kMaxTriggerPasses = 1000;
+  bool any_triggered = false;
 
   void publish_diagnostics(Time now, double window_s, bool final) {
     for (auto& slot : slots) {
@@ -254,6 +282,19 @@ bool Runtime::Impl::setup(RunResult& result) {
       return false;
     }
     slot->inputs = ctx.input_queues();
+    if (slot->spec->is_triggered()) {
+      slot->doorbell = std::make_unique<detail::Doorbell>();
+      any_triggered = true;
+      for (const auto& port : slot->spec->trigger.value) {
+        auto* queue = ctx.input_queue(port);
+        if (!queue) {
+          fail(*slot, "configure",
+               "trigger '" + port + "' (" + slot->spec->trigger.where.str() + ") is not one of its input ports");
+          return false;
+        }
+        queue->set_doorbell(slot->doorbell.get());
+      }
+    }
     slot->stage = Slot::Stage::kConfigured;
   }
   Qos diag_qos = Qos::reliable(1);
@@ -303,10 +344,12 @@ void Runtime::Impl::run_sim(RunResult& result) {
     }
     if (stop_signal_received()) request_stop("", "signal");
     if (stopping.load(std::memory_order_relaxed)) break;
+    serve_triggered(t);  // samples that came over DDS since the last step
     for (auto& slot : slots) {
-      if (t % slot->period_ns != 0) continue;
-      tick(*slot, Time{t});
       if (!fault.empty()) break;
+      if (slot->doorbell || t % slot->period_ns != 0) continue;
+      tick(*slot, Time{t});
+      serve_triggered(t);
     }
     if (t >= next_diag) {
       publish_diagnostics(Time{t}, 1.0, false);
@@ -331,6 +374,14 @@ void Runtime::Impl::run_real(RunResult& result) {
     threads.emplace_back([this, slot, start] {
       prctl(PR_SET_TIMERSLACK, 1UL);  // by default Linux may wake this thread up to 50 us late
       if (slot->spec->priority.set) set_fifo_priority(*slot);
+      if (slot->doorbell) {  // data-triggered: one tick per ring; late = from the sample's arrival
+        Clock::time_point rang;
+        while (slot->doorbell->wait(rang) && !stopping.load()) {
+          const double late_us = std::chrono::duration<double, std::micro>(Clock::now() - rang).count();
+          tick(*slot, Time{wall_now_ns()}, late_us);
+        }
+        return;
+      }
       const auto period = std::chrono::nanoseconds(slot->period_ns);
       // The kernel wakes a sleeping thread tens of microseconds late (hundreds at times on a
       // virtual machine); with `spin` the thread wakes that much early and busy-waits the rest.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -74,6 +75,11 @@ class Context {
   const std::vector<ConfigIssue>& issues() const { return issues_; }
   // Run mode: the queues of the component's inputs, for the kernel's diagnostics.
   const std::vector<const detail::QueueCounters*>& input_queues() const { return input_queues_; }
+  // Run mode: the queue of one input port (for a trigger's doorbell); nullptr when none.
+  detail::QueueCounters* input_queue(const std::string& port) const {
+    const auto it = input_by_port_.find(port);
+    return it == input_by_port_.end() ? nullptr : it->second;
+  }
 
  private:
   // One per parameter type: declare, look up, convert, check range and length (context.cpp).
@@ -112,6 +118,7 @@ class Context {
   std::vector<PortSpec> ports_;
   std::vector<ConfigIssue> issues_;
   std::vector<const detail::QueueCounters*> input_queues_;
+  std::map<std::string, detail::QueueCounters*> input_by_port_;
 };
 
 template <class T>
@@ -139,6 +146,7 @@ Input<T> Context::input(const std::string& port, const std::string& description,
   if (!bus_) return Input<T>();
   auto* queue = bus_->channel<T>(topic_for(port), instance_ + "." + port)->add_reader(effective);
   input_queues_.push_back(queue);
+  input_by_port_[port] = queue;
   return Input<T>(queue, port);
 }
 

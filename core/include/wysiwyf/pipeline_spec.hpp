@@ -46,6 +46,9 @@ struct ComponentSpec {
   // Real clock only (ignored on the sim clock, so a pipeline swaps clocks by one line):
   Sourced<std::int64_t> spin_ns;  // wake this long before each tick and busy-wait the rest
   Sourced<int> priority;          // SCHED_FIFO priority of the component's thread, 1..99
+  // Input ports whose samples tick the component (data-triggered) instead of its period; the
+  // sim clock ticks it in the same step, right after the producer.
+  Sourced<std::vector<std::string>> trigger;
   std::map<std::string, Sourced<YAML::Node>> params;
   std::map<std::string, Sourced<std::string>> topics;  // port -> topic
   std::map<std::string, QosOverride> qos;              // port -> overrides
@@ -55,6 +58,7 @@ struct ComponentSpec {
 
   std::string process_name() const { return process.set ? process.value : "main"; }
   bool is_enabled() const { return !enabled.set || enabled.value; }
+  bool is_triggered() const { return trigger.set && !trigger.value.empty(); }
   // The topic a port is mapped to: the pipeline's mapping, or "<instance>/<port>".
   std::string topic_for(const std::string& port) const;
 };

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "wysiwyf/detail/doorbell.hpp"
+
 namespace wysiwyf::detail {
 
 // What the kernel reads of any input queue for its diagnostics.
@@ -15,6 +17,17 @@ class QueueCounters {
   virtual ~QueueCounters() = default;
   virtual std::uint64_t received() const = 0;
   virtual std::uint64_t dropped() const = 0;  // pushed out unread by newer samples (keep-last)
+
+  // A data-triggered component's doorbell, rung after every push (set before the run starts).
+  void set_doorbell(Doorbell* doorbell) { doorbell_ = doorbell; }
+
+ protected:
+  void ring() {
+    if (doorbell_) doorbell_->ring();
+  }
+
+ private:
+  Doorbell* doorbell_ = nullptr;
 };
 
 template <class T>
@@ -23,32 +36,38 @@ class SubscriberQueue final : public QueueCounters {
   explicit SubscriberQueue(int depth) : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)) {}
 
   void push(const T& sample) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const std::size_t n = slots_.size();
-    if (count_ == n) {  // full: keep-last drops the oldest
-      head_ = (head_ + 1) % n;
-      --count_;
-      ++dropped_;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const std::size_t n = slots_.size();
+      if (count_ == n) {  // full: keep-last drops the oldest
+        head_ = (head_ + 1) % n;
+        --count_;
+        ++dropped_;
+      }
+      slots_[(head_ + count_) % n] = sample;
+      ++count_;
+      ++received_;
     }
-    slots_[(head_ + count_) % n] = sample;
-    ++count_;
-    ++received_;
+    ring();
   }
 
   // Like push, but moves the sample in by swapping buffers with the slot it lands in: no copy.
   // `sample` is left holding that slot's previous contents.
   void push_swap(T& sample) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const std::size_t n = slots_.size();
-    if (count_ == n) {
-      head_ = (head_ + 1) % n;
-      --count_;
-      ++dropped_;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const std::size_t n = slots_.size();
+      if (count_ == n) {
+        head_ = (head_ + 1) % n;
+        --count_;
+        ++dropped_;
+      }
+      using std::swap;
+      swap(slots_[(head_ + count_) % n], sample);
+      ++count_;
+      ++received_;
     }
-    using std::swap;
-    swap(slots_[(head_ + count_) % n], sample);
-    ++count_;
-    ++received_;
+    ring();
   }
 
   // Oldest unread sample into out; false when none.
