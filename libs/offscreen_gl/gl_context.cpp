@@ -67,18 +67,26 @@ GlContext::GlContext() {
   context_ = context;
   make_current();
   renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  release();
 }
 
 GlContext::~GlContext() {
   if (context_) {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    release();
     eglDestroyContext(display_, context_);
   }
 }
 
+bool GlContext::is_current() const { return context_ && eglGetCurrentContext() == context_; }
+
 void GlContext::make_current() {
+  if (is_current()) return;
   if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-    throw std::runtime_error(egl_error("eglMakeCurrent"));
+    throw std::runtime_error(egl_error("eglMakeCurrent") + " (is the context current on another thread?)");
+}
+
+void GlContext::release() {
+  if (is_current()) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 }  // namespace wysiwyf::render

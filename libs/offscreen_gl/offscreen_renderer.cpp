@@ -56,7 +56,7 @@ unsigned compile(GLenum kind, const char* source) {
 
 OffscreenRenderer::OffscreenRenderer(GlContext& context, const Pinhole& camera, int samples)
     : context_(context), camera_(camera), samples_(samples < 1 ? 1 : samples) {
-  context_.make_current();
+  GlContext::Scope current(context_);
   GLint max_samples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   if (samples_ > max_samples) samples_ = max_samples;  // what this GL can do (llvmpipe: 8)
@@ -102,7 +102,15 @@ OffscreenRenderer::OffscreenRenderer(GlContext& context, const Pinhole& camera, 
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
-  context_.make_current();
+  // Its GL objects go with the context if that is current elsewhere (a thread that ended with it).
+  try {
+    GlContext::Scope current(context_);
+    release_gl_objects();
+  } catch (const std::exception&) {
+  }
+}
+
+void OffscreenRenderer::release_gl_objects() {
   for (auto& m : meshes_) {
     glDeleteBuffers(1, &m.vbo);
     glDeleteVertexArrays(1, &m.vao);
@@ -115,6 +123,7 @@ OffscreenRenderer::~OffscreenRenderer() {
 }
 
 int OffscreenRenderer::add_mesh(const Mesh& mesh) {
+  GlContext::Scope current(context_);
   GpuMesh g;
   g.vertices = static_cast<int>(mesh.positions.size());
   std::vector<float> interleaved;
@@ -148,6 +157,7 @@ void OffscreenRenderer::begin(const Eigen::Vector4f& clear) {
 }
 
 void OffscreenRenderer::set_light(const Eigen::Vector3f& direction, float ambient) {
+  GlContext::Scope current(context_);
   glUseProgram(program_);
   const Eigen::Vector3f d = direction.normalized();
   glUniform3f(loc_light_, d.x(), d.y(), d.z());

@@ -1,7 +1,8 @@
 #pragma once
 // Draws meshes with a pinhole camera into a framebuffer object (colour RGBA8, depth 32F, with
 // optional multisampling) and reads back colour (RGB, row 0 at the top as in OpenCV) and metric
-// depth. Needs a current GlContext on the calling thread.
+// depth. begin() makes its context current on the calling thread (hold a GlContext::Scope around
+// a tick's drawing so the context is free again after it).
 #include <Eigen/Geometry>
 
 #include <cstdint>
@@ -35,6 +36,7 @@ class OffscreenRenderer {
 
  private:
   void resolve();
+  void release_gl_objects();
 
   GlContext& context_;
   Pinhole camera_;

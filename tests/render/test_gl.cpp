@@ -3,6 +3,9 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include <memory>
+#include <thread>
+
 #include "offscreen_gl/gl_context.hpp"
 #include "offscreen_gl/offscreen_renderer.hpp"
 
@@ -35,6 +38,34 @@ TEST(Gl, AHeadlessContextComesUp) {
   EXPECT_FALSE(gl.renderer().empty());
   EXPECT_TRUE(gl.platform() == "device" || gl.platform() == "surfaceless") << gl.platform();
   RecordProperty("renderer", gl.renderer());
+}
+
+// The real clock activates a component on the main thread and ticks it on its own: the context
+// set up on one thread draws on another (a Scope per tick) and is torn down on the first.
+TEST(Gl, AContextSetUpOnOneThreadDrawsOnAnotherAndIsTornDownOnTheFirst) {
+  GlContext gl;
+  auto r = std::make_unique<OffscreenRenderer>(gl, test_camera(), 1);
+  const int box = r->add_mesh(Mesh::box(Eigen::Vector3f(0.1f, 0.1f, 0.1f)));
+  std::vector<float> depth;
+  std::string error;
+  for (int tick = 0; tick < 2; ++tick) {  // two ticks, each on a fresh thread
+    std::thread([&] {
+      try {
+        GlContext::Scope current(gl);
+        r->begin(Eigen::Vector4f(0, 0, 0, 1));
+        r->draw(box, cube_pose(), Eigen::Vector4f(1, 1, 1, 1));
+        r->read_depth(depth);
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }).join();
+    ASSERT_EQ(error, "");
+  }
+  EXPECT_FALSE(gl.is_current()) << "a Scope leaves the context free";
+  const auto centre = depth[static_cast<std::size_t>(238 * 640 + 321)];
+  EXPECT_GT(centre, 0.4f);  // the box's near side, 0.6 m away at its centre
+  EXPECT_LT(centre, 0.6f);
+  r.reset();  // back on the main thread: no exception, no abort
 }
 
 TEST(Gl, CubeCornersLandWhereOpenCvProjectsThem) {

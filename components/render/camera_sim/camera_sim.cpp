@@ -121,6 +121,7 @@ class CameraSim final : public Component {
 
   void activate() override {
     gl_ = std::make_unique<GlContext>();
+    GlContext::Scope gl(*gl_);
     renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, 4);
     renderer_->set_light(Eigen::Vector3f(-0.3f, 0.8f, 0.6f), 0.45f);
     table_ = renderer_->add_mesh(Mesh::box(Eigen::Vector3f(1.0f, 1.0f, 0.025f)));
@@ -138,6 +139,7 @@ class CameraSim final : public Component {
   }
 
   void tick(Time now) override {
+    GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     auto stamp = [&](const std_msgs::Header& h) { return h.stamp_ns() > 0 ? h.stamp_ns() : now.ns; };
     while (joints_in_.take(joints_msg_)) {
       const robot::Vector6d q = msgs::joint_positions(joints_msg_);

@@ -53,6 +53,7 @@ class DeviceMask final : public Component {
   }
 
   void tick(Time now) override {
+    GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     if (info_in_.take_latest(info_msg_)) take_camera_info();
     while (joints_in_.take(joints_msg_)) {
       const robot::Vector6d q = msgs::joint_positions(joints_msg_);
