@@ -225,4 +225,39 @@ TEST(Compositor, TakesTheHandFromACameraImageAndAMask) {
   EXPECT_EQ((std::vector<int>{p[3], p[4], p[5]}), (std::vector<int>{180, 0, 0}));
 }
 
+// match_frames (data-triggered chains): only layers of one camera frame go together; a hand
+// that came ahead of its frame's scene is kept until the scene comes.
+TEST(Compositor, MatchFramesCompositesOnlyLayersOfOneCameraFrame) {
+  Harness h("compositor", "{match_frames: true, publish_shown: true}", 90);
+  auto scene = h.feed<msg::Image>("scene");
+  auto hand = h.feed<msg::Image>("hand");
+  auto out = h.watch<msg::Image>("composite");
+  auto shown = h.watch<msg::Image>("shown");
+  h.activate();
+  msg::Image s = image(2, 1, "rgb8", 3), k = image(2, 1, "rgba8", 4);
+  auto stamped = [](msg::Image m, std::int64_t stamp) {
+    m.header().stamp_ns(stamp);
+    return m;
+  };
+  scene.write(stamped(s, 100));
+  hand.write(stamped(k, 200));  // the next frame's hand: not this scene's
+  h.tick(Time{1});
+  msg::Image c;
+  EXPECT_FALSE(out.take(c)) << "scene of frame 100 with the hand of frame 200";
+  hand.write(stamped(k, 300));  // the keyer runs ahead: two hands wait for their scenes
+  h.tick(Time{2});
+  EXPECT_FALSE(out.take(c));
+  scene.write(stamped(s, 200));
+  h.tick(Time{3});
+  ASSERT_TRUE(shown.take(c)) << "frame 200's scene finds frame 200's hand in the history";
+  EXPECT_EQ(c.header().stamp_ns(), 200);
+  scene.write(stamped(s, 300));
+  h.tick(Time{4});
+  ASSERT_TRUE(shown.take(c));
+  EXPECT_EQ(c.header().stamp_ns(), 300);
+  h.tick(Time{5});  // nothing new: no second composite of frame 300
+  EXPECT_FALSE(shown.take(c));
+  EXPECT_EQ(out.pending(), 2u);
+}
+
 }  // namespace wysiwyf::render

@@ -24,17 +24,4 @@ VisualError visual_error(const Eigen::Isometry3d& tracked_eye_T_base, const Eige
   return e;
 }
 
-void Percentiles::add(double value, std::int64_t t_ns) {
-  if (values_.empty() || value > max_) max_ = value, max_at_ = t_ns;
-  values_.push_back(value);
-}
-
-double Percentiles::percentile(double p) const {
-  if (values_.empty()) return 0;
-  const auto rank = static_cast<std::size_t>(std::ceil(std::clamp(p, 0.0, 100.0) / 100 * values_.size()));
-  const auto k = values_.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
-  std::nth_element(values_.begin(), k, values_.end());
-  return *k;
-}
-
 }  // namespace wysiwyf::display

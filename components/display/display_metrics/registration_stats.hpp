@@ -10,6 +10,8 @@
 
 #include <Eigen/Geometry>
 
+#include "stats/percentiles.hpp"
+
 namespace wysiwyf::display {
 
 struct RegistrationError {
@@ -29,20 +31,7 @@ struct VisualError {
 VisualError visual_error(const Eigen::Isometry3d& tracked_eye_T_base, const Eigen::Isometry3d& true_eye_T_base,
                          const std::vector<Eigen::Vector3d>& base_points, const std::array<double, 4>& K);
 
-// Samples of one error, for nearest-rank percentiles and the largest with its time.
-class Percentiles {
- public:
-  void add(double value, std::int64_t t_ns = 0);
-  std::size_t samples() const { return values_.size(); }
-  double percentile(double p) const;  // p in [0, 100]; 0 without samples
-  double max() const { return max_; }
-  std::int64_t max_at() const { return max_at_; }
-
- private:
-  mutable std::vector<double> values_;  // reordered by percentile()
-  double max_ = 0;
-  std::int64_t max_at_ = 0;
-};
+using stats::Percentiles;
 
 struct RegistrationStats {
   Percentiles mm, deg;

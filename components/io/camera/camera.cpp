@@ -7,7 +7,8 @@
 // pinhole camera, the filmed hand must lie where the drawn scene does, and a stereo matcher wants
 // rows to be epipolar lines. A missing source is an error at
 // activation; a source lost while running is reported and reopened, and the pipeline keeps
-// running.
+// running. With `preload`, a file's (or image sequence's) frames are decoded at activation and
+// played from memory at the tick rate, stamped when published: a recording as a live camera.
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <opencv2/imgproc.hpp>
@@ -35,6 +36,9 @@ class Camera final : public Component {
                                   Range{0.05, 60});
     undistort_ = ctx.param<bool>(
         "undistort", true, "take the calibration's lens distortion out of the frames (camera_info then has none)");
+    preload_ = ctx.param<bool>("preload", false,
+                               "a file source: decode every frame at activation and play them from memory (a recording "
+                               "replayed at the tick rate, stamped when published, with no decoding in the tick)");
     image_ = ctx.output<msg::Image>("image", "frames, rgb8", Qos::sensor(2));
     info_ = ctx.output<msg::CameraInfo>("camera_info", "the calibration, with every frame", Qos::sensor(2));
     if (!calibration_.empty()) {
@@ -48,9 +52,11 @@ class Camera final : public Component {
 
   void activate() override {
     if (!open()) throw std::runtime_error("cannot open camera source '" + source_ + "' (backend " + backend_ + ")");
+    if (preload_) load_all();
   }
 
   void tick(Time now) override {
+    if (preload_) return play_loaded(now);
     if (!capture_.isOpened()) {
       if (now.ns - lost_since_ns_ > static_cast<std::int64_t>(reopen_s_ * 1e9)) {
         lost_since_ns_ = now.ns;
@@ -73,7 +79,15 @@ class Camera final : public Component {
       lost_since_ns_ = now.ns;
       return;
     }
-    cv::Mat rgb = image::allocate(msg_, bgr_.cols, bgr_.rows, "rgb8");
+    to_rgb(image::allocate(msg_, bgr_.cols, bgr_.rows, "rgb8"));
+    publish(now);
+  }
+
+  void deactivate() override { capture_.release(); }
+
+ private:
+  // bgr_ as rgb8 (undistorted when there are maps for its size) into `rgb`.
+  void to_rgb(cv::Mat rgb) {
     if (!map1_.empty() && bgr_.size() != map1_.size()) {
       warn_once("size", "frames of " + std::to_string(bgr_.cols) + "x" + std::to_string(bgr_.rows) +
                             " px, but the calibration is for " + std::to_string(map1_.cols) + "x" +
@@ -85,6 +99,9 @@ class Camera final : public Component {
     } else {
       cv::cvtColor(bgr_, rgb, cv::COLOR_BGR2RGB);  // straight into the message's buffer
     }
+  }
+
+  void publish(Time now) {
     fill_header(msg_.header(), now.ns, frames_++, "eye");
     image_.write(msg_);
     if (!calibration_.empty()) {
@@ -93,9 +110,29 @@ class Camera final : public Component {
     }
   }
 
-  void deactivate() override { capture_.release(); }
+  void load_all() {
+    if (!is_file_) throw std::runtime_error("preload: source '" + source_ + "' is not a file");
+    while (capture_.read(bgr_) && !bgr_.empty()) {
+      loaded_.emplace_back(bgr_.rows, bgr_.cols, CV_8UC3);
+      to_rgb(loaded_.back());
+    }
+    capture_.release();
+    if (loaded_.empty()) throw std::runtime_error("preload: no frames in '" + source_ + "'");
+    log("preloaded " + std::to_string(loaded_.size()) + " frames of " + std::to_string(loaded_[0].cols) + "x" +
+        std::to_string(loaded_[0].rows) + " from " + source_);
+  }
 
- private:
+  void play_loaded(Time now) {
+    if (next_ == loaded_.size()) {
+      if (at_end_ == "stop") return request_stop("end of " + source_ + " after " + std::to_string(frames_) + " frames");
+      if (at_end_ == "hold") return;
+      next_ = 0;
+    }
+    const cv::Mat& f = loaded_[next_++];
+    f.copyTo(image::allocate(msg_, f.cols, f.rows, "rgb8"));
+    publish(now);
+  }
+
   bool open() {
     const int api = backend_ == "v4l2"        ? cv::CAP_V4L2
                     : backend_ == "ffmpeg"    ? cv::CAP_FFMPEG
@@ -161,7 +198,9 @@ class Camera final : public Component {
 
   std::string source_, backend_, calibration_, at_end_;
   double reopen_s_ = 1.0;
-  bool is_file_ = false, undistort_ = true;
+  bool is_file_ = false, undistort_ = true, preload_ = false;
+  std::vector<cv::Mat> loaded_;  // preload: every frame, rgb8
+  std::size_t next_ = 0;
   cv::Mat map1_, map2_, undistorted_;  // undistortion maps (empty: frames as they come)
   cv::VideoCapture capture_;
   cv::Mat bgr_;

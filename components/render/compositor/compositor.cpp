@@ -6,6 +6,7 @@
 // plate, knob, lamps and arm from the robot model), the device is kept out of the real layer:
 // a keyed pixel on the device shows only where the real depth puts something nearer than the
 // device (a finger on the plate), so depth decides only between the hand and the virtual scene.
+#include <array>
 #include <opencv2/core.hpp>
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -140,6 +141,10 @@ class Compositor final : public Component {
     device_margin_ = static_cast<float>(ctx.param<double>(
         "device_margin", 0.0, "m a keyed pixel on the device must be nearer than the device to count as hand",
         Range{0, 0.1}));
+    match_frames_ = ctx.param<bool>(
+        "match_frames", false,
+        "composite only layers of one camera frame: the scene (stamped with its eye_T_base's frame), the hand, and "
+        "the depths once they arrive, all with one stamp (for data-triggered ticks: trigger on all of them)");
     out_ = ctx.output<msg::Image>("composite", "what the user sees, rgb8", Qos::sensor(2));
     publish_shown_ = ctx.param<bool>("publish_shown", false, "publish `shown` (for metrics)");
     shown_out_ = ctx.output<msg::Image>(
@@ -151,12 +156,17 @@ class Compositor final : public Component {
 
   void tick(Time now) override {
     bool fresh = take(scene_in_, scene_, {"rgb8"});
-    fresh |= take(hand_in_, hand_, {"rgba8"});
+    fresh |= match_frames_ ? take_hands() : take(hand_in_, hand_, {"rgba8"});
     if (take(camera_in_, camera_, {"rgb8"}) | take(mask_in_, mask_, {"mono8"})) fresh |= hand_from_mask();
-    take(scene_depth_in_, scene_depth_, {"32FC1"});
-    take(real_depth_in_, real_depth_, {"32FC1"});
-    take(device_in_, device_, {"32FC1"});
-    if (!fresh || !scene_.usable) return;
+    const bool depths = take(scene_depth_in_, scene_depth_, {"32FC1"}) | take(real_depth_in_, real_depth_, {"32FC1"}) |
+                        take(device_in_, device_, {"32FC1"});
+    if (match_frames_) {
+      pick_hand();
+      if (!(fresh || depths) || !one_frame()) return;
+      composited_stamp_ = scene_.image.header().stamp_ns();
+    } else if (!fresh || !scene_.usable) {
+      return;
+    }
     const std::uint32_t w = scene_.image.width(), h = scene_.image.height();
     // The composite is written straight into the outgoing message (sized once).
     cv::Mat out = image::allocate(out_msg_, static_cast<int>(w), static_cast<int>(h), "rgb8");
@@ -188,11 +198,13 @@ class Compositor final : public Component {
   struct Stream {
     msg::Image image;
     bool usable = false;
+    bool seen = false;  // a sample has come (match_frames waits for this layer from then on)
   };
 
   // The newest sample of `in` into `s`; a wrong one is rejected. True when a usable one came.
   bool take(Input<msg::Image>& in, Stream& s, std::initializer_list<std::string_view> encodings) {
     if (!in.take_latest(s.image)) return false;
+    s.seen = true;
     const std::string bad = image::problem(s.image, encodings);
     s.usable = bad.empty();
     if (!s.usable) reject(in, bad);
@@ -206,6 +218,42 @@ class Compositor final : public Component {
                    ", not the scene's " + std::to_string(w) + "x" + std::to_string(h));
     s.usable = false;
     return false;
+  }
+
+  // match_frames: every queued hand into a short history (the keyer runs ahead of the renderer),
+  // and hand_ the one of the scene's frame when it is there.
+  bool take_hands() {
+    bool any = false;
+    while (hand_in_.take(hands_[next_hand_].image)) {
+      Stream& h = hands_[next_hand_];
+      const std::string bad = image::problem(h.image, {"rgba8"});
+      h.usable = bad.empty(), h.seen = true;
+      if (!h.usable) reject(hand_in_, bad);
+      any |= h.usable;
+      next_hand_ = (next_hand_ + 1) % hands_.size();
+    }
+    return any;
+  }
+  void pick_hand() {
+    if (!scene_.usable) return;
+    const std::int64_t stamp = scene_.image.header().stamp_ns();
+    for (auto& h : hands_)
+      if (h.usable && h.image.header().stamp_ns() == stamp && hand_.image.header().stamp_ns() != stamp) {
+        using std::swap;
+        swap(hand_, h);
+        h.usable = false;
+      }
+  }
+
+  // match_frames: whether every layer that has come is of the scene's camera frame, and that
+  // frame is not composited yet.
+  bool one_frame() const {
+    if (!scene_.usable || !hand_.usable) return false;
+    const std::int64_t stamp = scene_.image.header().stamp_ns();
+    if (stamp == composited_stamp_ || hand_.image.header().stamp_ns() != stamp) return false;
+    for (const Stream* s : {&scene_depth_, &real_depth_, &device_})
+      if (s->seen && s->image.header().stamp_ns() != stamp) return false;
+    return true;
   }
 
   // A premultiplied RGBA hand layer from a camera image and a 0/255 mask of the same size.
@@ -228,6 +276,10 @@ class Compositor final : public Component {
   bool use_depth_ = true;
   float margin_ = 0.0f, device_margin_ = 0.0f;
   bool publish_shown_ = false;
+  bool match_frames_ = false;
+  std::array<Stream, 4> hands_;  // match_frames: the latest hands, by arrival
+  std::size_t next_hand_ = 0;
+  std::int64_t composited_stamp_ = -1;
   msg::Image shown_msg_;
   Output<msg::Image> shown_out_;
   std::uint64_t seq_ = 0;

@@ -42,7 +42,9 @@ class Renderer final : public Component {
                                           Qos::sensor(2));
     objects_in_ =
         ctx.input<msg::ObjectState>("objects", "dynamic bodies of the virtual environment", Qos::reliable(64));
-    color_out_ = ctx.output<msg::Image>("color", "the rendered scene, rgb8", Qos::sensor(2));
+    color_out_ = ctx.output<msg::Image>(
+        "color", "the rendered scene, rgb8, stamped with eye_T_base's stamp (the camera frame it is drawn for)",
+        Qos::sensor(2));
     depth_out_ =
         ctx.output<msg::Image>("depth", "metric depth along the optical axis, 32FC1 (0: nothing)", Qos::sensor(2));
     if (camera_.near_m >= camera_.far_m)
@@ -66,11 +68,12 @@ class Renderer final : public Component {
   }
 
   void tick(Time now) override {
+    GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     if (info_in_.take_latest(info_msg_)) take_camera_info();
     while (eye_T_base_in_.take(pose_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
       if (finite(T))
-        eye_T_base_ = T, have_pose_ = true;
+        eye_T_base_ = T, have_pose_ = true, pose_stamp_ = pose_msg_.header().stamp_ns();
       else
         reject(eye_T_base_in_, "a non-finite pose");
     }
@@ -103,8 +106,10 @@ class Renderer final : public Component {
     std::memcpy(image::allocate(color_msg_, camera_.width, camera_.height, "rgb8").data, rgb_.data(), rgb_.size());
     std::memcpy(image::allocate(depth_msg_, camera_.width, camera_.height, "32FC1").data, depth_.data(),
                 depth_.size() * sizeof(float));
-    fill_header(color_msg_.header(), now.ns, seq_, "eye");
-    fill_header(depth_msg_.header(), now.ns, seq_++, "eye");
+    // Stamped with the camera frame its eye_T_base was measured in: the frame it is drawn for.
+    const std::int64_t stamp = pose_stamp_ ? pose_stamp_ : now.ns;
+    fill_header(color_msg_.header(), stamp, seq_, "eye");
+    fill_header(depth_msg_.header(), stamp, seq_++, "eye");
     color_out_.write(color_msg_);
     depth_out_.write(depth_msg_);
   }
@@ -163,6 +168,7 @@ class Renderer final : public Component {
   std::map<std::string, Eigen::Isometry3d> base_T_body_;
   Eigen::Isometry3d eye_T_base_ = Eigen::Isometry3d::Identity();
   bool have_pose_ = false;
+  std::int64_t pose_stamp_ = 0;  // eye_T_base's: the camera frame it was measured in
   std::uint64_t seq_ = 0;
   std::vector<std::uint8_t> rgb_;
   std::vector<float> depth_;

@@ -1,0 +1,112 @@
+// The real-time vision path (config/pipelines/bench/vision-path*.yaml) on the real clock: recorded
+// camera_sim frames played from memory at 60 and 90 frames a second through the plate tracker,
+// keyer, renderer, device mask and compositor, each stage on its own period and data-triggered,
+// side by side in one run. Reports camera -> composite latency p50/p99/max (frame_latency's
+// summary), frames never composited, camera -> tracker pose, and each stage's tick time p50/p99
+// and how late its ticks start (from the kernel's report). The recording is made once, by
+// record-vision.yaml on the sim clock, into the build tree.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "../common/smoke.hpp"
+#include "wysiwyf/loader.hpp"
+#include "wysiwyf/pipeline_spec.hpp"
+#include "wysiwyf/runtime.hpp"
+#include "wysiwyf/validator.hpp"
+
+namespace fs = std::filesystem;
+using namespace wysiwyf;
+
+namespace {
+
+const fs::path kPipelines = fs::path(WYSIWYF_CONFIG_DIR) / "pipelines" / "bench";
+const fs::path kWork = fs::path(WYSIWYF_BENCH_WORK_DIR);
+
+RunResult run(const fs::path& file, const std::vector<std::string>& sets) {
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  const PipelineSpec spec = load_pipeline(file.string(), sets);
+  const ValidationResult v = validate_pipeline(spec, loader);
+  if (!v.errors.empty()) throw std::runtime_error(v.errors.front().str());
+  std::ostringstream log;
+  Runtime runtime(spec, loader, RunOptions{"", false, &log});
+  RunResult r = runtime.run();
+  if (!r.ok) throw std::runtime_error(r.error + "\n" + log.str());
+  return r;
+}
+
+// The frames, recorded once (a shorter recording in smoke mode).
+fs::path recording() {
+  const fs::path dir = kWork / (bench::smoke() ? "vision-frames-smoke" : "vision-frames");
+  if (fs::exists(dir / "frame_000000.png")) return dir;
+  fs::create_directories(dir);
+  run(kPipelines / "record-vision.yaml", {"domain=201", "record.params.path=" + dir.string(),
+                                          std::string("clock.duration=") + (bench::smoke() ? "1s" : "6s")});
+  return dir;
+}
+
+double json_number(const std::string& text, const std::string& object, const std::string& key) {
+  std::size_t from = 0;
+  if (!object.empty()) from = text.find("\"" + object + "\"");
+  const std::regex number("\"" + key + "\": ([-0-9.eE+]+)");
+  std::smatch m;
+  const std::string rest = from == std::string::npos ? "" : text.substr(from);
+  return std::regex_search(rest, m, number) ? std::stod(m[1]) : -1;
+}
+
+void VisionPath(benchmark::State& state, bool triggered) {
+  const int fps = static_cast<int>(state.range(0));
+  try {
+    const fs::path frames = recording();
+    const fs::path summary = kWork / ("vision-path-" + std::to_string(fps) + (triggered ? "-triggered" : "") + ".json");
+    fs::remove(summary);
+    std::vector<std::string> sets = {"domain=202", "camera.params.source=" + (frames / "frame_%06d.png").string(),
+                                     "latency.params.summary=" + summary.string(),
+                                     std::string("clock.duration=") + (bench::smoke() ? "1500ms" : "8s")};
+    if (bench::smoke()) sets.push_back("latency.params.warmup=0.5");
+    for (const char* stage : {"camera", "tracker", "keyer", "view", "device", "compose", "latency"})
+      sets.push_back(std::string(stage) + ".rate=" + std::to_string(fps));
+    RunResult r;
+    for (auto _ : state) {
+      r = run(kPipelines / (triggered ? "vision-path-triggered.yaml" : "vision-path.yaml"), sets);
+      state.SetIterationTime(r.wall_seconds);
+    }
+    std::ifstream in(summary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.empty()) return state.SkipWithError("frame_latency wrote no summary");
+    state.counters["fps"] = fps;
+    state.counters["frames"] = json_number(text, "", "frames");
+    state.counters["dropped"] = json_number(text, "", "dropped");
+    state.counters["p50_ms"] = json_number(text, "camera_to_composite_ms", "p50");
+    state.counters["p99_ms"] = json_number(text, "camera_to_composite_ms", "p99");
+    state.counters["max_ms"] = json_number(text, "camera_to_composite_ms", "max");
+    state.counters["tracker_p50_ms"] = json_number(text, "camera_to_tracker_ms", "p50");
+    // The per-stage split: each stage's tick time and how late its ticks start (p50, ms).
+    for (const auto& c : r.components) {
+      if (c.name == "arm" || c.name == "latency") continue;
+      state.counters[c.name + "_tick_ms"] = c.tick_p50_us * 1e-3;
+      state.counters[c.name + "_wait_ms"] = c.late_p50_us * 1e-3;
+    }
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+  }
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(VisionPath, periodic, false)
+    ->Arg(60)
+    ->Arg(90)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(VisionPath, triggered, true)
+    ->Arg(60)
+    ->Arg(90)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+BENCHMARK_MAIN();
