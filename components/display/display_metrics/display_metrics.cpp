@@ -41,6 +41,7 @@
 
 #include "image/image_view.hpp"
 #include "registration_stats.hpp"
+#include "run_report.hpp"
 
 #include "scene/scene.hpp"
 #include "scene/tool_load.hpp"
@@ -77,6 +78,12 @@ class DisplayMetrics final : public Component {
     objects_in_ = ctx.input<msg::ObjectState>("objects", "the virtual objects", Qos::reliable(64));
     summary_path_ = ctx.param<std::string>(
         "summary", "", "a JSON file written at the end with every figure (units in the keys); empty: none");
+    report_dir_ = ctx.param<std::string>(
+        "report", "",
+        "a folder for the run report: summary.json, timeseries.csv (every tick), latency.csv; scripts/run-report "
+        "adds the plots and index.html; empty: none");
+    mode_in_ = ctx.input<msg::DisplayMode>("mode", "optional: the display's mode (the supervisor's), for the report",
+                                           Qos::reliable(16).optional_input());
     onset_window_ns_ = static_cast<std::int64_t>(
         ctx.param<double>("onset_window", 0.1, "s after attaching counted as the push's onset", Range{0.001, 10}) *
         1e9);
@@ -164,6 +171,8 @@ class DisplayMetrics final : public Component {
     time_contacts();
     while (!forces_.empty() && forces_.front().first < now.ns - history_ns_) forces_.pop_front();
     while (!frames_.empty() && frames_.front().first < now.ns - history_ns_) frames_.pop_front();
+    while (mode_in_.take(mode_msg_)) mode_ = static_cast<int>(mode_msg_.mode());
+    if (report_) report_row(now);
     while (diagnostics_in_.take(diagnostics_msg_)) {
       Health& c = health_[diagnostics_msg_.instance().c_str()];
       c.type = diagnostics_msg_.type().c_str();
@@ -177,7 +186,10 @@ class DisplayMetrics final : public Component {
     }
   }
 
-  void activate() override { objects_.resize(scene_.models.size()); }
+  void activate() override {
+    objects_.resize(scene_.models.size());
+    if (!report_dir_.empty()) report_.emplace(report_dir_);
+  }
 
   void deactivate() override {
     int hits = 0;
@@ -207,7 +219,12 @@ class DisplayMetrics final : public Component {
       log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.mm.percentile(50)) +
           " mm, p99 " + std::to_string(run_.mm.percentile(99)) + " mm, max " + std::to_string(run_.mm.max()) +
           " mm / " + std::to_string(run_.deg.max()) + " deg over " + std::to_string(run_.mm.samples()) + " samples");
-    if (!summary_path_.empty()) write_summary();
+    if (!summary_path_.empty()) write_summary(summary_path_);
+    if (report_) {
+      write_summary(report_dir_ + "/summary.json");
+      log("run report in " + report_dir_ + " (scripts/run-report " + report_dir_ + " draws its plots)");
+      report_.reset();  // the CSV files closed: complete on disk
+    }
   }
 
  private:
@@ -306,6 +323,7 @@ class DisplayMetrics final : public Component {
       if (!corners_.empty()) {
         const VisualError e = visual_error(drawn.pose, truth->pose, corners_, K_);
         visual_mm_.add(e.mm, drawn.t);
+        last_visual_mm_ = e.mm;
         visual_px_.add(e.px, drawn.t);
       }
       tracked_.pop_front();
@@ -325,8 +343,26 @@ class DisplayMetrics final : public Component {
     return q + "\"";
   }
 
+  // The latest of each signal, one row a tick.
+  void report_row(Time now) {
+    TimeSeriesRow r;
+    r.t_s = now.seconds();
+    if (!forces_.empty()) r.force_n = forces_.back().second;
+    if (!plate_.empty()) r.plate = plate_.back().pose.translation();
+    for (std::size_t b = 0; b < scene_.models.size(); ++b)
+      if (scene_.models[b].dynamic && !objects_[b].empty()) {
+        r.cube = objects_[b].back().pose.translation();
+        break;
+      }
+    r.mode = mode_;
+    r.attached = attachment_.has_value();
+    if (attachment_) r.haptic_mm = last_haptic_mm_;
+    r.visual_mm = last_visual_mm_;
+    report_->row(r);
+  }
+
   // Every figure of the run, units in the keys: the run report's summary.json.
-  void write_summary() {
+  void write_summary(const std::string& path) {
     std::ostringstream j;
     j << "{\n  \"contacts\": [";
     for (std::size_t i = 0; i < reports_.size(); ++i) {
@@ -382,12 +418,12 @@ class DisplayMetrics final : public Component {
       first = false;
     }
     j << (health_.empty() ? "" : "\n  ") << "}\n}\n";
-    std::ofstream out(summary_path_);
+    std::ofstream out(path);
     out << j.str();
     if (!out)
-      warn_once("summary", "could not write the summary to '" + summary_path_ + "'");
+      warn_once("summary " + path, "could not write the summary to '" + path + "'");
     else
-      log("summary: " + summary_path_);
+      log("summary: " + path);
   }
 
   // Contact timing: for each touch, when the wrist force rose past force_onset (from 0.1 s before
@@ -442,11 +478,13 @@ class DisplayMetrics final : public Component {
         reject(shown_in_, image::problem(image_msg_, {"mono8"}));
         continue;
       }
-      for (const auto& [seq, made] : made_at_)
-        if (seq == image_msg_.header().seq() && made >= image_msg_.header().stamp_ns())
-          frames_.emplace_back(image_msg_.header().stamp_ns(), made),
-              latency_ms_.add(static_cast<double>(made - image_msg_.header().stamp_ns()) * 1e-6,
-                              image_msg_.header().stamp_ns());
+      for (const auto& [seq, made] : made_at_) {
+        const std::int64_t frame = image_msg_.header().stamp_ns();
+        if (seq != image_msg_.header().seq() || made < frame) continue;
+        frames_.emplace_back(frame, made);
+        latency_ms_.add(static_cast<double>(made - frame) * 1e-6, frame);
+        if (report_) report_->latency(static_cast<double>(made) * 1e-9, static_cast<double>(made - frame) * 1e-6);
+      }
       const auto mask = std::find_if(device_masks_.begin(), device_masks_.end(), [&](const msg::Image& m) {
         return m.header().stamp_ns() == image_msg_.header().stamp_ns();
       });
@@ -498,6 +536,7 @@ class DisplayMetrics final : public Component {
          it != plate_.end() && it->t <= t; ++it) {
       const Sample& s = *it;
       const RegistrationError e = registration_error(at(object, s.t)->pose * a.obj_T_dev, s.pose);
+      last_haptic_mm_ = e.mm;
       a.all.add(e, s.t);
       run_.add(e, s.t);
       if (s.t - a.since <= onset_window_ns_) a.onset.add(e, s.t);
@@ -551,7 +590,12 @@ class DisplayMetrics final : public Component {
   std::map<std::string, Health> health_;
   kernel_msgs::Diagnostics diagnostics_msg_;
   Input<kernel_msgs::Diagnostics> diagnostics_in_;
-  std::string summary_path_;
+  std::string summary_path_, report_dir_;
+  std::optional<RunReport> report_;
+  std::optional<double> last_haptic_mm_, last_visual_mm_;
+  int mode_ = -1;
+  msg::DisplayMode mode_msg_;
+  Input<msg::DisplayMode> mode_in_;
   std::deque<msg::Image> device_masks_;
   std::deque<std::pair<std::uint64_t, std::int64_t>> made_at_;  // composite seq, its stamp
   std::deque<std::pair<std::int64_t, std::int64_t>> frames_;    // camera stamp, when its composite was made
