@@ -58,7 +58,9 @@ TEST(Triggers, OnTheSimClockAChainRunsInItsProducersStepWhateverTheFileOrder) {
     }
     // Triggered components tick only on samples: as many ticks as samples, reported.
     for (const auto& c : r.components) {
-      if (c.name != "src") EXPECT_EQ(c.ticks, 5u) << c.name;
+      if (c.name != "src") {
+        EXPECT_EQ(c.ticks, 5u) << c.name;
+      }
     }
   }
 }
@@ -84,7 +86,9 @@ TEST(Triggers, OnTheRealClockEverySampleTicksTheChainOnce) {
   for (std::size_t i = 0; i < b.size(); ++i) EXPECT_EQ(b[i].seq, i);
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].seq, i) << "a missed none of src's samples";
   for (const auto& c : r.components) {
-    if (c.name == "a") EXPECT_EQ(c.ticks, a.size()) << "one tick per sample";
+    if (c.name == "a") {
+      EXPECT_EQ(c.ticks, a.size()) << "one tick per sample";
+    }
   }
 }
 

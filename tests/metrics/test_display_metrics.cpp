@@ -381,4 +381,39 @@ TEST(DisplayMetrics, AnAttachmentToAnUnknownBodyIsRefusedNotMeasured) {
   EXPECT_EQ(h.rejected("attach"), 1u);
 }
 
+// Setpoint to motion: a plate that is where the setpoint was 7 ms earlier reads 7 ms; setpoints
+// that command no motion are not timed.
+TEST(DisplayMetrics, APlateSevenMillisecondsBehindItsSetpointReadsSevenMilliseconds) {
+  const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_lag.json";
+  std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
+  auto setpoint = h.feed<msg::CartesianSetpoint>("setpoint");
+  auto device = h.feed<msg::PoseStamped>("device_pose");
+  h.activate();
+  const auto x = [](std::int64_t t) { return t < 300 * kMs ? 0.5 + 0.1 * t * 1e-9 : 0.53; };  // moves, then holds
+  for (std::int64_t t = 0; t < 500 * kMs; t += kMs) {
+    msg::CartesianSetpoint sp;
+    fill_header(sp.header(), t, static_cast<std::uint64_t>(t / kMs), "base");
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(x(t), 0.0, 0.2);
+    msgs::to_msg(T, sp.pose());
+    sp.twist().linear().x(t < 300 * kMs ? 0.1 : 0.0);
+    setpoint.write(sp);
+    msg::PoseStamped p;
+    fill_header(p.header(), t, static_cast<std::uint64_t>(t / kMs), "base");
+    T.translation().x() = x(std::max<std::int64_t>(0, t - 7 * kMs));
+    msgs::to_msg(T, p.pose());
+    device.write(p);
+    h.tick(Time{t});
+  }
+  h.deactivate();
+  const YAML::Node m = YAML::LoadFile(summary)["setpoint_to_motion"];
+  ASSERT_TRUE(m.IsMap()) << summary;
+  EXPECT_EQ(m["setpoints"].as<int>(), 300) << "the 300 moving ones";
+  EXPECT_EQ(m["not_reached"].as<int>(), 0);
+  EXPECT_NEAR(m["p50_ms"].as<double>(), 7.0, 1e-9);
+  EXPECT_NEAR(m["max_ms"].as<double>(), 7.0, 1e-9);
+}
+
 }  // namespace wysiwyf::test

@@ -41,6 +41,7 @@
 
 #include "image/image_view.hpp"
 #include "registration_stats.hpp"
+#include "following_lag.hpp"
 #include "run_report.hpp"
 
 #include "scene/scene.hpp"
@@ -82,6 +83,12 @@ class DisplayMetrics final : public Component {
         "report", "",
         "a folder for the run report: summary.json, timeseries.csv (every tick), latency.csv; scripts/run-report "
         "adds the plots and index.html; empty: none");
+    setpoint_in_ = ctx.input<msg::CartesianSetpoint>(
+        "setpoint", "optional: the arm's setpoint (the supervisor's), for the setpoint-to-motion lag",
+        Qos::reliable(256).optional_input());
+    lag_min_speed_ = ctx.param<double>("lag_min_speed", 0.02,
+                                       "m/s: setpoints commanding motion at least this fast are timed to the plate",
+                                       Range{1e-4, 10});
     mode_in_ = ctx.input<msg::DisplayMode>("mode", "optional: the display's mode (the supervisor's), for the report",
                                            Qos::reliable(16).optional_input());
     onset_window_ns_ = static_cast<std::int64_t>(
@@ -124,12 +131,17 @@ class DisplayMetrics final : public Component {
   }
 
   void tick(Time now) override {
+    while (setpoint_in_.take(setpoint_msg_))  // first: a plate pose is timed against the setpoints before it
+      if (msgs::all_finite(setpoint_msg_.pose()))
+        lag_.setpoint(stamp(setpoint_msg_.header(), now), msgs::to_eigen(setpoint_msg_.pose().position()),
+                      msgs::to_eigen(setpoint_msg_.twist().linear()));
     while (device_in_.take(device_msg_)) {
       if (!msgs::all_finite(device_msg_.pose())) {
         reject(device_in_, "a non-finite pose");
         continue;
       }
       plate_.push_back({stamp(device_msg_.header(), now), msgs::to_isometry(device_msg_.pose())});
+      lag_.plate(plate_.back().t, plate_.back().pose.translation());
     }
     while (objects_in_.take(object_msg_)) {
       const int body = scene_.body_index(object_msg_.child_frame_id().c_str());
@@ -188,6 +200,7 @@ class DisplayMetrics final : public Component {
 
   void activate() override {
     objects_.resize(scene_.models.size());
+    lag_ = FollowingLag(lag_min_speed_, 500'000'000);
     if (!report_dir_.empty()) report_.emplace(report_dir_);
   }
 
@@ -215,6 +228,11 @@ class DisplayMetrics final : public Component {
       log("bleed-through (real device pixels the user sees) over " + std::to_string(bleed_px_.samples()) +
           " images: " + std::to_string(bleed_frames_) + " with any, p99 " + std::to_string(bleed_px_.percentile(99)) +
           " px, max " + std::to_string(bleed_px_.max()) + " px");
+    if (lag_.lag_ms().samples() > 0)
+      log("setpoint to motion: the plate reaches a moving setpoint p50 " +
+          std::to_string(lag_.lag_ms().percentile(50)) + " ms, p99 " + std::to_string(lag_.lag_ms().percentile(99)) +
+          " ms after it was made (" + std::to_string(lag_.lag_ms().samples()) + " setpoints; " +
+          std::to_string(lag_.not_reached()) + " not reached)");
     if (run_.mm.samples() > 0)
       log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.mm.percentile(50)) +
           " mm, p99 " + std::to_string(run_.mm.percentile(99)) + " mm, max " + std::to_string(run_.mm.max()) +
@@ -392,6 +410,9 @@ class DisplayMetrics final : public Component {
       << "},\n";
     j << "  \"bleed_through\": {\"images\": " << bleed_px_.samples() << ", \"images_with_any\": " << bleed_frames_
       << ", \"p99_px\": " << number(bleed_px_.percentile(99)) << ", \"max_px\": " << number(bleed_px_.max())
+      << "},\n  \"setpoint_to_motion\": {\"setpoints\": " << lag_.lag_ms().samples()
+      << ", \"not_reached\": " << lag_.not_reached() << ", \"p50_ms\": " << number(lag_.lag_ms().percentile(50))
+      << ", \"p99_ms\": " << number(lag_.lag_ms().percentile(99)) << ", \"max_ms\": " << number(lag_.lag_ms().max())
       << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples()
       << ", \"camera_to_composite_p50_ms\": " << number(latency_ms_.percentile(50))
       << ", \"camera_to_composite_p99_ms\": " << number(latency_ms_.percentile(99))
@@ -591,6 +612,10 @@ class DisplayMetrics final : public Component {
   kernel_msgs::Diagnostics diagnostics_msg_;
   Input<kernel_msgs::Diagnostics> diagnostics_in_;
   std::string summary_path_, report_dir_;
+  double lag_min_speed_ = 0.02;
+  FollowingLag lag_{0.02, 500'000'000};  // remade in activate with lag_min_speed
+  msg::CartesianSetpoint setpoint_msg_;
+  Input<msg::CartesianSetpoint> setpoint_in_;
   std::optional<RunReport> report_;
   std::optional<double> last_haptic_mm_, last_visual_mm_;
   int mode_ = -1;
