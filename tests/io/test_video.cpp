@@ -139,6 +139,35 @@ TEST(Video, AMissingCameraSourceIsAClearErrorAtActivation) {
   }
 }
 
+// preload: a recording's frames decoded at activation, played from memory in order at the
+// tick rate (looping), each stamped when it is published.
+TEST(Video, APreloadedRecordingPlaysItsFramesInOrderAndLoops) {
+  const std::filesystem::path dir = std::filesystem::path(WYSIWYF_TEST_SCRATCH_DIR) / "preload";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (int i = 0; i < 3; ++i)
+    cv::imwrite((dir / ("f_" + std::to_string(i) + ".png")).string(),
+                cv::Mat(8, 10, CV_8UC3, cv::Scalar(10 * i, 20 + i, 200 - i)));  // BGR
+  Harness cam("camera", "{source: " + (dir / "f_%d.png").string() + ", preload: true, at_end: loop}", 90);
+  auto image = cam.watch<msg::Image>("image");
+  cam.activate();
+  std::filesystem::remove_all(dir);  // played from memory from now on
+  for (int tick = 0; tick < 5; ++tick) {
+    const std::int64_t t = 1'000'000'000 + tick * 11'111'111;
+    cam.tick(Time{t});
+    msg::Image frame;
+    ASSERT_TRUE(image.take(frame)) << tick;
+    EXPECT_EQ(frame.header().stamp_ns(), t);
+    EXPECT_EQ(frame.header().seq(), static_cast<std::uint64_t>(tick));
+    ASSERT_EQ(frame.width(), 10u);
+    ASSERT_EQ(frame.encoding(), "rgb8");
+    const int i = tick % 3;  // frames 0, 1, 2, 0, 1
+    EXPECT_EQ((std::vector<int>{frame.data()[0], frame.data()[1], frame.data()[2]}),
+              (std::vector<int>{200 - i, 20 + i, 10 * i}))
+        << tick;
+  }
+}
+
 }  // namespace wysiwyf::test
 
 namespace wysiwyf::test {
