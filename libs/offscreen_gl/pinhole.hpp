@@ -18,6 +18,17 @@ struct Pinhole {
     return width >= 16 && height >= 16 && width <= 4096 && height <= 4096 && fx > 0 && fy > 0 && std::isfinite(fx) &&
            std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy);
   }
+  // This camera (its clip planes) with a camera_info's size and row-major K (fx K[0], cx K[2],
+  // fy K[4], cy K[5]); check usable() on the result.
+  template <class RowMajorK>
+  Pinhole with_intrinsics(int w, int h, const RowMajorK& k) const {
+    Pinhole c = *this;
+    c.width = w, c.height = h;
+    c.fx = k[0], c.fy = k[4], c.cx = k[2], c.cy = k[5];
+    return c;
+  }
+  static constexpr const char* kUnusableInfo =
+      "a camera_info without a size of 16..4096 px or a finite K with fx, fy > 0";
   bool same_intrinsics(const Pinhole& o) const {
     return width == o.width && height == o.height && fx == o.fx && fy == o.fy && cx == o.cx && cy == o.cy;
   }

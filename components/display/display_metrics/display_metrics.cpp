@@ -86,9 +86,10 @@ class DisplayMetrics final : public Component {
     setpoint_in_ = ctx.input<msg::CartesianSetpoint>(
         "setpoint", "optional: the arm's setpoint (the supervisor's), for the setpoint-to-motion lag",
         Qos::reliable(256).optional_input());
-    lag_min_speed_ = ctx.param<double>("lag_min_speed", 0.02,
-                                       "m/s: setpoints commanding motion at least this fast are timed to the plate",
-                                       Range{1e-4, 10});
+    lag_ = FollowingLag(ctx.param<double>("lag_min_speed", 0.02,
+                                          "m/s: setpoints commanding motion at least this fast are timed to the plate",
+                                          Range{1e-4, 10}),
+                        500'000'000);
     mode_in_ = ctx.input<msg::DisplayMode>("mode", "optional: the display's mode (the supervisor's), for the report",
                                            Qos::reliable(16).optional_input());
     onset_window_ns_ = static_cast<std::int64_t>(
@@ -200,7 +201,6 @@ class DisplayMetrics final : public Component {
 
   void activate() override {
     objects_.resize(scene_.models.size());
-    lag_ = FollowingLag(lag_min_speed_, 500'000'000);
     if (!report_dir_.empty()) report_.emplace(report_dir_);
   }
 
@@ -612,8 +612,7 @@ class DisplayMetrics final : public Component {
   kernel_msgs::Diagnostics diagnostics_msg_;
   Input<kernel_msgs::Diagnostics> diagnostics_in_;
   std::string summary_path_, report_dir_;
-  double lag_min_speed_ = 0.02;
-  FollowingLag lag_{0.02, 500'000'000};  // remade in activate with lag_min_speed
+  FollowingLag lag_{0.02, 500'000'000};  // made in configure with lag_min_speed
   msg::CartesianSetpoint setpoint_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   std::optional<RunReport> report_;

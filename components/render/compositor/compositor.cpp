@@ -203,7 +203,10 @@ class Compositor final : public Component {
 
   // The newest sample of `in` into `s`; a wrong one is rejected. True when a usable one came.
   bool take(Input<msg::Image>& in, Stream& s, std::initializer_list<std::string_view> encodings) {
-    if (!in.take_latest(s.image)) return false;
+    return in.take_latest(s.image) && accept(in, s, encodings);
+  }
+  // The sample just taken into `s`: usable, or rejected. True when usable.
+  bool accept(Input<msg::Image>& in, Stream& s, std::initializer_list<std::string_view> encodings) {
     s.seen = true;
     const std::string bad = image::problem(s.image, encodings);
     s.usable = bad.empty();
@@ -225,11 +228,7 @@ class Compositor final : public Component {
   bool take_hands() {
     bool any = false;
     while (hand_in_.take(hands_[next_hand_].image)) {
-      Stream& h = hands_[next_hand_];
-      const std::string bad = image::problem(h.image, {"rgba8"});
-      h.usable = bad.empty(), h.seen = true;
-      if (!h.usable) reject(hand_in_, bad);
-      any |= h.usable;
+      any |= accept(hand_in_, hands_[next_hand_], {"rgba8"});
       next_hand_ = (next_hand_ + 1) % hands_.size();
     }
     return any;

@@ -98,12 +98,9 @@ class DeviceMask final : public Component {
   };
 
   void take_camera_info() {
-    const auto& k = info_msg_.k();
-    Pinhole camera = camera_;
-    camera.width = static_cast<int>(info_msg_.width()), camera.height = static_cast<int>(info_msg_.height());
-    camera.fx = k[0], camera.fy = k[4], camera.cx = k[2], camera.cy = k[5];
-    if (!camera.usable())
-      return reject(info_in_, "a camera_info without a size of 16..4096 px or a finite K with fx, fy > 0");
+    const Pinhole camera = camera_.with_intrinsics(static_cast<int>(info_msg_.width()),
+                                                   static_cast<int>(info_msg_.height()), info_msg_.k());
+    if (!camera.usable()) return reject(info_in_, Pinhole::kUnusableInfo);
     if (renderer_ && camera.same_intrinsics(camera_)) return;
     camera_ = camera;
     renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, 1);

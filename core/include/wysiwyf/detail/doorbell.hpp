@@ -4,7 +4,6 @@
 // (rings that come while it ticks fold into one more tick).
 #include <chrono>
 #include <condition_variable>
-#include <cstdint>
 #include <mutex>
 
 namespace wysiwyf::detail {
@@ -18,7 +17,6 @@ class Doorbell {
       std::lock_guard<std::mutex> lock(mutex_);
       if (!pending_) first_ring_ = Clock::now();
       pending_ = true;
-      ++rings_;
     }
     cv_.notify_one();
   }
@@ -50,16 +48,10 @@ class Doorbell {
     cv_.notify_all();
   }
 
-  std::uint64_t rings() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return rings_;
-  }
-
  private:
-  mutable std::mutex mutex_;
+  std::mutex mutex_;
   std::condition_variable cv_;
   bool pending_ = false, stopped_ = false;
-  std::uint64_t rings_ = 0;
   Clock::time_point first_ring_{};
 };
 
