@@ -257,6 +257,7 @@ std::string to_yaml(const msg::CartesianSetpoint& m) {
   pose(y, m.pose());
   twist(y, m.twist());
   y.str("source", m.source());
+  y.kv("sensed_ns", m.sensed_ns());
   return y.text();
 }
 

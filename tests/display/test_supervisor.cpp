@@ -43,6 +43,7 @@ class SupervisorRig {
       T.translation() = *surface;
       msgs::to_msg(T, sp.pose());
       sp.source("surface");
+      sp.sensed_ns(t - 20 * kMs);  // the hand sample it answers, seen 20 ms ago
       surface_.write(sp);
     }
     msg::WrenchStamped w;  // the tool's weight only: 11.34 N down in base, the sensor's x axis down here
@@ -109,11 +110,13 @@ TEST(Supervisor, ANonFiniteSetpointHoldsTheArmWhereItWasSent) {
   EXPECT_NEAR((msgs::to_eigen(held.pose().position()) - at).norm(), 0.0, 1e-12);
   EXPECT_EQ(msgs::to_eigen(held.twist().linear()).norm(), 0.0);
   EXPECT_STREQ(held.source().c_str(), "supervisor/hold");
+  EXPECT_EQ(held.sensed_ns(), 0) << "a hold answers no sensor sample";
   // Good input again: back through idle to surface after recover_after, without a step.
   for (int t = 51; t < 400; ++t) rig.tick(t, &at);
   EXPECT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
   ASSERT_TRUE(rig.setpoint(held));
   EXPECT_STREQ(held.source().c_str(), "supervisor/surface");
+  EXPECT_EQ(held.sensed_ns(), (399 - 20) * kMs) << "the planner's sensor stamp, passed on";
 }
 
 TEST(Supervisor, AStaleSourceHoldsTheArm) {

@@ -98,13 +98,15 @@ TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
   h.activate();
   // The sensor (plate frame: z along world +x, out of the cube) carries the tool; the user pushes
   // the plate with 2 N toward the robot (world -x, plate -z).
-  const msg::WrenchStamped w = sensor_reading_of_push("scenes/cube_on_table.yaml", 2.0);
+  msg::WrenchStamped w = sensor_reading_of_push("scenes/cube_on_table.yaml", 2.0);
   for (int i = 0; i <= 500; ++i) {
+    w.header().stamp_ns(i * kMs + 1000 * kMs - 250'000);  // sampled 250 us before the tick
     wrench.write(w);
-    h.tick(Time{i * kMs});
+    h.tick(Time{i * kMs + 1000 * kMs});
   }
   msg::CartesianSetpoint sp;
   ASSERT_TRUE(setpoints.take_latest(sp));
+  EXPECT_EQ(sp.sensed_ns(), 1500 * kMs - 250'000) << "the stamp of the wrench sample it answers";
   // 501 steps of 1 ms under 2 N on 1 kg, frictionless: x = 0.7 - 1/2 * 2 * 0.501^2.
   const double expected_face = 0.7 - 0.5 * 2.0 * 0.501 * 0.501;
   EXPECT_NEAR(sp.pose().position().x(), expected_face, 1e-6);

@@ -416,4 +416,35 @@ TEST(DisplayMetrics, APlateSevenMillisecondsBehindItsSetpointReadsSevenMilliseco
   EXPECT_NEAR(m["max_ms"].as<double>(), 7.0, 1e-9);
 }
 
+// Sensor sample to setpoint: admittance setpoints made 3 ms after the wrench sample they answer
+// and surface setpoints made 45 ms after the hand's position read 3 and 45 ms, per source; holds
+// (sensed_ns 0) are not counted.
+TEST(DisplayMetrics, SetpointsMadeThreeMillisecondsAfterTheirSensorSampleReadThreeMilliseconds) {
+  const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_sensed.json";
+  std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
+  auto setpoint = h.feed<msg::CartesianSetpoint>("setpoint");
+  h.activate();
+  for (std::int64_t t = 100 * kMs; t < 400 * kMs; t += kMs) {
+    msg::CartesianSetpoint sp;
+    fill_header(sp.header(), t, static_cast<std::uint64_t>(t / kMs), "base");
+    msgs::to_msg(Eigen::Isometry3d::Identity(), sp.pose());
+    const int phase = static_cast<int>(t / (100 * kMs));  // 1: surface, 2: a hold, 3: admittance
+    sp.source(phase == 1 ? "supervisor/surface" : phase == 2 ? "supervisor/hold" : "supervisor/admittance");
+    sp.sensed_ns(phase == 1 ? t - 45 * kMs : phase == 2 ? 0 : t - 3 * kMs);
+    setpoint.write(sp);
+    h.tick(Time{t});
+  }
+  h.deactivate();
+  const YAML::Node m = YAML::LoadFile(summary)["sensor_to_setpoint"];
+  ASSERT_TRUE(m.IsMap()) << summary;
+  EXPECT_EQ(m.size(), 2u) << "no entry for the hold";
+  EXPECT_EQ(m["supervisor/admittance"]["setpoints"].as<int>(), 100);
+  EXPECT_NEAR(m["supervisor/admittance"]["p50_ms"].as<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(m["supervisor/admittance"]["max_ms"].as<double>(), 3.0, 1e-9);
+  EXPECT_EQ(m["supervisor/surface"]["setpoints"].as<int>(), 100);
+  EXPECT_NEAR(m["supervisor/surface"]["p99_ms"].as<double>(), 45.0, 1e-9);
+}
+
 }  // namespace wysiwyf::test

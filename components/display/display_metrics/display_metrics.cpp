@@ -42,6 +42,7 @@
 #include "image/image_view.hpp"
 #include "registration_stats.hpp"
 #include "following_lag.hpp"
+#include "sensor_to_setpoint.hpp"
 #include "run_report.hpp"
 
 #include "scene/scene.hpp"
@@ -83,9 +84,11 @@ class DisplayMetrics final : public Component {
         "report", "",
         "a folder for the run report: summary.json, timeseries.csv (every tick), latency.csv; scripts/run-report "
         "adds the plots and index.html; empty: none");
-    setpoint_in_ = ctx.input<msg::CartesianSetpoint>(
-        "setpoint", "optional: the arm's setpoint (the supervisor's), for the setpoint-to-motion lag",
-        Qos::reliable(256).optional_input());
+    setpoint_in_ = ctx.input<msg::CartesianSetpoint>("setpoint",
+                                                     "optional: the arm's setpoint (the supervisor's), for the "
+                                                     "sensor-to-setpoint latency and the setpoint-to-motion "
+                                                     "lag",
+                                                     Qos::reliable(256).optional_input());
     lag_ = FollowingLag(ctx.param<double>("lag_min_speed", 0.02,
                                           "m/s: setpoints commanding motion at least this fast are timed to the plate",
                                           Range{1e-4, 10}),
@@ -132,10 +135,12 @@ class DisplayMetrics final : public Component {
   }
 
   void tick(Time now) override {
-    while (setpoint_in_.take(setpoint_msg_))  // first: a plate pose is timed against the setpoints before it
-      if (msgs::all_finite(setpoint_msg_.pose()))
-        lag_.setpoint(stamp(setpoint_msg_.header(), now), msgs::to_eigen(setpoint_msg_.pose().position()),
-                      msgs::to_eigen(setpoint_msg_.twist().linear()));
+    while (setpoint_in_.take(setpoint_msg_)) {  // first: a plate pose is timed against the setpoints before it
+      if (!msgs::all_finite(setpoint_msg_.pose())) continue;
+      lag_.setpoint(stamp(setpoint_msg_.header(), now), msgs::to_eigen(setpoint_msg_.pose().position()),
+                    msgs::to_eigen(setpoint_msg_.twist().linear()));
+      sensed_.setpoint(setpoint_msg_.source().c_str(), stamp(setpoint_msg_.header(), now), setpoint_msg_.sensed_ns());
+    }
     while (device_in_.take(device_msg_)) {
       if (!msgs::all_finite(device_msg_.pose())) {
         reject(device_in_, "a non-finite pose");
@@ -233,6 +238,10 @@ class DisplayMetrics final : public Component {
           std::to_string(lag_.lag_ms().percentile(50)) + " ms, p99 " + std::to_string(lag_.lag_ms().percentile(99)) +
           " ms after it was made (" + std::to_string(lag_.lag_ms().samples()) + " setpoints; " +
           std::to_string(lag_.not_reached()) + " not reached)");
+    for (const auto& [source, ms] : sensed_.by_source())
+      log("sensor sample to setpoint (" + source + "): p50 " + std::to_string(ms.percentile(50)) + " ms, p99 " +
+          std::to_string(ms.percentile(99)) + " ms, max " + std::to_string(ms.max()) + " ms over " +
+          std::to_string(ms.samples()) + " setpoints");
     if (run_.mm.samples() > 0)
       log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.mm.percentile(50)) +
           " mm, p99 " + std::to_string(run_.mm.percentile(99)) + " mm, max " + std::to_string(run_.mm.max()) +
@@ -413,7 +422,15 @@ class DisplayMetrics final : public Component {
       << "},\n  \"setpoint_to_motion\": {\"setpoints\": " << lag_.lag_ms().samples()
       << ", \"not_reached\": " << lag_.not_reached() << ", \"p50_ms\": " << number(lag_.lag_ms().percentile(50))
       << ", \"p99_ms\": " << number(lag_.lag_ms().percentile(99)) << ", \"max_ms\": " << number(lag_.lag_ms().max())
-      << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples()
+      << "},\n  \"sensor_to_setpoint\": {";
+    bool first_source = true;
+    for (const auto& [source, ms] : sensed_.by_source()) {
+      j << (first_source ? "" : ",") << "\n    " << quoted(source) << ": {\"setpoints\": " << ms.samples()
+        << ", \"p50_ms\": " << number(ms.percentile(50)) << ", \"p99_ms\": " << number(ms.percentile(99))
+        << ", \"max_ms\": " << number(ms.max()) << "}";
+      first_source = false;
+    }
+    j << (first_source ? "" : "\n  ") << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples()
       << ", \"camera_to_composite_p50_ms\": " << number(latency_ms_.percentile(50))
       << ", \"camera_to_composite_p99_ms\": " << number(latency_ms_.percentile(99))
       << ", \"camera_to_composite_max_ms\": " << number(latency_ms_.max()) << "},\n  \"contact_timing\": [";
@@ -613,6 +630,7 @@ class DisplayMetrics final : public Component {
   Input<kernel_msgs::Diagnostics> diagnostics_in_;
   std::string summary_path_, report_dir_;
   FollowingLag lag_{0.02, 500'000'000};  // made in configure with lag_min_speed
+  SensorToSetpoint sensed_;
   msg::CartesianSetpoint setpoint_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   std::optional<RunReport> report_;

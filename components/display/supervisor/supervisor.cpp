@@ -235,6 +235,7 @@ class Supervisor final : public Component {
                  s.at_ns);
     out_.pose() = s.sample.pose();
     out_.twist() = s.sample.twist();
+    out_.sensed_ns(s.sample.sensed_ns());
     sent_ = true;
   }
 
@@ -351,9 +352,11 @@ class Supervisor final : public Component {
   void publish_setpoint(std::int64_t now_ns) {
     fill_header(out_.header(), now_ns, out_seq_++, "base");
     out_.child_frame_id("dev");
-    out_.source(mode_ == msg::MODE_FAULT || taking_over_ ? "supervisor/hold"
-                : mode_ == msg::MODE_ADMITTANCE          ? "supervisor/admittance"
-                                                         : "supervisor/surface");
+    const bool holding = mode_ == msg::MODE_FAULT || taking_over_;
+    out_.source(holding                         ? "supervisor/hold"
+                : mode_ == msg::MODE_ADMITTANCE ? "supervisor/admittance"
+                                                : "supervisor/surface");
+    if (holding) out_.sensed_ns(0);  // a hold answers no sensor sample
     setpoint_out_.write(out_);
   }
 

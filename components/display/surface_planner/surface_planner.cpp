@@ -166,12 +166,14 @@ class SurfacePlanner final : public Component {
       target_feature_ = nullptr;
       was_in_place_ = false;
       status_.reason("not in surface mode");
+      sensed_ns_ = 0;
       publish(now.ns, Vec3::Zero(), Vec3::Zero());
       publish_status(now.ns);
       return;
     }
     const bool hand_known = hand_.valid() && now.ns - hand_.stamp_ns() <= hand_timeout_ns_;
     const Vec3 hand = hand_known ? hand_.position(now.ns) : Vec3::Zero();
+    sensed_ns_ = hand_known ? hand_.stamp_ns() : 0;  // the hand sample this tick's setpoint answers
     if (hand_known) choose_target(hand, now.ns);
     // The path's clock runs at kappa: 1 at full speed, lower where speed and separation monitoring
     // says so; it may fall only as fast as the arm brakes, and rises over rise_time.
@@ -426,6 +428,7 @@ class SurfacePlanner final : public Component {
     msgs::to_msg(cmd_, setpoint_msg_.pose());
     msgs::to_msg(v, w, setpoint_msg_.twist());
     setpoint_msg_.source("surface");
+    setpoint_msg_.sensed_ns(sensed_ns_);
     setpoint_out_.write(setpoint_msg_);
   }
 
@@ -474,6 +477,7 @@ class SurfacePlanner final : public Component {
   msg::PoseStamped device_msg_;
   msg::DisplayMode mode_msg_;
   msg::CartesianSetpoint commanded_msg_, setpoint_msg_;
+  std::int64_t sensed_ns_ = 0;
   msg::PlannerStatus status_;
   Input<msg::HandPosition> hand_in_;
   Input<msg::ObjectState> objects_in_;

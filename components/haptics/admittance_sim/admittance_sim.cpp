@@ -76,6 +76,7 @@ class AdmittanceSim final : public Component {
         continue;
       }
       have_reading_ = true;
+      sensed_ns_ = sample_.header().stamp_ns();
       reading_.force = msgs::to_eigen(sample_.wrench().force());
       reading_.torque = msgs::to_eigen(sample_.wrench().torque());
       if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
@@ -143,6 +144,7 @@ class AdmittanceSim final : public Component {
       msgs::to_msg(base_T_dev, setpoint_msg_.pose());
       msgs::to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body_).x), k.omega, setpoint_msg_.twist());
       setpoint_msg_.source("admittance");
+      setpoint_msg_.sensed_ns(sensed_ns_);
       setpoint_.write(setpoint_msg_);
     }
 
@@ -185,6 +187,7 @@ class AdmittanceSim final : public Component {
   msg::PoseStamped device_msg_;
   Input<msg::PoseStamped> device_pose_;
   bool have_reading_ = false;
+  std::int64_t sensed_ns_ = 0;  // the stamp of the wrench sample the motion answers
   std::uint64_t seq_ = 0;
   msg::WrenchStamped sample_;
   msg::CartesianSetpoint setpoint_msg_;
