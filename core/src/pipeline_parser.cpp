@@ -68,8 +68,8 @@ namespace {
 const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain", "clock", "dds", "components"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
-const std::vector<std::string> kComponentKeys = {"type",     "rate",    "process", "enabled", "spin",
-                                                 "priority", "trigger", "params",  "topics",  "qos"};
+const std::vector<std::string> kComponentKeys = {
+    "type", "rate", "process", "enabled", "spin", "priority", "trigger", "trigger_timeout", "params", "topics", "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
 
@@ -381,6 +381,8 @@ class Parser {
         c.priority.assign(p, at(m, file));
     }
     if (const YAML::Node m = n["trigger"]) apply_trigger(m, file, label, c);
+    if (const YAML::Node m = n["trigger_timeout"])
+      get_duration(m, file, label + " trigger_timeout", false, c.trigger_timeout_ns);
     if (const YAML::Node m = n["params"]; m && !m.IsNull() && expect_map(m, file, label + " params")) {
       check_duplicates(m, file);
       for (auto it = m.begin(); it != m.end(); ++it) {
@@ -480,6 +482,11 @@ void check_merged(PipelineSpec& spec, std::vector<ConfigIssue>& issues) {
       continue;
     }
     const double period = 1e9 / c.rate.value;
+    if (c.trigger_timeout_ns.set && !c.is_triggered())
+      issues.push_back({c.trigger_timeout_ns.where,
+                        "component '" + c.name +
+                            "' trigger_timeout: found one without a trigger; expected it with trigger: <input>, "
+                            "or no trigger_timeout (the component ticks on its rate)"});
     if (c.spin_ns.set && static_cast<double>(c.spin_ns.value) >= period) {
       std::ostringstream msg;
       msg << "component '" << c.name << "' spin: found " << c.spin_ns.value / 1e3 << " us, not less than its period of "

@@ -57,6 +57,8 @@ struct Slot final : ComponentHost {
   std::uint64_t diag_seq = 0;
   std::vector<const detail::QueueCounters*> inputs;
   std::unique_ptr<detail::Doorbell> doorbell;  // data-triggered: rung by its trigger inputs
+  std::int64_t trigger_timeout_ns = 0;         // data-triggered: tick anyway after this much silence (0: never)
+  std::int64_t last_tick_ns = -1;              // sim clock: when it last ticked
   // What the component reported (from its tick thread: under health_mutex).
   std::mutex health_mutex;
   std::set<std::string> warned;
@@ -160,6 +162,7 @@ struct Runtime::Impl final : RunHost {
 
   // late_us: how long after its deadline the tick started (real clock).
   void tick(Slot& slot, Time now, double late_us = 0) {
+    slot.last_tick_ns = now.ns;
     const auto t0 = Clock::now();
     guarded(
         slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
@@ -185,6 +188,17 @@ struct Runtime::Impl final : RunHost {
         if (!fault.empty()) return;
       }
       if (!ticked) return;
+    }
+  }
+  // Sim clock, at the end of a step: a data-triggered component with a trigger_timeout that has
+  // not ticked for that long ticks now (and what it writes is served in this step).
+  void serve_trigger_timeouts(std::int64_t t) {
+    for (auto& slot : slots) {
+      if (!fault.empty()) return;
+      if (!slot->trigger_timeout_ns || t - std::max<std::int64_t>(slot->last_tick_ns, 0) < slot->trigger_timeout_ns)
+        continue;
+      tick(*slot, Time{t});
+      serve_triggered(t);
     }
   }
   static constexpr int kMaxTriggerPasses = 1000;
@@ -294,6 +308,7 @@ bool Runtime::Impl::setup(RunResult& result) {
         }
         queue->set_doorbell(slot->doorbell.get());
       }
+      if (slot->spec->trigger_timeout_ns.set) slot->trigger_timeout_ns = slot->spec->trigger_timeout_ns.value;
     }
     slot->stage = Slot::Stage::kConfigured;
   }
@@ -351,6 +366,7 @@ void Runtime::Impl::run_sim(RunResult& result) {
       tick(*slot, Time{t});
       serve_triggered(t);
     }
+    serve_trigger_timeouts(t);
     if (t >= next_diag) {
       publish_diagnostics(Time{t}, 1.0, false);
       next_diag += kNanosPerSecond;
@@ -375,10 +391,16 @@ void Runtime::Impl::run_real(RunResult& result) {
       prctl(PR_SET_TIMERSLACK, 1UL);  // by default Linux may wake this thread up to 50 us late
       if (slot->spec->priority.set) set_fifo_priority(*slot);
       if (slot->doorbell) {  // data-triggered: one tick per ring; late = from the sample's arrival
+        using Wake = detail::Doorbell::Wake;
+        const auto timeout = std::chrono::nanoseconds(slot->trigger_timeout_ns);
         Clock::time_point rang;
-        while (slot->doorbell->wait(rang) && !stopping.load()) {
-          const double late_us = std::chrono::duration<double, std::micro>(Clock::now() - rang).count();
+        auto until = slot->trigger_timeout_ns ? Clock::now() + timeout : Clock::time_point::max();
+        for (Wake w; (w = slot->doorbell->wait(rang, until)) != Wake::kStopped && !stopping.load();) {
+          // A watchdog tick after a silence is on time; a ring's is late by the wait for the thread.
+          const double late_us =
+              w == Wake::kRang ? std::chrono::duration<double, std::micro>(Clock::now() - rang).count() : 0.0;
           tick(*slot, Time{wall_now_ns()}, late_us);
+          if (slot->trigger_timeout_ns) until = Clock::now() + timeout;
         }
         return;
       }

@@ -127,5 +127,55 @@ TEST(Triggers, ATriggerThatIsNotAnInputIsRejectedWithItsPlace) {
   }
 }
 
+// trigger_timeout: a triggered component also ticks after that much silence (a watchdog tick):
+// src every 100 ms, sink on its samples and 30 ms after its last tick.
+std::string watched(int domain, const std::string& clock) {
+  return "wysiwyf: 1\ndomain: " + std::to_string(domain) + "\ndds: {transport: local}\nclock: " + clock +
+         "\ncomponents:\n"
+         "  sink: {type: test_probe, rate: 100, trigger: in, trigger_timeout: 30ms, topics: {in: x}}\n"
+         "  src: {type: test_probe, rate: 10, topics: {out: x}}\n";
+}
+
+TEST(Triggers, OnTheSimClockATriggerTimeoutTicksAfterThatMuchSilence) {
+  const RunResult r = run_pipeline(watched(66, "{mode: sim, step: 1ms, duration: 250ms}"));
+  ASSERT_TRUE(r.ok) << r.error;
+  for (const auto& c : r.components) {
+    if (c.name == "sink") {
+      EXPECT_EQ(c.ticks, 10u) << "samples at 0, 100, 200 ms; silence ticks at 30, 60, 90, 130, 160, 190, 230 ms";
+    }
+  }
+}
+
+TEST(Triggers, OnTheRealClockATriggerTimeoutTicksAfterThatMuchSilence) {
+  const RunResult r = run_pipeline(watched(67, "{mode: real, duration: 400ms}"));
+  ASSERT_TRUE(r.ok) << r.error;
+  std::uint64_t src = 0, sink = 0;
+  for (const auto& c : r.components) (c.name == "src" ? src : sink) = c.ticks;
+  ASSERT_GE(src, 3u);
+  EXPECT_GE(sink, src + 3) << "at least one silence tick in each 100 ms gap";
+  EXPECT_LE(sink, src + 400 / 30 + 1) << "no more than one every 30 ms of silence";
+}
+
+TEST(Triggers, ATriggerTimeoutWithoutATriggerIsRejectedAtItsLine) {
+  try {
+    load_pipeline_from_string(
+        "wysiwyf: 1\ncomponents:\n  a: {type: test_probe, rate: 100,\n      trigger_timeout: 5ms}\n", "t.yaml");
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.yaml:4:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("trigger_timeout: found one without a trigger"), std::string::npos)
+        << e.what();
+  }
+  try {
+    load_pipeline_from_string(
+        "wysiwyf: 1\ncomponents:\n  a: {type: test_probe, rate: 100, trigger: in, trigger_timeout: 0ms}\n", "t.yaml");
+    ADD_FAILURE() << "a zero timeout was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("trigger_timeout: found '0ms'; expected a positive duration"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace wysiwyf::test

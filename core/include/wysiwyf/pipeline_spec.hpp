@@ -49,6 +49,9 @@ struct ComponentSpec {
   // Input ports whose samples tick the component (data-triggered) instead of its period; the
   // sim clock ticks it in the same step, right after the producer.
   Sourced<std::vector<std::string>> trigger;
+  // Data-triggered: also tick when no trigger sample came for this long (a watchdog tick, so a
+  // triggered supervisor still notices its inputs falling silent).
+  Sourced<std::int64_t> trigger_timeout_ns;
   std::map<std::string, Sourced<YAML::Node>> params;
   std::map<std::string, Sourced<std::string>> topics;  // port -> topic
   std::map<std::string, QosOverride> qos;              // port -> overrides

@@ -1,7 +1,8 @@
 #pragma once
 // What a data-triggered component waits on: its trigger inputs ring it when a sample lands
 // (from a local writer or from DDS); the executor ticks it once per ring it has not yet served
-// (rings that come while it ticks fold into one more tick).
+// (rings that come while it ticks fold into one more tick). With a timeout, a silence that long
+// wakes it too (a watchdog tick).
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -29,15 +30,21 @@ class Doorbell {
     return was;
   }
 
-  // Real clock: waits for a ring or for stop() (true: rang; `rang_at` is when the first
-  // unserved ring came, for how late the tick starts).
-  bool wait(Clock::time_point& rang_at) {
+  enum class Wake { kRang, kTimedOut, kStopped };
+
+  // Real clock: waits for a ring, for `until` (Clock::time_point::max(): no timeout) or for
+  // stop(). kRang: `rang_at` is when the first unserved ring came, for how late the tick starts.
+  Wake wait(Clock::time_point& rang_at, Clock::time_point until = Clock::time_point::max()) {
     std::unique_lock<std::mutex> lock(mutex_);
-    cv_.wait(lock, [this] { return pending_ || stopped_; });
-    if (stopped_) return false;
+    const auto woken = [this] { return pending_ || stopped_; };
+    if (until == Clock::time_point::max())
+      cv_.wait(lock, woken);
+    else if (!cv_.wait_until(lock, until, woken))
+      return Wake::kTimedOut;
+    if (stopped_) return Wake::kStopped;
     pending_ = false;
     rang_at = first_ring_;
-    return true;
+    return Wake::kRang;
   }
 
   void stop() {
