@@ -106,6 +106,29 @@ TEST(CameraFixed, TheShippedSimCalibrationIsTheSimulatedCamerasView) {
   EXPECT_LT(Eigen::Quaterniond(got.linear()).angularDistance(Eigen::Quaterniond(eye_T_base.linear())), 1e-6);
 }
 
+// With the camera's frames, the poses are for the newest frame: they carry its stamp, not the tick's.
+TEST(CameraFixed, WithTheCamerasFramesThePosesCarryTheFramesStamp) {
+  Harness h("camera_fixed", "{extrinsics: calibration/sim_camera.yaml}", 100);
+  auto info = h.feed<msg::CameraInfo>("camera_info");
+  auto joints = h.feed<msg::JointState>("joint_state");
+  auto base = h.watch<msg::PoseStamped>("eye_T_base");
+  auto dev = h.watch<msg::PoseStamped>("eye_T_dev");
+  h.activate();
+  h.tick(Time{10'000'000});
+  msg::PoseStamped p;
+  ASSERT_TRUE(base.take_latest(p));
+  EXPECT_EQ(p.header().stamp_ns(), 10'000'000) << "no frame yet: the tick's time";
+  joints.write(msg::JointState());
+  msg::CameraInfo frame;
+  fill_header(frame.header(), 13'500'000, 0, "eye");
+  info.write(frame);
+  h.tick(Time{20'000'000});
+  ASSERT_TRUE(base.take_latest(p));
+  EXPECT_EQ(p.header().stamp_ns(), 13'500'000);
+  ASSERT_TRUE(dev.take_latest(p));
+  EXPECT_EQ(p.header().stamp_ns(), 13'500'000);
+}
+
 TEST(CameraFixed, AFileThatIsNotACalibrationIsAConfigurationError) {
   const auto dir = scratch();
   {

@@ -3,7 +3,9 @@
 // of the plate tracker: one `type:` line in a pipeline. It publishes what marker_tracker does,
 // so its readers do not change: eye_T_base, and eye_T_dev through the arm's forward kinematics
 // from the joint state, each also with a covariance (the calibration's stated uncertainty,
-// carried to the device for eye_T_dev).
+// carried to the device for eye_T_dev). With the camera's `camera_info` (one per image) the poses
+// are stamped with the newest image's stamp, so they pair with that frame like a tracker's; a
+// data-triggered camera_fixed (`trigger: camera_info`) publishes one pair of poses per frame.
 #include <memory>
 
 #include "extrinsics_file.hpp"
@@ -29,6 +31,9 @@ class CameraFixed final : public Component {
     const double rotation_sigma =
         ctx.param<double>("rotation_sigma", 0.002, "the calibration's rotation uncertainty, rad", Range{0, 1});
     joints_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints: where the device is", Qos::sensor(8));
+    info_in_ = ctx.input<msg::CameraInfo>(
+        "camera_info", "optional: the camera's frames (one a image): the poses take the newest frame's stamp",
+        Qos::sensor(4).optional_input());
     eye_T_base_out_ =
         ctx.output<msg::PoseStamped>("eye_T_base", "where the robot base is seen from the camera", Qos::sensor(4));
     eye_T_dev_out_ =
@@ -58,11 +63,14 @@ class CameraFixed final : public Component {
       else
         reject(joints_in_, "a non-finite joint position");
     }
-    write(eye_T_base_out_, base_cov_out_, "base", eye_T_base_, cov_, now.ns);
+    // The frame these poses are for: the newest image's, or now without a camera.
+    std::int64_t stamp = now.ns;
+    if (info_in_.take_latest(info_msg_) && info_msg_.header().stamp_ns() > 0) stamp = info_msg_.header().stamp_ns();
+    write(eye_T_base_out_, base_cov_out_, "base", eye_T_base_, cov_, stamp);
     if (have_joints_) {
       const Eigen::Isometry3d base_T_dev = model_->fk(q_, dev_);
       write(eye_T_dev_out_, dev_cov_out_, "dev", eye_T_base_ * base_T_dev,
-            frames::compose_covariance(cov_, eye_T_base_, base_T_dev), now.ns);
+            frames::compose_covariance(cov_, eye_T_base_, base_T_dev), stamp);
     }
     ++seq_;
   }
@@ -86,6 +94,8 @@ class CameraFixed final : public Component {
   bool have_joints_ = false;
   std::uint64_t seq_ = 0;
   msg::JointState joints_msg_;
+  msg::CameraInfo info_msg_;
+  Input<msg::CameraInfo> info_in_;
   msg::PoseStamped pose_msg_;
   msg::PoseWithCovariance cov_msg_;
   Input<msg::JointState> joints_in_;
