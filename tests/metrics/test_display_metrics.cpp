@@ -416,35 +416,47 @@ TEST(DisplayMetrics, APlateSevenMillisecondsBehindItsSetpointReadsSevenMilliseco
   EXPECT_NEAR(m["max_ms"].as<double>(), 7.0, 1e-9);
 }
 
-// Sensor sample to setpoint: admittance setpoints made 3 ms after the wrench sample they answer
-// and surface setpoints made 45 ms after the hand's position read 3 and 45 ms, per source; holds
-// (sensed_ns 0) are not counted.
-TEST(DisplayMetrics, SetpointsMadeThreeMillisecondsAfterTheirSensorSampleReadThreeMilliseconds) {
+// Sensor sample to setpoint. Admittance: a wrench sample every 1 ms and a physics step every
+// 20 ms (the paper's) whose setpoints answer the sample of 2 ms before: each waited 2 to 21 ms.
+// Surface: a hand sample every 10 ms, first answered 45 ms later and repeated by the setpoints
+// between, with no hand input: one figure per answered sample, 45 ms. Holds (sensed_ns 0) are
+// not counted and break the run: the first setpoint after one counts only its own sample.
+TEST(DisplayMetrics, EverySensorSampleReadsTheWaitForTheFirstSetpointAnsweringIt) {
   const std::string summary = std::string(WYSIWYF_TEST_SCRATCH_DIR) + "/display_metrics_sensed.json";
   std::filesystem::create_directories(WYSIWYF_TEST_SCRATCH_DIR);
   Loader loader({WYSIWYF_COMPONENT_DIR});
   Harness h("display_metrics", "{scene: scenes/display_demo.yaml, summary: " + summary + "}", 1000, &loader);
   auto setpoint = h.feed<msg::CartesianSetpoint>("setpoint");
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
   h.activate();
+  std::int64_t answered = 0;  // admittance: the sample the physics step took
   for (std::int64_t t = 100 * kMs; t < 400 * kMs; t += kMs) {
+    const int phase = static_cast<int>(t / (100 * kMs));  // 1: surface, 2: a hold, 3: admittance
+    msg::WrenchStamped w;
+    fill_header(w.header(), t, 0, "ft_sensor");
+    wrench.write(w);
+    if (t % (20 * kMs) == 2 * kMs) answered = t - 2 * kMs;  // a step took the sample of 2 ms ago
     msg::CartesianSetpoint sp;
     fill_header(sp.header(), t, static_cast<std::uint64_t>(t / kMs), "base");
     msgs::to_msg(Eigen::Isometry3d::Identity(), sp.pose());
-    const int phase = static_cast<int>(t / (100 * kMs));  // 1: surface, 2: a hold, 3: admittance
     sp.source(phase == 1 ? "supervisor/surface" : phase == 2 ? "supervisor/hold" : "supervisor/admittance");
-    sp.sensed_ns(phase == 1 ? t - 45 * kMs : phase == 2 ? 0 : t - 3 * kMs);
+    const std::int64_t hand_sample = t - 45 * kMs - (t - 100 * kMs) % (10 * kMs);  // new every 10 ms, 45 ms old
+    sp.sensed_ns(phase == 1 ? hand_sample : phase == 2 ? 0 : answered);
     setpoint.write(sp);
     h.tick(Time{t});
   }
   h.deactivate();
   const YAML::Node m = YAML::LoadFile(summary)["sensor_to_setpoint"];
   ASSERT_TRUE(m.IsMap()) << summary;
-  EXPECT_EQ(m.size(), 2u) << "no entry for the hold";
-  EXPECT_EQ(m["supervisor/admittance"]["setpoints"].as<int>(), 100);
-  EXPECT_NEAR(m["supervisor/admittance"]["p50_ms"].as<double>(), 3.0, 1e-9);
-  EXPECT_NEAR(m["supervisor/admittance"]["max_ms"].as<double>(), 3.0, 1e-9);
-  EXPECT_EQ(m["supervisor/surface"]["setpoints"].as<int>(), 100);
-  EXPECT_NEAR(m["supervisor/surface"]["p99_ms"].as<double>(), 45.0, 1e-9);
+  EXPECT_EQ(m.size(), 2u) << "wrench and hand; nothing for the hold";
+  EXPECT_EQ(m["hand"]["samples"].as<int>(), 10) << "one per hand sample";
+  EXPECT_NEAR(m["hand"]["p50_ms"].as<double>(), 45.0, 1e-9);
+  EXPECT_NEAR(m["hand"]["max_ms"].as<double>(), 45.0, 1e-9);
+  // The first admittance setpoint (t = 300 ms) counts its own sample (280 ms) alone; from then on
+  // each step (302, 322, ... 382 ms) answers the 20 samples since the last: 2 .. 21 ms, uniformly.
+  EXPECT_EQ(m["wrench"]["samples"].as<int>(), 1 + 5 * 20);
+  EXPECT_NEAR(m["wrench"]["max_ms"].as<double>(), 21.0, 1e-9);
+  EXPECT_NEAR(m["wrench"]["p50_ms"].as<double>(), 11.0, 1.0);
 }
 
 }  // namespace wysiwyf::test

@@ -119,6 +119,9 @@ class DisplayMetrics final : public Component {
     wrench_in_ = ctx.input<msg::WrenchStamped>(
         "wrench", "optional: the wrist sensor's reading, for the user's peak force while attached",
         Qos::reliable(256).optional_input());
+    hand_in_ = ctx.input<msg::HandPosition>(
+        "hand", "optional: the tracked hand (hand/position), for the sensor-to-setpoint latency of every hand sample",
+        Qos::reliable(64).optional_input());
     force_onset_ =
         ctx.param<double>("force_onset", 1.0, "N: the user's force from which a contact is felt", Range{0.01, 100});
     diagnostics_in_ = ctx.input<kernel_msgs::Diagnostics>(
@@ -139,7 +142,9 @@ class DisplayMetrics final : public Component {
       if (!msgs::all_finite(setpoint_msg_.pose())) continue;
       lag_.setpoint(stamp(setpoint_msg_.header(), now), msgs::to_eigen(setpoint_msg_.pose().position()),
                     msgs::to_eigen(setpoint_msg_.twist().linear()));
-      sensed_.setpoint(setpoint_msg_.source().c_str(), stamp(setpoint_msg_.header(), now), setpoint_msg_.sensed_ns());
+      // timed once this tick's sensor samples are in
+      answers_.push_back(
+          {setpoint_msg_.source().c_str(), stamp(setpoint_msg_.header(), now), setpoint_msg_.sensed_ns()});
     }
     while (device_in_.take(device_msg_)) {
       if (!msgs::all_finite(device_msg_.pose())) {
@@ -159,7 +164,9 @@ class DisplayMetrics final : public Component {
     for (auto& h : objects_)
       while (h.size() > 1 && h[1].t < now.ns - history_ns_) h.pop_front();
     while (wrench_in_.take(wrench_msg_)) {
-      if (!msgs::all_finite(wrench_msg_.wrench()) || plate_.empty()) continue;
+      if (!msgs::all_finite(wrench_msg_.wrench())) continue;
+      sensed_.sample("wrench", stamp(wrench_msg_.header(), now));
+      if (plate_.empty()) continue;
       // The user's force: the reading less the tool's weight, in the sensor's orientation.
       const haptics::SensorReading reading{msgs::to_eigen(wrench_msg_.wrench().force()),
                                            msgs::to_eigen(wrench_msg_.wrench().torque())};
@@ -167,6 +174,10 @@ class DisplayMetrics final : public Component {
       if (attachment_) attachment_->peak_force = std::max(attachment_->peak_force, force);
       forces_.emplace_back(stamp(wrench_msg_.header(), now), force);
     }
+    while (hand_in_.take(hand_msg_))
+      if (hand_msg_.status() != msg::TRACKING_LOST) sensed_.sample("hand", stamp(hand_msg_.header(), now));
+    for (const auto& a : answers_) sensed_.setpoint(a.source, a.stamp, a.sensed);
+    answers_.clear();
     while (events_in_.take(event_)) {
       if (event_.kind() == msg::USER_TOUCH) {
         contact_ = event_.contact();
@@ -238,10 +249,10 @@ class DisplayMetrics final : public Component {
           std::to_string(lag_.lag_ms().percentile(50)) + " ms, p99 " + std::to_string(lag_.lag_ms().percentile(99)) +
           " ms after it was made (" + std::to_string(lag_.lag_ms().samples()) + " setpoints; " +
           std::to_string(lag_.not_reached()) + " not reached)");
-    for (const auto& [source, ms] : sensed_.by_source())
-      log("sensor sample to setpoint (" + source + "): p50 " + std::to_string(ms.percentile(50)) + " ms, p99 " +
+    for (const auto& [sensor, ms] : sensed_.by_sensor())
+      log("sensor sample to setpoint (" + sensor + "): p50 " + std::to_string(ms.percentile(50)) + " ms, p99 " +
           std::to_string(ms.percentile(99)) + " ms, max " + std::to_string(ms.max()) + " ms over " +
-          std::to_string(ms.samples()) + " setpoints");
+          std::to_string(ms.samples()) + " samples");
     if (run_.mm.samples() > 0)
       log("haptic registration while attached, the whole run: p50 " + std::to_string(run_.mm.percentile(50)) +
           " mm, p99 " + std::to_string(run_.mm.percentile(99)) + " mm, max " + std::to_string(run_.mm.max()) +
@@ -424,8 +435,8 @@ class DisplayMetrics final : public Component {
       << ", \"p99_ms\": " << number(lag_.lag_ms().percentile(99)) << ", \"max_ms\": " << number(lag_.lag_ms().max())
       << "},\n  \"sensor_to_setpoint\": {";
     bool first_source = true;
-    for (const auto& [source, ms] : sensed_.by_source()) {
-      j << (first_source ? "" : ",") << "\n    " << quoted(source) << ": {\"setpoints\": " << ms.samples()
+    for (const auto& [sensor, ms] : sensed_.by_sensor()) {
+      j << (first_source ? "" : ",") << "\n    " << quoted(sensor) << ": {\"samples\": " << ms.samples()
         << ", \"p50_ms\": " << number(ms.percentile(50)) << ", \"p99_ms\": " << number(ms.percentile(99))
         << ", \"max_ms\": " << number(ms.max()) << "}";
       first_source = false;
@@ -631,6 +642,13 @@ class DisplayMetrics final : public Component {
   std::string summary_path_, report_dir_;
   FollowingLag lag_{0.02, 500'000'000};  // made in configure with lag_min_speed
   SensorToSetpoint sensed_;
+  struct Answer {
+    std::string source;
+    std::int64_t stamp, sensed;
+  };
+  std::vector<Answer> answers_;  // this tick's setpoints, timed after its sensor samples
+  msg::HandPosition hand_msg_;
+  Input<msg::HandPosition> hand_in_;
   msg::CartesianSetpoint setpoint_msg_;
   Input<msg::CartesianSetpoint> setpoint_in_;
   std::optional<RunReport> report_;
