@@ -140,11 +140,10 @@ class DisplayMetrics final : public Component {
   void tick(Time now) override {
     while (setpoint_in_.take(setpoint_msg_)) {  // first: a plate pose is timed against the setpoints before it
       if (!msgs::all_finite(setpoint_msg_.pose())) continue;
-      lag_.setpoint(stamp(setpoint_msg_.header(), now), msgs::to_eigen(setpoint_msg_.pose().position()),
-                    msgs::to_eigen(setpoint_msg_.twist().linear()));
-      // timed once this tick's sensor samples are in
+      const std::int64_t t = stamp(setpoint_msg_.header(), now);
+      lag_.setpoint(t, msgs::to_eigen(setpoint_msg_.pose().position()), msgs::to_eigen(setpoint_msg_.twist().linear()));
       answers_.push_back(
-          {setpoint_msg_.source().c_str(), stamp(setpoint_msg_.header(), now), setpoint_msg_.sensed_ns()});
+          {setpoint_msg_.source().c_str(), t, setpoint_msg_.sensed_ns()});  // timed once the samples are in
     }
     while (device_in_.take(device_msg_)) {
       if (!msgs::all_finite(device_msg_.pose())) {
@@ -165,14 +164,15 @@ class DisplayMetrics final : public Component {
       while (h.size() > 1 && h[1].t < now.ns - history_ns_) h.pop_front();
     while (wrench_in_.take(wrench_msg_)) {
       if (!msgs::all_finite(wrench_msg_.wrench())) continue;
-      sensed_.sample("wrench", stamp(wrench_msg_.header(), now));
+      const std::int64_t t = stamp(wrench_msg_.header(), now);
+      sensed_.sample("wrench", t);
       if (plate_.empty()) continue;
       // The user's force: the reading less the tool's weight, in the sensor's orientation.
       const haptics::SensorReading reading{msgs::to_eigen(wrench_msg_.wrench().force()),
                                            msgs::to_eigen(wrench_msg_.wrench().torque())};
       const double force = haptics::user_load(reading, plate_.back().pose, scene_.device, scene_.gravity).force.norm();
       if (attachment_) attachment_->peak_force = std::max(attachment_->peak_force, force);
-      forces_.emplace_back(stamp(wrench_msg_.header(), now), force);
+      forces_.emplace_back(t, force);
     }
     while (hand_in_.take(hand_msg_))
       if (hand_msg_.status() != msg::TRACKING_LOST) sensed_.sample("hand", stamp(hand_msg_.header(), now));
@@ -375,6 +375,11 @@ class DisplayMetrics final : public Component {
     o << v;
     return o.str();
   }
+  // One figure's "<prefix>p50_<unit>", "<prefix>p99_<unit>" and "<prefix>max_<unit>" members.
+  static std::string figures(const Percentiles& p, const std::string& unit, const std::string& prefix = "") {
+    return "\"" + prefix + "p50_" + unit + "\": " + number(p.percentile(50)) + ", \"" + prefix + "p99_" + unit +
+           "\": " + number(p.percentile(99)) + ", \"" + prefix + "max_" + unit + "\": " + number(p.max());
+  }
   static std::string quoted(const std::string& text) {
     std::string q = "\"";
     for (char c : text) q += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
@@ -420,31 +425,23 @@ class DisplayMetrics final : public Component {
         << ", \"onset_max_deg\": " << number(r.onset_max_deg()) << ", \"peak_force_n\": " << number(r.peak_force_n())
         << ", \"push_force_n\": " << number(r.push_force_n()) << "}";
     }
-    j << "\n    ],\n    \"run\": {\"samples\": " << run_.mm.samples()
-      << ", \"p50_mm\": " << number(run_.mm.percentile(50)) << ", \"p99_mm\": " << number(run_.mm.percentile(99))
-      << ", \"max_mm\": " << number(run_.mm.max()) << ", \"max_deg\": " << number(run_.deg.max()) << "}\n  },\n";
-    j << "  \"visual_registration\": {\"images\": " << visual_mm_.samples()
-      << ", \"p50_mm\": " << number(visual_mm_.percentile(50)) << ", \"p99_mm\": " << number(visual_mm_.percentile(99))
-      << ", \"max_mm\": " << number(visual_mm_.max()) << ", \"p50_px\": " << number(visual_px_.percentile(50))
-      << ", \"p99_px\": " << number(visual_px_.percentile(99)) << ", \"max_px\": " << number(visual_px_.max())
-      << "},\n";
+    j << "\n    ],\n    \"run\": {\"samples\": " << run_.mm.samples() << ", " << figures(run_.mm, "mm")
+      << ", \"max_deg\": " << number(run_.deg.max()) << "}\n  },\n";
+    j << "  \"visual_registration\": {\"images\": " << visual_mm_.samples() << ", " << figures(visual_mm_, "mm") << ", "
+      << figures(visual_px_, "px") << "},\n";
     j << "  \"bleed_through\": {\"images\": " << bleed_px_.samples() << ", \"images_with_any\": " << bleed_frames_
       << ", \"p99_px\": " << number(bleed_px_.percentile(99)) << ", \"max_px\": " << number(bleed_px_.max())
       << "},\n  \"setpoint_to_motion\": {\"setpoints\": " << lag_.lag_ms().samples()
-      << ", \"not_reached\": " << lag_.not_reached() << ", \"p50_ms\": " << number(lag_.lag_ms().percentile(50))
-      << ", \"p99_ms\": " << number(lag_.lag_ms().percentile(99)) << ", \"max_ms\": " << number(lag_.lag_ms().max())
+      << ", \"not_reached\": " << lag_.not_reached() << ", " << figures(lag_.lag_ms(), "ms")
       << "},\n  \"sensor_to_setpoint\": {";
     bool first_source = true;
     for (const auto& [sensor, ms] : sensed_.by_sensor()) {
-      j << (first_source ? "" : ",") << "\n    " << quoted(sensor) << ": {\"samples\": " << ms.samples()
-        << ", \"p50_ms\": " << number(ms.percentile(50)) << ", \"p99_ms\": " << number(ms.percentile(99))
-        << ", \"max_ms\": " << number(ms.max()) << "}";
+      j << (first_source ? "" : ",") << "\n    " << quoted(sensor) << ": {\"samples\": " << ms.samples() << ", "
+        << figures(ms, "ms") << "}";
       first_source = false;
     }
-    j << (first_source ? "" : "\n  ") << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples()
-      << ", \"camera_to_composite_p50_ms\": " << number(latency_ms_.percentile(50))
-      << ", \"camera_to_composite_p99_ms\": " << number(latency_ms_.percentile(99))
-      << ", \"camera_to_composite_max_ms\": " << number(latency_ms_.max()) << "},\n  \"contact_timing\": [";
+    j << (first_source ? "" : "\n  ") << "},\n  \"visual_latency\": {\"images\": " << latency_ms_.samples() << ", "
+      << figures(latency_ms_, "ms", "camera_to_composite_") << "},\n  \"contact_timing\": [";
     bool first_timing = true;
     for (const auto& c : timings_) {
       if (!c.done) continue;

@@ -36,38 +36,16 @@ class SubscriberQueue final : public QueueCounters {
   explicit SubscriberQueue(int depth) : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)) {}
 
   void push(const T& sample) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      const std::size_t n = slots_.size();
-      if (count_ == n) {  // full: keep-last drops the oldest
-        head_ = (head_ + 1) % n;
-        --count_;
-        ++dropped_;
-      }
-      slots_[(head_ + count_) % n] = sample;
-      ++count_;
-      ++received_;
-    }
-    ring();
+    store([&](T& slot) { slot = sample; });
   }
 
   // Like push, but moves the sample in by swapping buffers with the slot it lands in: no copy.
   // `sample` is left holding that slot's previous contents.
   void push_swap(T& sample) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      const std::size_t n = slots_.size();
-      if (count_ == n) {
-        head_ = (head_ + 1) % n;
-        --count_;
-        ++dropped_;
-      }
+    store([&](T& slot) {
       using std::swap;
-      swap(slots_[(head_ + count_) % n], sample);
-      ++count_;
-      ++received_;
-    }
-    ring();
+      swap(slot, sample);
+    });
   }
 
   // Oldest unread sample into out; false when none.
@@ -106,6 +84,25 @@ class SubscriberQueue final : public QueueCounters {
   }
 
  private:
+  // `put` fills the slot the next sample lands in (keep-last: a full queue drops its oldest
+  // first); then the doorbell rings, outside the lock.
+  template <class Put>
+  void store(Put&& put) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const std::size_t n = slots_.size();
+      if (count_ == n) {
+        head_ = (head_ + 1) % n;
+        --count_;
+        ++dropped_;
+      }
+      put(slots_[(head_ + count_) % n]);
+      ++count_;
+      ++received_;
+    }
+    ring();
+  }
+
   mutable std::mutex mutex_;
   std::vector<T> slots_;
   std::size_t head_ = 0;
