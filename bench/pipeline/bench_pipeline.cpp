@@ -8,9 +8,9 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <fstream>
-#include <regex>
 #include <sstream>
+
+#include <yaml-cpp/yaml.h>
 
 #include "../common/smoke.hpp"
 #include "wysiwyf/loader.hpp"
@@ -48,13 +48,10 @@ fs::path recording() {
   return dir;
 }
 
-double json_number(const std::string& text, const std::string& object, const std::string& key) {
-  std::size_t from = 0;
-  if (!object.empty()) from = text.find("\"" + object + "\"");
-  const std::regex number("\"" + key + "\": ([-0-9.eE+]+)");
-  std::smatch m;
-  const std::string rest = from == std::string::npos ? "" : text.substr(from);
-  return std::regex_search(rest, m, number) ? std::stod(m[1]) : -1;
+// A number of frame_latency's summary (`object`.`key`, or `key` at the top); -1 when absent.
+double summary_number(const YAML::Node& summary, const std::string& object, const std::string& key) {
+  const YAML::Node n = object.empty() ? summary[key] : summary[object][key];
+  return n && n.IsScalar() ? n.as<double>() : -1;
 }
 
 void VisionPath(benchmark::State& state, bool triggered) {
@@ -74,16 +71,15 @@ void VisionPath(benchmark::State& state, bool triggered) {
       r = run(kPipelines / (triggered ? "vision-path-triggered.yaml" : "vision-path.yaml"), sets);
       state.SetIterationTime(r.wall_seconds);
     }
-    std::ifstream in(summary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.empty()) return state.SkipWithError("frame_latency wrote no summary");
+    if (!fs::exists(summary)) return state.SkipWithError("frame_latency wrote no summary");
+    const YAML::Node text = YAML::LoadFile(summary.string());  // JSON is YAML
     state.counters["fps"] = fps;
-    state.counters["frames"] = json_number(text, "", "frames");
-    state.counters["dropped"] = json_number(text, "", "dropped");
-    state.counters["p50_ms"] = json_number(text, "camera_to_composite_ms", "p50");
-    state.counters["p99_ms"] = json_number(text, "camera_to_composite_ms", "p99");
-    state.counters["max_ms"] = json_number(text, "camera_to_composite_ms", "max");
-    state.counters["tracker_p50_ms"] = json_number(text, "camera_to_tracker_ms", "p50");
+    state.counters["frames"] = summary_number(text, "", "frames");
+    state.counters["dropped"] = summary_number(text, "", "dropped");
+    state.counters["p50_ms"] = summary_number(text, "camera_to_composite_ms", "p50");
+    state.counters["p99_ms"] = summary_number(text, "camera_to_composite_ms", "p99");
+    state.counters["max_ms"] = summary_number(text, "camera_to_composite_ms", "max");
+    state.counters["tracker_p50_ms"] = summary_number(text, "camera_to_tracker_ms", "p50");
     // The per-stage split: each stage's tick time and how late its ticks start (p50, ms).
     for (const auto& c : r.components) {
       if (c.name == "arm" || c.name == "latency") continue;
