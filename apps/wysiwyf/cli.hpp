@@ -33,5 +33,6 @@ int cmd_run(Args args);
 int cmd_validate(Args args);
 int cmd_components(Args args);
 int cmd_topic(Args args);
+int cmd_new(Args args);
 
 }  // namespace wysiwyf::cli

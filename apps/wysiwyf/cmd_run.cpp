@@ -47,14 +47,14 @@ void print_report(const RunResult& r, bool real) {
   std::cout << std::left << std::setw(18) << "component" << std::setw(20) << "type" << std::right << std::setw(10)
             << "ticks" << std::setw(11) << "p50 us" << std::setw(11) << "p99 us" << std::setw(11) << "max us"
             << std::setw(10) << "overruns" << std::setw(9) << "dropped" << std::setw(10) << "rejected" << std::setw(10)
-            << "warnings" << (real ? "   late p50 us   late p99 us" : "") << "\n";
+            << "warnings" << (real ? "   late p50 us   late p99 us" : "") << "  state\n";
   for (const auto& c : r.components) {
     std::cout << std::left << std::setw(18) << c.name << std::setw(20) << c.type << std::right << std::setw(10)
               << c.ticks << std::setprecision(1) << std::setw(11) << c.tick_p50_us << std::setw(11) << c.tick_p99_us
               << std::setw(11) << c.tick_max_us << std::setw(10) << c.overruns << std::setw(9) << c.dropped_samples
               << std::setw(10) << c.rejected_samples << std::setw(10) << c.warnings;
     if (real) std::cout << std::setw(14) << c.late_p50_us << std::setw(14) << c.late_p99_us;
-    std::cout << "\n";
+    std::cout << "  " << c.state << (c.state_reason.empty() ? "" : ": " + c.state_reason) << "\n";
   }
 }
 
@@ -77,6 +77,13 @@ int cmd_run(Args args) {
   print_report(result, loaded->spec.clock_mode() == ClockMode::kReal);
   if (!result.ok) {
     std::cerr << "error: " << result.error << "\n";
+    return 1;
+  }
+  // A run in which a component held or faulted did not do what it was asked: say which, fail.
+  if (const ComponentReport* c = result.first_unhealthy()) {
+    std::cerr << "error: component '" << c->name << "' (" << c->type << ") "
+              << (c->state == "holding" ? "held" : "faulted") << " during the run"
+              << (c->state_reason.empty() ? "" : ": " + c->state_reason) << "\n";
     return 1;
   }
   return 0;

@@ -6,10 +6,13 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastrtps/types/DynamicData.h>
+#include <fastrtps/types/DynamicPubSubType.h>
 
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -18,6 +21,8 @@
 #include <thread>
 
 #include "cli.hpp"
+#include "dynamic_yaml.hpp"
+#include "message_libraries.hpp"
 #include "wysiwyf/dds.hpp"
 #include "wysiwyf/msgs.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
@@ -29,6 +34,8 @@ using namespace eprosima::fastdds::dds;
 using Clock = std::chrono::steady_clock;
 
 namespace {
+
+using SamplePrinter = std::function<std::string(const void*)>;
 
 struct TopicInfo {
   std::string type;
@@ -167,13 +174,27 @@ bool writers_gone(DataReader* reader) {
   return status.total_count > 0 && status.current_count == 0;
 }
 
-// A reader on `topic` with the QoS of the writer found there, so that it matches.
-DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& info, const MessageType*& type) {
-  type = msgs::registry().find(info.type);
-  if (!type)
-    throw std::runtime_error("topic '" + topic + "' carries " + info.type + ", which this build does not know");
-  TypeSupport support(type->make_type());
-  support.register_type(s.participant);
+// A reader on `topic` with the QoS of the writer found there, so that it matches, and how to
+// print its samples: a type this build knows by its printer, any other from a message library.
+DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& info, SamplePrinter& print) {
+  TypeSupport support;
+  if (const MessageType* type = msgs::registry().find(info.type)) {
+    support.reset(type->make_type());
+    print = type->to_yaml;
+  } else {
+    eprosima::fastrtps::types::DynamicType_ptr dynamic;
+    std::string searched;
+    if (!find_dynamic_type(info.type, dynamic, searched))
+      throw std::runtime_error("topic '" + topic + "' carries " + info.type +
+                               ", which neither this build nor a message library knows (searched " + searched + ")");
+    support.reset(new eprosima::fastrtps::types::DynamicPubSubType(dynamic));
+    print = [dynamic](const void* sample) {
+      return dynamic_to_yaml(*static_cast<eprosima::fastrtps::types::DynamicData*>(const_cast<void*>(sample)), dynamic);
+    };
+  }
+  support->auto_fill_type_object(false);  // as the pipelines' endpoints (core/src/dds_bridge.cpp)
+  support->auto_fill_type_information(false);
+  support.register_type(s.participant, info.type);
   Topic* t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
   Subscriber* sub = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
   Qos qos = Qos::reliable(100);
@@ -213,8 +234,8 @@ int topic_echo(Args& args, const std::string& topic) {
     std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
     return 1;
   }
-  const MessageType* type = nullptr;
-  DataReader* reader = subscribe(s, topic, *info, type);
+  SamplePrinter print;
+  DataReader* reader = subscribe(s, topic, *info, print);
   std::cout << "# topic " << topic << " (" << info->type << ")\n" << std::flush;
   void* sample = reader->type()->createData();
   long printed = 0;
@@ -237,7 +258,7 @@ int topic_echo(Args& args, const std::string& topic) {
     SampleInfo si;
     while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK && (count == 0 || printed < count)) {
       if (!si.valid_data) continue;
-      std::cout << "---\n" << type->to_yaml(sample) << std::flush;
+      std::cout << "---\n" << print(sample) << std::flush;
       ++printed;
     }
   }
@@ -259,8 +280,8 @@ int topic_hz(Args& args, const std::string& topic) {
     std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
     return 1;
   }
-  const MessageType* type = nullptr;
-  DataReader* reader = subscribe(s, topic, *info, type);
+  SamplePrinter print;
+  DataReader* reader = subscribe(s, topic, *info, print);
   void* sample = reader->type()->createData();
   const auto start = Clock::now();
   auto window_end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(window));

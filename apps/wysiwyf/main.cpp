@@ -82,10 +82,17 @@ static const char* kUsage = R"(usage: wysiwyf <command> [options]
         (--timeout: how long to wait for the first sample, default 10; echo ends after --count
         samples, on Ctrl-C, or when the topic's last writer leaves)
   topic hz TOPIC [--domain N | --pipeline FILE] [--transport T] [--window SECONDS] [--duration SECONDS]
-        Inspect the topics of running pipelines on a DDS domain.
+        Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
+        or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes.
+  new component NAME [--dir DIR]
+        Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
+        a Harness test) that builds and passes as written.
 
-Components are searched in $WYSIWYF_COMPONENT_PATH, the build tree and the install prefix.
-Exit status: 0 success, 1 the run failed, 2 a usage or configuration error.
+Components are searched in $WYSIWYF_COMPONENT_PATH, then lib/wysiwyf beside or above the program,
+then lib/wysiwyf beside libwysiwyf_core.so; configuration files (scenes, robots, included
+pipelines) in $WYSIWYF_CONFIG_PATH, then the prefix's share/wysiwyf/config.
+Exit status: 0 success, 1 the run failed (a component threw, faulted or held: the table's state
+column says which and why), 2 a usage or configuration error.
 )";
 
 int main(int argc, char** argv) {
@@ -105,7 +112,8 @@ int main(int argc, char** argv) {
     if (command == "validate") return wysiwyf::cli::cmd_validate(std::move(rest));
     if (command == "components") return wysiwyf::cli::cmd_components(std::move(rest));
     if (command == "topic") return wysiwyf::cli::cmd_topic(std::move(rest));
-    std::cerr << "wysiwyf: unknown command '" << command << "'; expected run, validate, components or topic\n\n"
+    if (command == "new") return wysiwyf::cli::cmd_new(std::move(rest));
+    std::cerr << "wysiwyf: unknown command '" << command << "'; expected run, validate, components, topic or new\n\n"
               << kUsage;
     return 2;
   } catch (const wysiwyf::cli::UsageError& e) {

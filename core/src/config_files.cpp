@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "search_path.hpp"
+#include "wysiwyf/search_paths.hpp"
 
 namespace wysiwyf {
 
@@ -17,9 +17,7 @@ std::string find_config_file(const std::string& path) {
     if (fs::exists(path, ec)) return path;
     throw std::invalid_argument("configuration file '" + path + "' does not exist");
   }
-  std::vector<std::string> dirs = detail::search_path_from_env("WYSIWYF_CONFIG_PATH");
-  dirs.push_back(WYSIWYF_SOURCE_CONFIG_DIR);
-  dirs.push_back(WYSIWYF_INSTALL_CONFIG_DIR);
+  const std::vector<std::string> dirs = config_search_dirs();
   std::string looked = "the working directory";
   for (const auto& d : dirs) {
     const fs::path candidate = fs::path(d) / path;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "wysiwyf/number_text.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "yaml_scalar.hpp"
 
@@ -42,17 +43,7 @@ bool convert(const YAML::Node& node, std::vector<V>& out) {
 std::string yaml_text(bool v) { return v ? "true" : "false"; }
 std::string yaml_text(std::int64_t v) { return std::to_string(v); }
 std::string yaml_text(int v) { return std::to_string(v); }
-std::string yaml_text(double v) {
-  // Shortest text that reads back the same value.
-  for (int p = 1; p <= 17; ++p) {
-    std::ostringstream t;
-    t << std::setprecision(p) << v;
-    if (std::stod(t.str()) == v) return t.str();
-  }
-  std::ostringstream s;
-  s << std::setprecision(std::numeric_limits<double>::max_digits10) << v;
-  return s.str();
-}
+std::string yaml_text(double v) { return round_trip_text(v); }
 std::string yaml_text(const std::string& v) { return v.empty() ? "\"\"" : v; }
 template <class V>
 std::string yaml_text(const std::vector<V>& v) {

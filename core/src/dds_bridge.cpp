@@ -80,6 +80,11 @@ DdsBridge::~DdsBridge() {
 
 void DdsBridge::connect(TopicChannelBase& channel) {
   TypeSupport type(channel.make_type());
+  // Endpoints announce the type by name only: a process that has type objects registered (a tool
+  // that loaded message libraries) would otherwise send them in discovery, and Fast DDS 2.9's
+  // readers of them crash building sequence types (TypeObjectFactory::get_sequence_identifier).
+  type->auto_fill_type_object(false);
+  type->auto_fill_type_information(false);
   if (!participant_->find_type(channel.type_name())) type.register_type(participant_);
   Topic* topic = participant_->create_topic(channel.topic(), channel.type_name(), TOPIC_QOS_DEFAULT);
   if (!topic)

@@ -9,6 +9,9 @@ Harness::Harness(const std::string& type, const std::string& params_yaml, double
     own_loader_ = std::make_unique<Loader>();
     loader = own_loader_.get();
   }
+  // A missing or broken library is reported as such (LoadError: where it looked, what it found),
+  // not as an error in the harness's own pipeline text.
+  loader->load(type);
   const std::string yaml = "wysiwyf: 1\nname: harness\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
                            "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml + "\n";
   spec_ = load_pipeline_from_string(yaml, "<harness " + type + ">");
@@ -45,6 +48,11 @@ void Harness::log(const std::string& message) { std::cerr << "[dut] " << message
 void Harness::warn_once(const std::string& key, const std::string& message) {
   ++warnings_;
   if (warned_.insert(key).second) log("warning: " + message);
+}
+
+void Harness::report_health(Health health, const std::string& reason) {
+  health_ = health;
+  health_reason_ = reason;
 }
 
 void Harness::reject_sample(const std::string& port, const std::string& why) {

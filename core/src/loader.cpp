@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "search_path.hpp"
 #include "wysiwyf/build_info.hpp"
+#include "wysiwyf/search_paths.hpp"
 
 namespace fs = std::filesystem;
 
@@ -18,12 +18,7 @@ const char* kernel_build_id() { return WYSIWYF_BUILD_ID; }
 
 Loader::Loader(std::vector<std::string> search_dirs) : dirs_(std::move(search_dirs)) {}
 
-std::vector<std::string> Loader::default_search_dirs() {
-  std::vector<std::string> dirs = detail::search_path_from_env("WYSIWYF_COMPONENT_PATH");
-  dirs.push_back(WYSIWYF_COMPONENT_BUILD_DIR);
-  dirs.push_back(WYSIWYF_COMPONENT_INSTALL_DIR);
-  return dirs;
-}
+std::vector<std::string> Loader::default_search_dirs() { return component_search_dirs(); }
 
 std::string Loader::find_file(const std::string& type) const {
   for (const auto& dir : dirs_) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "wysiwyf/pipeline_spec.hpp"
+#include "wysiwyf/search_paths.hpp"
 #include "wysiwyf/validator.hpp"
 #include "yaml_scalar.hpp"
 
@@ -101,8 +102,14 @@ class Parser {
     }
     std::ifstream in(path);
     if (!in) {
+      std::string why = fs::exists(path) ? "permission denied" : "no such file";
+      if (!included_from.file.empty() && !fs::exists(path)) {
+        why += " (looked beside the including file, then in the config path:";
+        for (const auto& d : config_search_dirs()) why += " " + d;
+        why += "; $WYSIWYF_CONFIG_PATH adds folders)";
+      }
       error(included_from.file.empty() ? Location{path, 0, 0} : included_from,
-            "cannot read pipeline file '" + path + "': " + (fs::exists(path) ? "permission denied" : "no such file"));
+            "cannot read pipeline file '" + path + "': " + why);
       return;
     }
     std::stringstream text;
@@ -151,12 +158,24 @@ class Parser {
           error(at(item, file), "include: found " + describe_node(item) + "; expected a file name");
           continue;
         }
-        fs::path p = item.Scalar();
-        if (p.is_relative()) p = fs::path(file).parent_path() / p;
-        parse_file(p.string(), into, at(item, file));
+        parse_file(resolve_include(item.Scalar(), file), into, at(item, file));
       }
     }
     apply(root, file, into, /*from_set=*/false);
+  }
+
+  // An included file: as written if absolute, else beside the including file, else in the
+  // config path (a user's pipeline includes a shipped one: pipelines/demo-sim.yaml). Not found:
+  // the path beside the file, so that the error names it.
+  static std::string resolve_include(const std::string& name, const std::string& including) {
+    const fs::path p = name;
+    if (p.is_absolute()) return name;
+    const fs::path beside = fs::path(including).parent_path() / p;
+    std::error_code ec;
+    if (fs::exists(beside, ec)) return beside.string();
+    for (const auto& dir : config_search_dirs())
+      if (fs::exists(fs::path(dir) / p, ec)) return (fs::path(dir) / p).string();
+    return beside.string();
   }
 
   // A --set path=value: a one-value layer applied over the files.
@@ -290,6 +309,12 @@ class Parser {
                 "component name '" + name + "': expected letters, digits and _ only, not starting with a digit");
           continue;
         }
+        if (it->second.IsNull()) {  // `name: ~` in a later file or --set NAME=~ removes the component
+          into.components.erase(std::remove_if(into.components.begin(), into.components.end(),
+                                               [&](const ComponentSpec& c) { return c.name == name; }),
+                                into.components.end());
+          continue;
+        }
         ComponentSpec* spec = nullptr;
         for (auto& c : into.components)
           if (c.name == name) spec = &c;
@@ -386,6 +411,11 @@ class Parser {
     if (const YAML::Node m = n["params"]; m && !m.IsNull() && expect_map(m, file, label + " params")) {
       check_duplicates(m, file);
       for (auto it = m.begin(); it != m.end(); ++it) {
+        if (it->second.IsNull()) {  // `key: ~` removes a parameter set before: its default applies
+          c.params.erase(it->first.Scalar());
+          c.param_keys.erase(it->first.Scalar());
+          continue;
+        }
         c.params[it->first.Scalar()].assign(YAML::Clone(it->second), at(it->second, file));
         c.param_keys[it->first.Scalar()] = at(it->first, file);
       }
@@ -394,6 +424,11 @@ class Parser {
       check_duplicates(m, file);
       static const std::regex valid_topic("^[A-Za-z_][A-Za-z0-9_/]*$");
       for (auto it = m.begin(); it != m.end(); ++it) {
+        if (it->second.IsNull()) {  // `port: ~` removes a topic set before: the port's default applies
+          c.topics.erase(it->first.Scalar());
+          c.topic_keys.erase(it->first.Scalar());
+          continue;
+        }
         Sourced<std::string> topic;
         if (!get_string(it->second, file, label + " topic of port '" + it->first.Scalar() + "'", topic)) continue;
         if (!std::regex_match(topic.value, valid_topic) || topic.value.back() == '/' ||

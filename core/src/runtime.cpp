@@ -64,6 +64,10 @@ struct Slot final : ComponentHost {
   std::set<std::string> warned;
   std::uint64_t warnings = 0, rejected = 0;
   std::string last_warning;
+  Health health = Health::kOk;  // as reported now, and the worst of the run with its first reason
+  std::string health_reason;
+  Health worst_health = Health::kOk;
+  std::string worst_reason;
 
   std::string label() const { return "component '" + spec->name + "' (" + spec->type.value + ")"; }
   std::uint64_t dropped() const {
@@ -91,6 +95,18 @@ struct Slot final : ComponentHost {
     }
     warn_once("reject " + port + ": " + why,
               "input '" + port + "': rejected a sample: " + why + " (further ones are counted in the diagnostics)");
+  }
+  void report_health(Health h, const std::string& reason) override {
+    {
+      std::lock_guard<std::mutex> lock(health_mutex);
+      health = h;
+      health_reason = reason;
+      if (static_cast<int>(h) > static_cast<int>(worst_health)) {
+        worst_health = h;
+        worst_reason = reason;
+      }
+    }
+    run->log(spec->name, std::string(to_string(h)) + (reason.empty() ? "" : ": " + reason));
   }
 };
 
@@ -212,10 +228,18 @@ struct Runtime::Impl final : RunHost {
       d.instance(slot->spec->name);
       d.type(slot->spec->type.value);
       d.process(slot->spec->process_name());
-      d.state(!slot->last_error.empty()             ? ComponentState::STATE_FAULT
-              : final                               ? ComponentState::STATE_STOPPED
-              : slot->stage == Slot::Stage::kActive ? ComponentState::STATE_ACTIVE
-                                                    : ComponentState::STATE_CONFIGURED);
+      Health health = Health::kOk;
+      std::string health_reason;
+      {
+        std::lock_guard<std::mutex> lock(slot->health_mutex);
+        health = slot->health;
+        health_reason = slot->health_reason;
+      }
+      d.state(!slot->last_error.empty() || health == Health::kFault ? ComponentState::STATE_FAULT
+              : health == Health::kHolding                          ? ComponentState::STATE_HOLDING
+              : final                                               ? ComponentState::STATE_STOPPED
+              : slot->stage == Slot::Stage::kActive                 ? ComponentState::STATE_ACTIVE
+                                                                    : ComponentState::STATE_CONFIGURED);
       d.rate_hz(slot->spec->rate.value);
       d.tick_rate_hz(window_s > 0 ? static_cast<double>(s.window_ticks) / window_s : 0.0);
       d.tick_time_p50_us(s.p50_us);
@@ -233,7 +257,7 @@ struct Runtime::Impl final : RunHost {
         d.warnings(slot->warnings);
         d.last_warning(slot->last_warning.substr(0, 255));
       }
-      d.last_error(slot->last_error.substr(0, 255));
+      d.last_error((slot->last_error.empty() ? health_reason : slot->last_error).substr(0, 255));
       diagnostics.write(d);
     }
   }
@@ -456,7 +480,15 @@ void Runtime::Impl::teardown(RunResult& result) {
     std::lock_guard<std::mutex> lock(slot->health_mutex);
     result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns, s.p50_us,
                                                 s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us, s.late_max_us,
-                                                slot->dropped(), slot->rejected, slot->warnings});
+                                                slot->dropped(), slot->rejected, slot->warnings, "ok", ""});
+    ComponentReport& r = result.components.back();
+    if (!slot->last_error.empty()) {
+      r.state = "failed";
+      r.state_reason = slot->last_error;
+    } else {
+      r.state = to_string(slot->worst_health);
+      r.state_reason = slot->worst_reason;
+    }
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

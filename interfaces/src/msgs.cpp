@@ -8,6 +8,7 @@
 #include "wysiwyf/idl/sensor_msgsPubSubTypes.h"
 #include "wysiwyf/idl/display_msgsPubSubTypes.h"
 #include "wysiwyf/idl/wysiwyf_msgsPubSubTypes.h"
+#include "wysiwyf/number_text.hpp"
 
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, Image)
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, CameraInfo)
@@ -69,16 +70,7 @@ class Yaml {
   }
   std::string text() const { return out_.str(); }
 
-  static std::string num(double v) {
-    std::ostringstream s;
-    s << std::setprecision(std::numeric_limits<double>::max_digits10) << v;
-    for (int p = 6; p <= 17; ++p) {  // shortest text that reads back the same
-      std::ostringstream t;
-      t << std::setprecision(p) << v;
-      if (std::stod(t.str()) == v) return t.str();
-    }
-    return s.str();
-  }
+  static std::string num(double v) { return round_trip_text(v); }
 
  private:
   std::ostream& line() { return out_ << std::string(2 * depth_, ' '); }
@@ -112,6 +104,7 @@ const char* state_name(kernel_msgs::ComponentState s) {
     case kernel_msgs::STATE_ACTIVE: return "active";
     case kernel_msgs::STATE_STOPPED: return "stopped";
     case kernel_msgs::STATE_FAULT: return "fault";
+    case kernel_msgs::STATE_HOLDING: return "holding";
   }
   return "?";
 }

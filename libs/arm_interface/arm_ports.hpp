@@ -29,6 +29,7 @@ class ArmPorts {
     return status_.publish(now_ns, gate, source, status_out_);
   }
   void reset_status() { status_ = GateStatus(); }
+  Health health(const SafetyGate& gate) { return status_.health(gate); }
 
  private:
   Output<msg::JointState> joint_state_out_;

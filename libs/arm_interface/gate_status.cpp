@@ -27,4 +27,13 @@ bool GateStatus::publish(std::int64_t now_ns, const SafetyGate& gate, const std:
   return new_fault;
 }
 
+Health GateStatus::health(const SafetyGate& gate) {
+  switch (gate.state()) {
+    case SafetyState::kOk: followed_ = true; return Health::kOk;
+    case SafetyState::kHolding: return followed_ ? Health::kHolding : Health::kOk;
+    case SafetyState::kFault: return Health::kFault;
+  }
+  return Health::kFault;
+}
+
 }  // namespace wysiwyf::robot

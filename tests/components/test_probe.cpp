@@ -28,6 +28,10 @@ class TestProbe final : public wysiwyf::Component {
     tick_sleep_us_ =
         ctx.param<int>("tick_sleep_us", 0, "sleep this long in every tick (overrun tests)", wysiwyf::Range{0, 1e6});
     emit_nan_ = ctx.param<bool>("emit_nan", false, "write NaN in out.position[0] (bad-input tests)");
+    hold_ticks_ = ctx.param<std::array<double, 2>>(
+        "hold_ticks", {-1, -1}, "report holding from the first tick index to the second (health tests)");
+    fault_tick_ =
+        ctx.param<int>("fault_tick", -1, "report a fault from this tick index (health tests)", wysiwyf::Range{-1, 1e9});
     // Parameter shapes and a relation between two parameters, for the validator's tests.
     weights_ = ctx.param<std::array<double, 3>>("weights", {1, 0, 0}, "three weights (a fixed-size list)",
                                                 wysiwyf::Range{-1, 1});
@@ -47,6 +51,13 @@ class TestProbe final : public wysiwyf::Component {
   }
   void tick(wysiwyf::Time now) override {
     if (fail_phase_ == "tick" && ticks_ == fail_tick_) throw std::runtime_error("tick failed on purpose");
+    if (fault_tick_ >= 0 && ticks_ >= fault_tick_)
+      report_health(wysiwyf::Health::kFault, "told to fault at tick " + std::to_string(fault_tick_));
+    else if (ticks_ >= hold_ticks_[0] && ticks_ < hold_ticks_[1])
+      report_health(wysiwyf::Health::kHolding,
+                    "told to hold at tick " + std::to_string(static_cast<int>(hold_ticks_[0])));
+    else
+      report_health(wysiwyf::Health::kOk);
     ++ticks_;
     if (tick_sleep_us_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(tick_sleep_us_));
     double sum = 0;
@@ -87,7 +98,8 @@ class TestProbe final : public wysiwyf::Component {
   std::vector<double> window_;
   std::string fail_phase_, record_, lifecycle_log_;
   int tick_sleep_us_ = 0;
-  int fail_tick_ = 0, stop_after_ = 0, ticks_ = 0, received_ = 0;
+  int fail_tick_ = 0, stop_after_ = 0, ticks_ = 0, received_ = 0, fault_tick_ = -1;
+  std::array<double, 2> hold_ticks_{-1, -1};
   std::uint64_t seq_ = 0;
   std::string recorded_;
   wysiwyf::msg::JointState sample_;

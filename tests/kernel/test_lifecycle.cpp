@@ -1,4 +1,9 @@
 // Lifecycle order, and what happens when a component throws in each phase.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+
 #include "test_support.hpp"
 
 namespace wysiwyf::test {
@@ -125,6 +130,40 @@ TEST(BadInput, RejectedSamplesAreCountedAndWarnedOnce) {
   EXPECT_EQ(lines, 1u) << log;
   EXPECT_NE(log.find("[sink] warning: input 'in': rejected a sample: position[0] is not finite"), std::string::npos)
       << log;
+}
+
+// What a component reports of its health reaches the run's summary: the worst state of the run
+// with its reason, even when it recovered (a hold that ended is still a run that held), and
+// `wysiwyf run` exits 1 with it.
+TEST(Health, TheWorstStateOfTheRunIsReportedAndFailsTheCommand) {
+  const std::string yaml =
+      "wysiwyf: 1\ndomain: 62\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 20ms}\n"
+      "components:\n"
+      "  steady: {type: test_probe, rate: 1000}\n"
+      "  wobbly: {type: test_probe, rate: 1000, params: {hold_ticks: [5, 8]}}\n";
+  const RunResult r = run_pipeline(yaml);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.components.size(), 2u);
+  EXPECT_EQ(r.components[0].state, "ok");
+  EXPECT_EQ(r.components[1].state, "holding");
+  EXPECT_EQ(r.components[1].state_reason, "told to hold at tick 5");
+  ASSERT_NE(r.first_unhealthy(), nullptr);
+  EXPECT_EQ(r.first_unhealthy()->name, "wobbly");
+  // A fault outranks a hold; a clean run has no unhealthy component.
+  EXPECT_EQ(run_pipeline(yaml, {"wobbly.params.fault_tick=10"}).components[1].state, "fault");
+  EXPECT_EQ(run_pipeline(yaml, {"wobbly.params.hold_ticks=~"}).first_unhealthy(), nullptr);
+
+  // The command line: exit 1, the state column names it, 0 for the clean run.
+  const auto dir = scratch_dir();
+  const auto file = dir / "health.yaml";
+  std::ofstream(file) << yaml;
+  const std::string cli = "WYSIWYF_COMPONENT_PATH=" WYSIWYF_TEST_COMPONENT_DIR " " + std::string(WYSIWYF_CLI) +
+                          " run " + file.string() + " --no-progress";
+  EXPECT_EQ(WEXITSTATUS(std::system((cli + " > " + (dir / "held.txt").string() + " 2>&1").c_str())), 1);
+  const std::string held = read_file(dir / "held.txt");
+  EXPECT_NE(held.find("holding: told to hold at tick 5"), std::string::npos) << held;
+  EXPECT_NE(held.find("error: component 'wobbly' (test_probe) held during the run"), std::string::npos) << held;
+  EXPECT_EQ(WEXITSTATUS(std::system((cli + " --set wobbly.params.hold_ticks=null > /dev/null 2>&1").c_str())), 0);
 }
 
 }  // namespace wysiwyf::test

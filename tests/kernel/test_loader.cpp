@@ -1,4 +1,7 @@
 // The loader accepts a good component library and refuses broken ones with a useful message.
+#include <algorithm>
+#include <filesystem>
+
 #include "test_support.hpp"
 
 namespace wysiwyf::test {
@@ -75,9 +78,14 @@ TEST(Loader, SearchPathPutsTheEnvironmentFirst) {
   setenv("WYSIWYF_COMPONENT_PATH", "/first:/second", 1);
   const auto dirs = Loader::default_search_dirs();
   unsetenv("WYSIWYF_COMPONENT_PATH");
-  ASSERT_GE(dirs.size(), 4u);
+  ASSERT_GE(dirs.size(), 3u);
   EXPECT_EQ(dirs[0], "/first");
   EXPECT_EQ(dirs[1], "/second");
+  // Then this build's components, found from the program's and the core's place, not from a path
+  // compiled in or an environment variable.
+  EXPECT_NE(
+      std::find(dirs.begin(), dirs.end(), std::filesystem::weakly_canonical(WYSIWYF_COMPONENT_BUILD_DIR).string()),
+      dirs.end());
 }
 
 }  // namespace wysiwyf::test

@@ -1,4 +1,8 @@
 // include:, --set, durations and the merged view of a pipeline.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
 #include "test_support.hpp"
 
 namespace wysiwyf::test {
@@ -42,6 +46,54 @@ TEST(PipelineFile, IncludeThenOverrideThenSet) {
   EXPECT_TRUE(a->params.at("record").where.file.find("base.yaml") != std::string::npos);
   EXPECT_FALSE(spec.find("b")->is_enabled());
   EXPECT_EQ(spec.processes(), (std::vector<std::string>{"main"}));
+}
+
+// `~` in a later file or --set removes a key set before: a parameter or topic goes back to the
+// component's default, a component leaves the pipeline.
+TEST(PipelineFile, ANullRemovesAParameterATopicOrAComponent) {
+  const auto dir = scratch_dir();
+  std::ofstream(dir / "shipped.yaml") << "wysiwyf: 1\nclock: {mode: sim, step: 1ms}\ncomponents:\n"
+                                         "  a: {type: test_probe, rate: 100, params: {gain: 1, record: x.txt},"
+                                         " topics: {out: probe/out}}\n"
+                                         "  b: {type: test_probe, rate: 50}\n";
+  std::ofstream(dir / "mine.yaml") << "wysiwyf: 1\ninclude: shipped.yaml\ncomponents:\n"
+                                      "  a: {params: {record: ~}}\n"
+                                      "  b: ~\n";
+  const PipelineSpec spec = load_pipeline((dir / "mine.yaml").string(), {"a.topics.out=~"});
+  ASSERT_EQ(spec.components.size(), 1u);
+  EXPECT_EQ(spec.find("b"), nullptr);
+  const ComponentSpec* a = spec.find("a");
+  EXPECT_EQ(a->params.count("record"), 0u);
+  EXPECT_EQ(a->params.count("gain"), 1u);
+  EXPECT_EQ(a->topics.count("out"), 0u);
+  // And from the command line alone.
+  EXPECT_EQ(load_pipeline((dir / "shipped.yaml").string(), {"b=~"}).components.size(), 1u);
+}
+
+// include: looks beside the including file, then in the config path ($WYSIWYF_CONFIG_PATH first).
+TEST(PipelineFile, IncludeSearchesTheConfigPath) {
+  const auto dir = scratch_dir();
+  std::filesystem::create_directories(dir / "lab" / "pipelines");
+  std::filesystem::create_directories(dir / "mine");
+  std::ofstream(dir / "lab" / "pipelines" / "shared.yaml")
+      << "wysiwyf: 1\nclock: {mode: sim, step: 1ms}\ncomponents:\n  a: {type: test_probe, rate: 100}\n";
+  std::ofstream(dir / "mine" / "top.yaml") << "wysiwyf: 1\ninclude: pipelines/shared.yaml\n";
+  setenv("WYSIWYF_CONFIG_PATH", (dir / "lab").c_str(), 1);
+  const PipelineSpec spec = load_pipeline((dir / "mine" / "top.yaml").string());
+  unsetenv("WYSIWYF_CONFIG_PATH");
+  ASSERT_NE(spec.find("a"), nullptr);
+  // A shipped pipeline, from this build's config folder with no variable.
+  std::ofstream(dir / "mine" / "demo.yaml") << "wysiwyf: 1\ninclude: pipelines/puma-setpoints.yaml\n";
+  EXPECT_NE(load_pipeline((dir / "mine" / "demo.yaml").string()).find("arm"), nullptr);
+  // Not found anywhere: the error says where it looked.
+  std::ofstream(dir / "mine" / "bad.yaml") << "wysiwyf: 1\ninclude: pipelines/nowhere.yaml\n";
+  try {
+    load_pipeline((dir / "mine" / "bad.yaml").string());
+    FAIL() << "a missing include loaded";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.yaml:2:10"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("config path"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PipelineFile, AllErrorsAreReportedNotJustTheFirst) {

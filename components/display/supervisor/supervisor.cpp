@@ -318,6 +318,7 @@ class Supervisor final : public Component {
     if (mode != mode_) log(std::string(mode_name(mode_)) + " -> " + mode_name(mode) + (why.empty() ? "" : ": " + why));
     mode_ = mode;
     reason_ = why;
+    report_health(mode == msg::MODE_FAULT ? Health::kHolding : Health::kOk, why);
     switched_ns_ = now_ns;
     taking_over_ = sent_ && (mode == msg::MODE_SURFACE || mode == msg::MODE_ADMITTANCE);
     if (mode == msg::MODE_SURFACE && !sent_) {

@@ -168,7 +168,8 @@ class PumaDriver final : public Component {
         ++missed_;
       }
     }
-    if (ports_.publish_status(now.ns, *gate_, follower_->source())) log("fault: " + gate_->reason());
+    ports_.publish_status(now.ns, *gate_, follower_->source());
+    report_health(ports_.health(*gate_), gate_->reason());  // the kernel logs the changes
   }
 
   void deactivate() override {

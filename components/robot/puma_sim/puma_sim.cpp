@@ -215,7 +215,8 @@ class PumaSim final : public Component {
       hand_v_ += f_hand / hand_mass_ * h;
       hand_x_ += hand_v_ * h;
     }
-    if (ports_.publish_status(now.ns, *gate_, follower_->source())) log("fault: " + gate_->reason());
+    ports_.publish_status(now.ns, *gate_, follower_->source());
+    report_health(ports_.health(*gate_), gate_->reason());  // the kernel logs the changes
   }
 
   void hold() noexcept override {

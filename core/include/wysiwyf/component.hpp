@@ -36,6 +36,15 @@
 
 namespace wysiwyf {
 
+// A component's own view of its health, as it reports it (report_health): kOk; kHolding: holding
+// its hardware or output still because something is wrong (an input stopped, bad input refused);
+// kFault: latched until something resets it. The kernel puts it in the diagnostics and the run's
+// summary, and `wysiwyf run` exits non-zero when any component held or faulted.
+enum class Health { kOk, kHolding, kFault };
+inline const char* to_string(Health health) {
+  return health == Health::kOk ? "ok" : health == Health::kHolding ? "holding" : "fault";
+}
+
 // What a running component may ask of the kernel; the executor (and the test Harness) gives each
 // component its own.
 class ComponentHost {
@@ -49,6 +58,8 @@ class ComponentHost {
   // A sample that arrived on input `port` could not be used (`why`): counted in the diagnostics,
   // logged once per port and reason.
   virtual void reject_sample(const std::string& port, const std::string& why) = 0;
+  // The component's health changed (Component::report_health calls it on changes only).
+  virtual void report_health(Health health, const std::string& reason) = 0;
 };
 
 class Component {
@@ -92,14 +103,24 @@ class Component {
   void reject(const Input<T>& in, const std::string& why) {
     if (host_) host_->reject_sample(in.port(), why);
   }
+  // The component's health now, with why when not kOk; cheap to call every tick (the kernel
+  // hears of changes only).
+  void report_health(Health health, const std::string& reason = "") {
+    if (health == health_ && (health == Health::kOk || reason == health_reason_)) return;
+    health_ = health;
+    health_reason_ = health == Health::kOk ? std::string() : reason;
+    if (host_) host_->report_health(health_, health_reason_);
+  }
 
  private:
   ComponentHost* host_ = nullptr;
   std::string instance_name_;
+  Health health_ = Health::kOk;
+  std::string health_reason_;
 };
 
 // Bumped whenever the Component/Context/port layout changes incompatibly.
-constexpr std::uint32_t kAbiVersion = 3;
+constexpr std::uint32_t kAbiVersion = 4;
 
 // The C entry point's answer. abi_version stays the first field in every version.
 struct ComponentEntry {

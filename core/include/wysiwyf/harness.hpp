@@ -22,7 +22,9 @@ namespace wysiwyf {
 class Harness : private ComponentHost {
  public:
   // Throws ConfigError when the params are wrong (the validator's messages), LoadError when the
-  // type cannot be loaded. The loader searches Loader::default_search_dirs() unless given one.
+  // type cannot be loaded (saying where it looked). The loader searches
+  // Loader::default_search_dirs() unless given one: a test finds the components built in its own
+  // build tree (lib/wysiwyf beside or above the test program) with no environment variable.
   Harness(const std::string& type, const std::string& params_yaml = "{}", double rate_hz = 1000,
           Loader* loader = nullptr);
   ~Harness() override;
@@ -54,12 +56,16 @@ class Harness : private ComponentHost {
   // Samples the component rejected on input `port` (Component::reject), and warnings it gave.
   std::uint64_t rejected(const std::string& port) const;
   std::uint64_t warnings() const { return warnings_; }
+  // The health the component last reported (report_health), and why.
+  Health health() const { return health_; }
+  const std::string& health_reason() const { return health_reason_; }
 
  private:
   void request_stop(const std::string& reason) override;
   void log(const std::string& message) override;
   void warn_once(const std::string& key, const std::string& message) override;
   void reject_sample(const std::string& port, const std::string& why) override;
+  void report_health(Health health, const std::string& reason) override;
 
   std::unique_ptr<Loader> own_loader_;
   PipelineSpec spec_;
@@ -71,6 +77,8 @@ class Harness : private ComponentHost {
   std::set<std::string> warned_;
   std::map<std::string, std::uint64_t> rejected_;
   std::uint64_t warnings_ = 0;
+  Health health_ = Health::kOk;
+  std::string health_reason_;
 };
 
 }  // namespace wysiwyf

@@ -1,7 +1,7 @@
 #pragma once
 // Finds component libraries (wysiwyf_<type>.so) and loads them with dlopen, refusing any whose
 // ABI version or build id differs from this kernel's, with a message that says how to fix it.
-// Search order: $WYSIWYF_COMPONENT_PATH (colon-separated), the build tree, the install prefix.
+// Search order: wysiwyf/search_paths.hpp (the environment, beside the program, beside the core).
 #include <map>
 #include <memory>
 #include <stdexcept>

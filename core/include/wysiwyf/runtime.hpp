@@ -29,6 +29,10 @@ struct ComponentReport {
   std::uint64_t dropped_samples = 0;   // input samples pushed out unread
   std::uint64_t rejected_samples = 0;  // input samples the component could not use
   std::uint64_t warnings = 0;
+  // The worst the component was in during the run: "ok", "holding" or "fault" (as it reported,
+  // report_health), or "failed" (a lifecycle call threw); with the first reason for it.
+  std::string state = "ok";
+  std::string state_reason;
 };
 
 struct RunResult {
@@ -38,6 +42,13 @@ struct RunResult {
   std::int64_t sim_time_ns = 0;
   double wall_seconds = 0;
   std::vector<ComponentReport> components;
+  // A component that held, faulted or failed during the run (nullptr: none); `wysiwyf run` exits
+  // non-zero with it.
+  const ComponentReport* first_unhealthy() const {
+    for (const auto& c : components)
+      if (c.state != "ok") return &c;
+    return nullptr;
+  }
 };
 
 struct RunOptions {

@@ -1,0 +1,86 @@
+#!/bin/bash
+# The out-of-tree path, as a user of an installed WYSIWYF walks it: install into a temporary
+# prefix; build `wysiwyf new component`'s scaffold and docs/writing-a-component.md's project (a
+# component and a message type of its own) against the installed package alone; run their tests;
+# install the project beside WYSIWYF; describe the component, run a pipeline that includes a
+# shipped one plus the component, and echo the user's type from another process.
+# Usage: out_of_tree.sh <build dir> <source dir> <domain>
+# Works in a temporary folder outside both trees (so any path into them is a leak), removed
+# when the test passes and kept, with its logs, when it fails.
+set -euo pipefail
+build=$(realpath "$1") source=$(realpath "$2") domain=$3
+scratch=$(mktemp -d "${TMPDIR:-/tmp}/wysiwyf-sdk.XXXXXX")
+echo "working in $scratch"
+prefix=$scratch/prefix
+step() { echo "== $*"; }
+fail() { echo "FAILED: $*"; exit 1; }
+
+step "install into $prefix"
+cmake --install "$build" --prefix "$prefix" >"$scratch/install.log"
+for f in bin/wysiwyf bin/puma-link-emulator bin/rdt-emulator lib/libwysiwyf_core.so lib/libwysiwyf_msgs.so \
+         lib/libwysiwyf_kernel_msgs.so lib/libwysiwyf_msgs_idl.so lib/wysiwyf/wysiwyf_puma_sim.so \
+         include/wysiwyf/component.hpp include/wysiwyf/build_info.hpp include/wysiwyf/idl/std_msgs.h \
+         share/wysiwyf/idl/std_msgs.idl share/wysiwyf/config/pipelines/demo-sim.yaml \
+         lib/cmake/wysiwyf/wysiwyfConfig.cmake; do
+  [ -e "$prefix/$f" ] || fail "the install lacks $f"
+done
+# Nothing installed may point back into the source or build tree.
+if grep -rlI -e "$source" -e "$build" "$prefix/lib/cmake" "$prefix/include" "$prefix/share/wysiwyf/idl"; then
+  fail "installed files name the source or build tree (above)"
+fi
+for f in "$prefix"/bin/* "$prefix"/lib/*.so "$prefix"/lib/wysiwyf/*.so; do
+  if readelf -d "$f" | grep -E "R(UN)?PATH" | grep -q -e "$build" -e "$source"; then
+    fail "$f has a run path into the build tree"
+  fi
+done
+
+# A user's environment: the prefix's tools, no WYSIWYF variables.
+unset WYSIWYF_COMPONENT_PATH WYSIWYF_CONFIG_PATH
+export PATH=$prefix/bin:$PATH
+cmake_user() {
+  cmake -S "$1" -B "$1/build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >"$1.configure.log" 2>&1 || { cat "$1.configure.log"; fail "configuring $1"; }
+  cmake --build "$1/build" >"$1.build.log" 2>&1 || { cat "$1.build.log"; fail "building $1"; }
+  # The compiler saw nothing of the source or build tree.
+  if grep -e "$source/" -e "$build/" "$1/build/compile_commands.json"; then
+    fail "$1 was compiled with the source or build tree on its command line (above)"
+  fi
+}
+
+step "wysiwyf new component gesture_gain: builds and its test passes as written"
+wysiwyf new component gesture_gain --dir "$scratch/scaffold"
+cmake_user "$scratch/scaffold"
+ctest --test-dir "$scratch/scaffold/build" --output-on-failure || fail "the scaffold's test"
+
+step "docs/writing-a-component.md's project, out of tree"
+project=$scratch/contacts
+python3 "$source/scripts/extract-doc-code" "$source/docs/writing-a-component.md" "$project" \
+  CMakeLists.txt example_msgs.idl contact_summary.cpp test_contact_summary.cpp contacts.yaml
+cmake_user "$project"
+ctest --test-dir "$project/build" --output-on-failure || fail "the walk-through's tests"
+
+step "installed beside WYSIWYF, the tools find the component and the type with no variable"
+cmake --install "$project/build" --prefix "$prefix" >/dev/null
+[ -e "$prefix/lib/wysiwyf/wysiwyf_contact_summary.so" ] || fail "the component was not installed"
+[ -e "$prefix/lib/wysiwyf/messages/libexample_msgs.so" ] || fail "the message library was not installed"
+wysiwyf components describe contact_summary | tee "$scratch/describe.txt"
+grep -q "example::msg::ContactSummary" "$scratch/describe.txt" || fail "describe does not show the user's type"
+grep -q "contact_force" "$scratch/describe.txt" || fail "describe does not show the parameters"
+
+step "a pipeline including a shipped one plus the user's component, echoed from another process"
+cd "$scratch"
+wysiwyf validate "$project/contacts.yaml" --set domain="$domain"
+wysiwyf topic echo example/contacts --domain "$domain" --transport local --count 2 --timeout 30 \
+  >"$scratch/echo.txt" 2>&1 &
+echo_pid=$!
+trap 'kill $echo_pid 2>/dev/null || true' EXIT
+sleep 1
+wysiwyf run "$project/contacts.yaml" --set domain="$domain" --no-progress | tee "$scratch/run.txt"
+wait $echo_pid || { cat "$scratch/echo.txt"; fail "topic echo of the user's type"; }
+cat "$scratch/echo.txt"
+grep -q "example::msg::ContactSummary" "$scratch/echo.txt" || fail "echo did not name the type"
+grep -q "^contact: 2" "$scratch/echo.txt" || fail "echo did not print the second contact"
+grep -q "^peak_force: 0.5" "$scratch/echo.txt" || fail "echo did not print the peak force (0.5 N pushes)"
+grep -q "^contacts .*contact_summary .* ok" "$scratch/run.txt" || fail "the run's table lacks the user's component"
+rm -rf "$scratch"
+echo "out-of-tree path: ok"
