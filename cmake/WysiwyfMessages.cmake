@@ -8,6 +8,45 @@
 #    tools load the library from ${CMAKE_BINARY_DIR}/lib/wysiwyf/messages (installed:
 #    <libdir>/wysiwyf/messages) and print samples of these types (`wysiwyf topic echo`).
 # OUTPUT_DIR puts the library elsewhere and does not install it (test-only types).
+# wysiwyf_fastddsgen(<idl> OUT_DIR <dir> WORK_DIR <dir> [INCLUDE_DIRS <dirs>] SOURCES <var> HEADERS <var>)
+# One IDL file through fastddsgen at build time: its struct, TypeSupport and type-object code in
+# OUT_DIR; the .cxx files appended to <SOURCES var>, the headers to <HEADERS var>. Shared by
+# wysiwyf_add_messages() and this tree's wysiwyf_idl_library().
+function(wysiwyf_fastddsgen idl)
+  cmake_parse_arguments(ARG "" "OUT_DIR;WORK_DIR;SOURCES;HEADERS" "INCLUDE_DIRS" ${ARGN})
+  get_filename_component(base ${idl} NAME_WE)
+  get_filename_component(abs ${idl} ABSOLUTE)
+  set(include_flags)
+  foreach(dir ${ARG_INCLUDE_DIRS})
+    list(APPEND include_flags -I ${dir})
+  endforeach()
+  set(generated ${base}.h ${base}.cxx ${base}PubSubTypes.h ${base}PubSubTypes.cxx ${base}TypeObject.h
+                ${base}TypeObject.cxx)
+  list(TRANSFORM generated PREPEND ${ARG_OUT_DIR}/ OUTPUT_VARIABLE outs)
+  # fastddsgen also writes the code of every IDL the file includes: it runs in a folder of its own
+  # and only this file's code is copied out (the included files' code is in their own libraries;
+  # rewriting, say, std_msgs.h in the shared folder would relink everything on the next build).
+  set(work ${ARG_WORK_DIR}/${base})
+  set(work_outs ${work}/${base}.h ${work}/${base}.cxx ${work}/${base}PubSubTypes.h ${work}/${base}PubSubTypes.cxx
+                ${work}/typeobject/${base}TypeObject.h ${work}/typeobject/${base}TypeObject.cxx)
+  add_custom_command(
+    OUTPUT ${outs}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${work}/typeobject ${ARG_OUT_DIR}
+    # Two passes: the structs without -typeobject (with it, every constructor registers every
+    # type in Fast DDS's factory: a lock and map lookups per message on the tick path), and
+    # the type objects alone, registered once by the tools that read types at run time.
+    COMMAND ${FASTDDSGEN} -replace -cs -d ${work} ${include_flags} ${abs} > ${work}.fastddsgen.log
+    COMMAND ${FASTDDSGEN} -replace -cs -typeobject -d ${work}/typeobject ${include_flags} ${abs} >> ${work}.fastddsgen.log
+    COMMAND ${CMAKE_COMMAND} -E copy ${work_outs} ${ARG_OUT_DIR}
+    DEPENDS ${abs}
+    COMMENT "fastddsgen ${base}.idl"
+    VERBATIM)
+  list(FILTER outs INCLUDE REGEX "\\.cxx$")
+  set(${ARG_SOURCES} ${${ARG_SOURCES}} ${outs} PARENT_SCOPE)
+  set(${ARG_HEADERS} ${${ARG_HEADERS}} ${ARG_OUT_DIR}/${base}.h ${ARG_OUT_DIR}/${base}PubSubTypes.h
+                     ${ARG_OUT_DIR}/${base}TypeObject.h PARENT_SCOPE)
+endfunction()
+
 function(wysiwyf_add_messages name)
   cmake_parse_arguments(ARG "" "OUTPUT_DIR" "IDL;TYPES;INCLUDE_DIRS;LINK" ${ARGN})
   if(NOT ARG_IDL OR NOT ARG_TYPES)
@@ -18,10 +57,6 @@ function(wysiwyf_add_messages name)
     message(FATAL_ERROR "wysiwyf_add_messages(${name}): fastddsgen not found (apt install fastddsgen)")
   endif()
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${name})
-  set(include_flags)
-  foreach(dir ${ARG_INCLUDE_DIRS} ${WYSIWYF_IDL_DIRS})
-    list(APPEND include_flags -I ${dir})
-  endforeach()
   set(sources)
   set(headers)
   set(idl_includes)
@@ -29,30 +64,8 @@ function(wysiwyf_add_messages name)
   set(type_object_includes)
   foreach(idl ${ARG_IDL})
     get_filename_component(base ${idl} NAME_WE)
-    get_filename_component(abs ${idl} ABSOLUTE)
-    set(generated ${base}.h ${base}.cxx ${base}PubSubTypes.h ${base}PubSubTypes.cxx ${base}TypeObject.h
-                  ${base}TypeObject.cxx)
-    list(TRANSFORM generated PREPEND ${out}/ OUTPUT_VARIABLE outs)
-    # fastddsgen also writes the code of the IDL files this one includes (ours): only this
-    # file's code is kept, ours comes from the wysiwyf libraries.
-    set(private ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen/${name}/${base})
-    set(private_outs ${private}/${base}.h ${private}/${base}.cxx ${private}/${base}PubSubTypes.h
-                     ${private}/${base}PubSubTypes.cxx ${private}/typeobject/${base}TypeObject.h
-                     ${private}/typeobject/${base}TypeObject.cxx)
-    add_custom_command(
-      OUTPUT ${outs}
-      COMMAND ${CMAKE_COMMAND} -E make_directory ${private}/typeobject ${out}
-      # Two passes: the structs without -typeobject (with it, every constructor registers every
-      # type in Fast DDS's factory: a lock and map lookups per message on the tick path), and
-      # the type objects alone, registered once by the tools that read types at run time.
-      COMMAND ${FASTDDSGEN} -replace -cs -d ${private} ${include_flags} ${abs} > ${private}.fastddsgen.log
-      COMMAND ${FASTDDSGEN} -replace -cs -typeobject -d ${private}/typeobject ${include_flags} ${abs} >> ${private}.fastddsgen.log
-      COMMAND ${CMAKE_COMMAND} -E copy ${private_outs} ${out}
-      DEPENDS ${abs}
-      COMMENT "fastddsgen ${base}.idl (${name})"
-      VERBATIM)
-    list(APPEND sources ${out}/${base}.cxx ${out}/${base}PubSubTypes.cxx ${out}/${base}TypeObject.cxx)
-    list(APPEND headers ${out}/${base}.h ${out}/${base}PubSubTypes.h ${out}/${base}TypeObject.h)
+    wysiwyf_fastddsgen(${idl} OUT_DIR ${out} WORK_DIR ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen/${name}
+                       INCLUDE_DIRS ${ARG_INCLUDE_DIRS} ${WYSIWYF_IDL_DIRS} SOURCES sources HEADERS headers)
     string(APPEND idl_includes "#include \"${base}.h\"\n")
     string(APPEND registrations "  register${base}Types();\n")
     string(APPEND type_object_includes "#include \"${base}PubSubTypes.h\"\n#include \"${base}TypeObject.h\"\n")

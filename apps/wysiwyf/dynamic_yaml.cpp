@@ -43,79 +43,32 @@ bool is_basic(types::TypeKind k) {
   }
 }
 
+// Member `id` of `data`, read with DynamicData's getter for its C++ type.
+template <class V, class R>
+V read(const types::DynamicData& data, types::MemberId id, R (types::DynamicData::*get)(V&, types::MemberId) const) {
+  V v{};
+  (data.*get)(v, id);
+  return v;
+}
+
 // One basic value (member `id` of `data`) as YAML text.
 std::string basic_value(types::DynamicData& data, types::MemberId id, types::TypeKind kind) {
+  using D = types::DynamicData;
   switch (kind) {
-    case types::TK_BOOLEAN: {
-      bool v = false;
-      data.get_bool_value(v, id);
-      return v ? "true" : "false";
-    }
-    case types::TK_BYTE: {
-      types::octet v = 0;
-      data.get_byte_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_INT16: {
-      std::int16_t v = 0;
-      data.get_int16_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_UINT16: {
-      std::uint16_t v = 0;
-      data.get_uint16_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_INT32: {
-      std::int32_t v = 0;
-      data.get_int32_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_UINT32: {
-      std::uint32_t v = 0;
-      data.get_uint32_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_INT64: {
-      std::int64_t v = 0;
-      data.get_int64_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_UINT64: {
-      std::uint64_t v = 0;
-      data.get_uint64_value(v, id);
-      return std::to_string(v);
-    }
-    case types::TK_FLOAT32: {
-      float v = 0;
-      data.get_float32_value(v, id);
-      return round_trip_text(v);
-    }
-    case types::TK_FLOAT64: {
-      double v = 0;
-      data.get_float64_value(v, id);
-      return round_trip_text(v);
-    }
-    case types::TK_FLOAT128: {
-      long double v = 0;
-      data.get_float128_value(v, id);
-      return round_trip_text(static_cast<double>(v));
-    }
-    case types::TK_CHAR8: {
-      char v = 0;
-      data.get_char8_value(v, id);
-      return yaml_quoted(std::string(1, v));
-    }
-    case types::TK_STRING8: {
-      std::string v;
-      data.get_string_value(v, id);
-      return yaml_quoted(v);
-    }
-    case types::TK_ENUM: {
-      std::string v;
-      data.get_enum_value(v, id);
-      return v;
-    }
+    case types::TK_BOOLEAN: return read(data, id, &D::get_bool_value) ? "true" : "false";
+    case types::TK_BYTE: return std::to_string(read(data, id, &D::get_byte_value));
+    case types::TK_INT16: return std::to_string(read(data, id, &D::get_int16_value));
+    case types::TK_UINT16: return std::to_string(read(data, id, &D::get_uint16_value));
+    case types::TK_INT32: return std::to_string(read(data, id, &D::get_int32_value));
+    case types::TK_UINT32: return std::to_string(read(data, id, &D::get_uint32_value));
+    case types::TK_INT64: return std::to_string(read(data, id, &D::get_int64_value));
+    case types::TK_UINT64: return std::to_string(read(data, id, &D::get_uint64_value));
+    case types::TK_FLOAT32: return round_trip_text(read(data, id, &D::get_float32_value));
+    case types::TK_FLOAT64: return round_trip_text(read(data, id, &D::get_float64_value));
+    case types::TK_FLOAT128: return round_trip_text(static_cast<double>(read(data, id, &D::get_float128_value)));
+    case types::TK_CHAR8: return yaml_quoted(std::string(1, read(data, id, &D::get_char8_value)));
+    case types::TK_STRING8: return yaml_quoted(read(data, id, &D::get_string_value));
+    case types::TK_ENUM: return read<std::string>(data, id, &D::get_enum_value);  // the name, not the number
     default: return "(a value of a kind this printer does not show)";
   }
 }

@@ -10,20 +10,24 @@
 
 namespace wysiwyf {
 
+namespace fs = std::filesystem;
+
+std::string find_in_config_dirs(const std::string& relative) {
+  std::error_code ec;
+  for (const auto& d : config_search_dirs())
+    if (fs::exists(fs::path(d) / relative, ec)) return (fs::path(d) / relative).string();
+  return "";
+}
+
 std::string find_config_file(const std::string& path) {
-  namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::path(path).is_absolute() || fs::exists(path, ec)) {
     if (fs::exists(path, ec)) return path;
     throw std::invalid_argument("configuration file '" + path + "' does not exist");
   }
-  const std::vector<std::string> dirs = config_search_dirs();
+  if (std::string found = find_in_config_dirs(path); !found.empty()) return found;
   std::string looked = "the working directory";
-  for (const auto& d : dirs) {
-    const fs::path candidate = fs::path(d) / path;
-    if (fs::exists(candidate, ec)) return candidate.string();
-    looked += ", " + d;
-  }
+  for (const auto& d : config_search_dirs()) looked += ", " + d;
   throw std::invalid_argument("configuration file '" + path + "' not found (looked in " + looked + ")");
 }
 

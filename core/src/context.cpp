@@ -3,8 +3,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <iomanip>
-#include <limits>
 #include <sstream>
 
 #include "wysiwyf/number_text.hpp"

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "wysiwyf/config_files.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/search_paths.hpp"
 #include "wysiwyf/validator.hpp"
@@ -173,9 +174,8 @@ class Parser {
     const fs::path beside = fs::path(including).parent_path() / p;
     std::error_code ec;
     if (fs::exists(beside, ec)) return beside.string();
-    for (const auto& dir : config_search_dirs())
-      if (fs::exists(fs::path(dir) / p, ec)) return (fs::path(dir) / p).string();
-    return beside.string();
+    const std::string found = find_in_config_dirs(name);
+    return found.empty() ? beside.string() : found;
   }
 
   // A --set path=value: a one-value layer applied over the files.

@@ -228,18 +228,6 @@ struct Runtime::Impl final : RunHost {
       d.instance(slot->spec->name);
       d.type(slot->spec->type.value);
       d.process(slot->spec->process_name());
-      Health health = Health::kOk;
-      std::string health_reason;
-      {
-        std::lock_guard<std::mutex> lock(slot->health_mutex);
-        health = slot->health;
-        health_reason = slot->health_reason;
-      }
-      d.state(!slot->last_error.empty() || health == Health::kFault ? ComponentState::STATE_FAULT
-              : health == Health::kHolding                          ? ComponentState::STATE_HOLDING
-              : final                                               ? ComponentState::STATE_STOPPED
-              : slot->stage == Slot::Stage::kActive                 ? ComponentState::STATE_ACTIVE
-                                                                    : ComponentState::STATE_CONFIGURED);
       d.rate_hz(slot->spec->rate.value);
       d.tick_rate_hz(window_s > 0 ? static_cast<double>(s.window_ticks) / window_s : 0.0);
       d.tick_time_p50_us(s.p50_us);
@@ -251,13 +239,18 @@ struct Runtime::Impl final : RunHost {
       d.ticks(s.ticks);
       d.overruns(s.overruns);
       d.dropped_samples(slot->dropped());
-      {
+      {  // what the component reported, read at once (not held while writing: its thread may report)
         std::lock_guard<std::mutex> lock(slot->health_mutex);
+        d.state(!slot->last_error.empty() || slot->health == Health::kFault ? ComponentState::STATE_FAULT
+                : slot->health == Health::kHolding                          ? ComponentState::STATE_HOLDING
+                : final                                                     ? ComponentState::STATE_STOPPED
+                : slot->stage == Slot::Stage::kActive                       ? ComponentState::STATE_ACTIVE
+                                                                            : ComponentState::STATE_CONFIGURED);
         d.rejected_samples(slot->rejected);
         d.warnings(slot->warnings);
         d.last_warning(slot->last_warning.substr(0, 255));
+        d.last_error((slot->last_error.empty() ? slot->health_reason : slot->last_error).substr(0, 255));
       }
-      d.last_error((slot->last_error.empty() ? health_reason : slot->last_error).substr(0, 255));
       diagnostics.write(d);
     }
   }
@@ -480,15 +473,9 @@ void Runtime::Impl::teardown(RunResult& result) {
     std::lock_guard<std::mutex> lock(slot->health_mutex);
     result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns, s.p50_us,
                                                 s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us, s.late_max_us,
-                                                slot->dropped(), slot->rejected, slot->warnings, "ok", ""});
-    ComponentReport& r = result.components.back();
-    if (!slot->last_error.empty()) {
-      r.state = "failed";
-      r.state_reason = slot->last_error;
-    } else {
-      r.state = to_string(slot->worst_health);
-      r.state_reason = slot->worst_reason;
-    }
+                                                slot->dropped(), slot->rejected, slot->warnings,
+                                                slot->last_error.empty() ? to_string(slot->worst_health) : "failed",
+                                                slot->last_error.empty() ? slot->worst_reason : slot->last_error});
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

@@ -1,7 +1,5 @@
 #include "wysiwyf/msgs.hpp"
 
-#include <iomanip>
-#include <limits>
 #include <sstream>
 
 #include "wysiwyf/idl/geometry_msgsPubSubTypes.h"

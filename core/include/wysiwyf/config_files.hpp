@@ -9,4 +9,7 @@ namespace wysiwyf {
 
 std::string find_config_file(const std::string& path);
 
+// `relative` in the first of config_search_dirs() that has it; empty when none does.
+std::string find_in_config_dirs(const std::string& relative);
+
 }  // namespace wysiwyf
