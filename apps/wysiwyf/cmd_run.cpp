@@ -56,6 +56,7 @@ void print_report(const RunResult& r, bool real) {
     if (real) std::cout << std::setw(14) << c.late_p50_us << std::setw(14) << c.late_p99_us;
     std::cout << "  " << c.state << (c.state_reason.empty() ? "" : ": " + c.state_reason) << "\n";
   }
+  for (const auto& line : r.dds_problems) std::cout << "dds: " << line << "\n";
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
-#include <atomic>
 #include <stdexcept>
 
 #include "wysiwyf/dds.hpp"
@@ -19,44 +18,89 @@ using namespace eprosima::fastdds::dds;
 
 namespace {
 
-// Writes only while a reader is matched: an unwatched topic costs no serialisation. Transient-
-// local topics always write, so a late reader still gets the last samples.
-class WriterLink final : public DdsWriterLink, public DataWriterListener {
- public:
-  WriterLink(Publisher* publisher, Topic* topic, const Qos& qos)
-      : always_(qos.durability == Durability::kTransientLocal) {
-    writer_ = publisher->create_datawriter(topic, dds::writer_qos(qos), this, StatusMask::publication_matched());
-    if (!writer_) throw std::runtime_error("cannot create a DDS writer for topic '" + topic->get_name() + "'");
-  }
-  void write(const void* sample) override {
-    if (always_ || matched_.load(std::memory_order_relaxed) > 0) writer_->write(const_cast<void*>(sample));
-  }
-  void on_publication_matched(DataWriter*, const PublicationMatchedStatus& status) override {
-    matched_.store(status.current_count, std::memory_order_relaxed);
-  }
-
- private:
-  DataWriter* writer_ = nullptr;
-  bool always_;
-  std::atomic<int> matched_{0};
+// Counts what DDS reports for one endpoint; read by health() from another thread.
+struct Counters {
+  std::atomic<std::uint64_t> incompatible{0};
+  std::atomic<int> last_policy{0};
+  std::atomic<std::uint64_t> lost{0};
 };
 
 }  // namespace
 
+struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterListener {
+  WriterLink(DdsBridge& b, TopicChannelBase& c, Topic* topic)
+      : bridge(b),
+        channel(c),
+        always(c.writer_qos().durability == Durability::kTransientLocal),
+        buffer(c.create_sample()) {
+    writer =
+        b.publisher_->create_datawriter(topic, dds::writer_qos(c.writer_qos()), this,
+                                        StatusMask::publication_matched() << StatusMask::offered_incompatible_qos());
+    if (!writer) throw std::runtime_error("cannot create a DDS writer for topic '" + topic->get_name() + "'");
+  }
+  ~WriterLink() override { channel.delete_sample(buffer); }
+
+  bool wanted() const override { return always || matched.load(std::memory_order_relaxed) > 0; }
+  void queued() override {
+    pending.store(true, std::memory_order_release);
+    bridge.dirty_.store(true, std::memory_order_release);
+  }
+  // Publisher thread: sends what waits in the outbox.
+  void drain() {
+    if (!pending.exchange(false, std::memory_order_acq_rel)) return;
+    while (channel.take_outgoing(buffer)) writer->write(buffer);
+  }
+
+  void on_publication_matched(DataWriter*, const PublicationMatchedStatus& status) override {
+    matched.store(status.current_count, std::memory_order_relaxed);
+  }
+  void on_offered_incompatible_qos(DataWriter*, const OfferedIncompatibleQosStatus& status) override {
+    counters.incompatible.fetch_add(1);
+    counters.last_policy.store(status.last_policy_id);
+    bridge.say("topic '" + channel.topic() + "': a reader in another process was refused: " +
+               dds::incompatibility(status.last_policy_id, channel.writer_qos(), true) + "; no samples flow to it");
+  }
+
+  DdsBridge& bridge;
+  TopicChannelBase& channel;
+  const bool always;  // transient-local: written with or without readers, for late joiners
+  void* buffer;       // the sample being sent
+  DataWriter* writer = nullptr;
+  std::atomic<int> matched{0};
+  std::atomic<bool> pending{false};
+  Counters counters;
+};
+
 struct DdsBridge::ReaderLink final : public DataReaderListener {
-  ReaderLink(TopicChannelBase& c) : channel(c), sample(c.create_sample()) {}
+  ReaderLink(DdsBridge& b, TopicChannelBase& c) : bridge(b), channel(c), sample(c.create_sample()) {}
   ~ReaderLink() override { channel.delete_sample(sample); }
   void on_data_available(DataReader* reader) override {
     SampleInfo info;
     while (reader->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK)
       if (info.valid_data) channel.deliver_from_dds(sample);
   }
+  void on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) override {
+    counters.incompatible.fetch_add(1);
+    counters.last_policy.store(status.last_policy_id);
+    bridge.say("topic '" + channel.topic() + "': a writer in another process was refused: " +
+               dds::incompatibility(status.last_policy_id, channel.reader_qos(), false) + "; no samples come from it");
+  }
+  void on_sample_lost(DataReader*, const SampleLostStatus& status) override {
+    // Said once; then counted (health(), the diagnostics).
+    if (counters.lost.exchange(static_cast<std::uint64_t>(status.total_count)) == 0)
+      bridge.say("topic '" + channel.topic() + "': DDS lost samples on the way in (" +
+                 std::to_string(status.total_count) + " so far; further losses are counted)");
+  }
+  DdsBridge& bridge;
   TopicChannelBase& channel;
   void* sample;
+  Counters counters;
 };
 
 DdsBridge::DdsBridge(int domain, const std::string& transport, const std::string& profiles_file,
-                     const std::string& participant_profile, const std::string& participant_name) {
+                     const std::string& participant_profile, const std::string& participant_name,
+                     std::function<void(const std::string&)> report)
+    : report_(std::move(report)) {
   auto* factory = DomainParticipantFactory::get_instance();
   if (!profiles_file.empty() && factory->load_XML_profiles_file(profiles_file) != ReturnCode_t::RETCODE_OK)
     throw std::runtime_error("cannot load Fast DDS XML profiles from '" + profiles_file + "'");
@@ -72,10 +116,30 @@ DdsBridge::DdsBridge(int domain, const std::string& transport, const std::string
 }
 
 DdsBridge::~DdsBridge() {
+  if (publisher_thread_.joinable()) {
+    bell_.stop();
+    publisher_thread_.join();  // it sends what is still waiting first
+  }
+  for (auto& w : writers_) w->channel.set_dds_writer(nullptr);  // a later write stays local
   if (!participant_) return;
   participant_->delete_contained_entities();  // readers stop calling their listeners here
   DomainParticipantFactory::get_instance()->delete_participant(participant_);
   readers_.clear();
+  writers_.clear();
+}
+
+void DdsBridge::publish_loop() {
+  using Wake = Doorbell::Wake;
+  Doorbell::Clock::time_point rang;
+  while (true) {
+    const Wake w = bell_.wait(rang, Doorbell::Clock::now() + kIdleFlush);
+    if (w != Wake::kRang) dirty_.store(false, std::memory_order_relaxed);  // (drained below either way)
+    {
+      std::lock_guard<std::mutex> lock(writers_mutex_);
+      for (auto& link : writers_) link->drain();
+    }
+    if (w == Wake::kStopped) return;
+  }
 }
 
 void DdsBridge::connect(TopicChannelBase& channel) {
@@ -90,14 +154,39 @@ void DdsBridge::connect(TopicChannelBase& channel) {
   if (!topic)
     throw std::runtime_error("cannot create DDS topic '" + channel.topic() + "' of type " + channel.type_name());
   if (channel.local_writers() > 0) {
-    channel.set_dds_writer(std::make_unique<WriterLink>(publisher_, topic, channel.writer_qos()));
+    auto link = std::make_unique<WriterLink>(*this, channel, topic);
+    WriterLink* raw = link.get();
+    {
+      std::lock_guard<std::mutex> lock(writers_mutex_);
+      writers_.push_back(std::move(link));
+    }
+    channel.set_dds_writer(raw);
+    if (!publisher_thread_.joinable()) publisher_thread_ = std::thread([this] { publish_loop(); });
   } else if (channel.local_readers() > 0) {
-    auto link = std::make_unique<ReaderLink>(channel);
+    auto link = std::make_unique<ReaderLink>(*this, channel);
     if (!subscriber_->create_datareader(topic, dds::reader_qos(channel.reader_qos()), link.get(),
-                                        StatusMask::data_available()))
+                                        StatusMask::data_available()
+                                            << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()))
       throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'");
     readers_.push_back(std::move(link));
   }
+}
+
+std::vector<DdsTopicHealth> DdsBridge::health() const {
+  std::vector<DdsTopicHealth> out;
+  auto add = [&](const TopicChannelBase& channel, const Counters& c, std::uint64_t outbox_dropped) {
+    const std::uint64_t incompatible = c.incompatible.load();
+    if (incompatible == 0 && c.lost.load() == 0 && outbox_dropped == 0) return;
+    out.push_back(DdsTopicHealth{channel.topic(), incompatible,
+                                 incompatible ? dds::qos_policy_name(c.last_policy.load()) : "", c.lost.load(),
+                                 outbox_dropped});
+  };
+  {
+    std::lock_guard<std::mutex> lock(writers_mutex_);
+    for (const auto& w : writers_) add(w->channel, w->counters, w->channel.outgoing_dropped());
+  }
+  for (const auto& r : readers_) add(r->channel, r->counters, 0);
+  return out;
 }
 
 }  // namespace wysiwyf::detail

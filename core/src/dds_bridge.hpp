@@ -2,34 +2,79 @@
 // Carries a process's topics over Fast DDS: a DataWriter for every topic a local component
 // publishes (so other processes and monitors see it), a DataReader for every topic local
 // components read but no local component publishes.
+//
+// Components never call Fast DDS while they tick: a written sample is copied into its channel's
+// outbox (when someone outside listens), and the bridge's publisher thread serialises and sends
+// it. The executor wakes that thread after the tick (flush_soon), outside the tick's timing.
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "wysiwyf/detail/doorbell.hpp"
 #include "wysiwyf/detail/topic_channel.hpp"
 
 namespace wysiwyf::detail {
 
+// What DDS says went wrong on one topic: endpoints of another process whose QoS cannot match
+// (both sides report it), samples DDS lost on the way in, samples the outbox dropped on the way out.
+struct DdsTopicHealth {
+  std::string topic;
+  std::uint64_t incompatible_qos = 0;  // matches refused, this side's count
+  std::string last_incompatible;       // the last refused policy, e.g. "RELIABILITY"
+  std::uint64_t lost = 0;              // reader: samples DDS reports lost (best effort gaps, full history)
+  std::uint64_t outbox_dropped = 0;    // writer: samples the publisher thread had no time to send
+};
+
 class DdsBridge {
  public:
+  // `report` gets one line for each problem DDS reports (QoS mismatch, lost samples), from DDS's
+  // threads; it must be thread-safe. Null: they are only counted.
   DdsBridge(int domain, const std::string& transport, const std::string& profiles_file,
-            const std::string& participant_profile, const std::string& participant_name);
+            const std::string& participant_profile, const std::string& participant_name,
+            std::function<void(const std::string&)> report = nullptr);
   ~DdsBridge();
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;
 
   void connect(TopicChannelBase& channel);
+  // Wakes the publisher thread if a sample waits for it. Cheap when none does; a wake costs a
+  // futex call, so the executor calls it after a tick has been timed. Without it samples still
+  // go out within kIdleFlush.
+  void flush_soon() {
+    if (dirty_.load(std::memory_order_relaxed) && dirty_.exchange(false, std::memory_order_acq_rel)) bell_.ring();
+  }
+  std::vector<DdsTopicHealth> health() const;
+
+  static constexpr std::chrono::milliseconds kIdleFlush{5};
 
  private:
+  struct WriterLink;
   struct ReaderLink;
+  void publish_loop();
+  void say(const std::string& line) const {
+    if (report_) report_(line);
+  }
+
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::function<void(const std::string&)> report_;
+  mutable std::mutex writers_mutex_;  // connect() adds while the publisher thread sends
+  std::vector<std::unique_ptr<WriterLink>> writers_;
   std::vector<std::unique_ptr<ReaderLink>> readers_;
+  std::atomic<bool> dirty_{false};  // some writer's outbox has samples
+  Doorbell bell_;
+  std::thread publisher_thread_;
 };
 
 }  // namespace wysiwyf::detail

@@ -67,4 +67,41 @@ DataWriterQos writer_qos(const Qos& q) { return endpoint_qos(DATAWRITER_QOS_DEFA
 
 DataReaderQos reader_qos(const Qos& q) { return endpoint_qos(DATAREADER_QOS_DEFAULT, q); }
 
+std::string qos_policy_name(int policy_id) {
+  switch (policy_id) {
+    case DURABILITY_QOS_POLICY_ID: return "DURABILITY";
+    case PRESENTATION_QOS_POLICY_ID: return "PRESENTATION";
+    case DEADLINE_QOS_POLICY_ID: return "DEADLINE";
+    case LATENCYBUDGET_QOS_POLICY_ID: return "LATENCY_BUDGET";
+    case OWNERSHIP_QOS_POLICY_ID: return "OWNERSHIP";
+    case LIVELINESS_QOS_POLICY_ID: return "LIVELINESS";
+    case PARTITION_QOS_POLICY_ID: return "PARTITION";
+    case RELIABILITY_QOS_POLICY_ID: return "RELIABILITY";
+    case DESTINATIONORDER_QOS_POLICY_ID: return "DESTINATION_ORDER";
+    case DATAREPRESENTATION_QOS_POLICY_ID: return "DATA_REPRESENTATION";
+    case TYPECONSISTENCYENFORCEMENT_QOS_POLICY_ID: return "TYPE_CONSISTENCY_ENFORCEMENT";
+    case DISABLEPOSITIVEACKS_QOS_POLICY_ID: return "DISABLE_POSITIVE_ACKS";
+    default: return "QoS policy " + std::to_string(policy_id);
+  }
+}
+
+std::string incompatibility(int policy_id, const Qos& ours, bool writer) {
+  const std::string name = qos_policy_name(policy_id);
+  // Only an offer weaker than the request fails: the reader asks for more than the writer gives.
+  if (policy_id == RELIABILITY_QOS_POLICY_ID)
+    return name + (writer ? ": a reader wants reliable, this writer offers " : ": this reader wants ") +
+           (writer ? (ours.reliability == Reliability::kReliable ? "reliable" : "best effort")
+                   : std::string(ours.reliability == Reliability::kReliable ? "reliable" : "best effort") +
+                         ", the writer offers best effort");
+  if (policy_id == DURABILITY_QOS_POLICY_ID)
+    return name + (writer ? ": a reader wants transient-local, this writer offers volatile"
+                          : ": this reader wants transient-local, the writer offers volatile");
+  if (policy_id == DEADLINE_QOS_POLICY_ID)
+    return name +
+           (writer ? ": a reader wants a shorter deadline than this writer's "
+                   : ": this reader's deadline is shorter than the writer's; this reader's is ") +
+           (ours.deadline_ns > 0 ? std::to_string(ours.deadline_ns / 1000) + " us" : "none");
+  return name + ": the two endpoints' settings cannot match";
+}
+
 }  // namespace wysiwyf::dds

@@ -332,7 +332,16 @@ class Parser {
 
   void apply_clock(const YAML::Node& n, const std::string& file, ClockSpec& clock) {
     check_keys(n, file, kClockKeys, "clock key");
-    if (const YAML::Node m = n["mode"]) {
+    // `key: ~` removes what an earlier layer set (the clock's default applies): a real-clock
+    // variant of a sim pipeline drops its pace and step with `--set clock.pace=null`.
+    const auto remove_if_null = [&](const char* key, auto& field) {
+      if (const YAML::Node m = n[key]; m && m.IsNull()) field = std::decay_t<decltype(field)>{};
+    };
+    remove_if_null("mode", clock.mode);
+    remove_if_null("step", clock.step_ns);
+    remove_if_null("duration", clock.duration_ns);
+    remove_if_null("pace", clock.pace);
+    if (const YAML::Node m = n["mode"]; m && !m.IsNull()) {
       if (m.IsScalar() && m.Scalar() == "sim")
         clock.mode.assign(ClockMode::kSim, at(m, file));
       else if (m.IsScalar() && m.Scalar() == "real")
@@ -340,9 +349,10 @@ class Parser {
       else
         error(at(m, file), "clock mode: found " + describe_node(m) + "; expected sim or real");
     }
-    if (const YAML::Node m = n["step"]) get_duration(m, file, "clock step", false, clock.step_ns);
-    if (const YAML::Node m = n["duration"]) get_duration(m, file, "clock duration", true, clock.duration_ns);
-    if (const YAML::Node m = n["pace"]) {
+    if (const YAML::Node m = n["step"]; m && !m.IsNull()) get_duration(m, file, "clock step", false, clock.step_ns);
+    if (const YAML::Node m = n["duration"]; m && !m.IsNull())
+      get_duration(m, file, "clock duration", true, clock.duration_ns);
+    if (const YAML::Node m = n["pace"]; m && !m.IsNull()) {
       double pace = 0;
       if (!to_double(m, pace) || pace < 0)
         error(at(m, file), "clock pace: found " + describe_node(m) +

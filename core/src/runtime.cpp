@@ -183,7 +183,9 @@ struct Runtime::Impl final : RunHost {
     guarded(
         slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
     slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
+    if (flush_after_tick) bridge->flush_soon();  // DDS sends what the tick wrote, on its own thread
   }
+  bool flush_after_tick = false;  // real clock: each tick wakes the publisher; sim clock: each step
 
   // Sim clock: the data-triggered components whose inputs got samples tick now, in file order,
   // pass after pass until none is rung (a chain runs as one wave in the producer's step).
@@ -292,7 +294,8 @@ bool Runtime::Impl::setup(RunResult& result) {
     const std::string name = (spec.name.set ? spec.name.value : "pipeline") + "/" +
                              (options.process.empty() ? "all" : options.process) + "/" + std::to_string(getpid());
     bridge = std::make_unique<detail::DdsBridge>(spec.domain_id(), spec.transport(), spec.dds.profiles_file.value,
-                                                 spec.dds.participant_profile.value, name);
+                                                 spec.dds.participant_profile.value, name,
+                                                 [this](const std::string& line) { log("dds", line); });
   } catch (const std::exception& e) {
     result.ok = false;
     result.error = std::string("DDS: ") + e.what();
@@ -388,6 +391,7 @@ void Runtime::Impl::run_sim(RunResult& result) {
       publish_diagnostics(Time{t}, 1.0, false);
       next_diag += kNanosPerSecond;
     }
+    bridge->flush_soon();  // DDS sends what this step wrote, on the bridge's thread
     t += step;
     if (pace > 0) std::this_thread::sleep_until(start + std::chrono::nanoseconds(static_cast<std::int64_t>(t / pace)));
     if (options.progress && (++steps & 0xff) == 0 && Clock::now() >= next_progress) {
@@ -401,6 +405,7 @@ void Runtime::Impl::run_sim(RunResult& result) {
 
 void Runtime::Impl::run_real(RunResult& result) {
   const auto start = Clock::now();
+  flush_after_tick = true;
   std::vector<std::thread> threads;
   for (auto& slot_ptr : slots) {
     Slot* slot = slot_ptr.get();
@@ -447,6 +452,7 @@ void Runtime::Impl::run_real(RunResult& result) {
       request_stop("", "duration reached");
     if (Clock::now() >= next_diag) {
       publish_diagnostics(Time{wall_now_ns()}, 1.0, false);
+      bridge->flush_soon();
       next_diag += std::chrono::seconds(1);
     }
     std::unique_lock<std::mutex> lock(stop_mutex);
@@ -479,6 +485,18 @@ void Runtime::Impl::teardown(RunResult& result) {
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();
+  if (bridge) {
+    for (const auto& h : bridge->health()) {
+      std::string line = "topic '" + h.topic + "':";
+      if (h.incompatible_qos)
+        line += " " + std::to_string(h.incompatible_qos) + " endpoint(s) of other processes refused (" +
+                h.last_incompatible + ");";
+      if (h.lost) line += " " + std::to_string(h.lost) + " samples lost on the way in;";
+      if (h.outbox_dropped) line += " " + std::to_string(h.outbox_dropped) + " samples never sent (publisher behind);";
+      line.pop_back();
+      result.dds_problems.push_back(line);
+    }
+  }
   bridge.reset();
   if (!fault.empty()) {
     result.ok = false;

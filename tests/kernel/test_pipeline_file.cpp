@@ -68,6 +68,14 @@ TEST(PipelineFile, ANullRemovesAParameterATopicOrAComponent) {
   EXPECT_EQ(a->topics.count("out"), 0u);
   // And from the command line alone.
   EXPECT_EQ(load_pipeline((dir / "shipped.yaml").string(), {"b=~"}).components.size(), 1u);
+  // A clock key: a paced sim pipeline run on the real clock drops its pace and step.
+  std::ofstream(dir / "paced.yaml") << "wysiwyf: 1\nclock: {mode: sim, step: 1ms, pace: 1}\ncomponents:\n"
+                                       "  a: {type: test_probe, rate: 100}\n";
+  const PipelineSpec real =
+      load_pipeline((dir / "paced.yaml").string(), {"clock.mode=real", "clock.pace=null", "clock.step=~"});
+  EXPECT_EQ(real.clock_mode(), ClockMode::kReal);
+  EXPECT_FALSE(real.clock.pace.set);
+  EXPECT_FALSE(real.clock.step_ns.set);
 }
 
 // include: looks beside the including file, then in the config path ($WYSIWYF_CONFIG_PATH first).

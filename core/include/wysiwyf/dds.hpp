@@ -24,4 +24,10 @@ eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& 
 eprosima::fastdds::dds::DataWriterQos writer_qos(const Qos& qos);
 eprosima::fastdds::dds::DataReaderQos reader_qos(const Qos& qos);
 
+// A Fast DDS QosPolicyId_t by its DDS name ("RELIABILITY", "DURABILITY", ...).
+std::string qos_policy_name(int policy_id);
+// Why a remote endpoint was refused, from this side's port QoS: e.g. "RELIABILITY: a reader
+// wants reliable, this writer offers best effort". `writer`: this side writes.
+std::string incompatibility(int policy_id, const Qos& ours, bool writer);
+
 }  // namespace wysiwyf::dds

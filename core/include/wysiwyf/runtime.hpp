@@ -42,6 +42,9 @@ struct RunResult {
   std::int64_t sim_time_ns = 0;
   double wall_seconds = 0;
   std::vector<ComponentReport> components;
+  // What DDS reported per topic over the run, a line each: QoS mismatches with other processes,
+  // samples lost on the way in, samples the publisher thread had no time to send. Empty: none.
+  std::vector<std::string> dds_problems;
   // A component that held, faulted or failed during the run (nullptr: none); `wysiwyf run` exits
   // non-zero with it.
   const ComponentReport* first_unhealthy() const {

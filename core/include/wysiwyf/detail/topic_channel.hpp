@@ -3,6 +3,7 @@
 // topic to and from other processes and monitors. Local delivery is synchronous (the sim clock's
 // determinism rests on it); DDS delivery is asynchronous.
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -14,11 +15,17 @@
 
 namespace wysiwyf::detail {
 
-// The DDS side of a writer, implemented in core/src/dds_bridge.cpp.
+// The DDS side of a writer, implemented in core/src/dds_bridge.cpp. The component's thread only
+// copies a sample into the channel's outbox; the bridge's publisher thread serialises and sends
+// it, so a monitor attaching or detaching does not change how long a tick takes.
 class DdsWriterLink {
  public:
   virtual ~DdsWriterLink() = default;
-  virtual void write(const void* sample) = 0;
+  // Whether a sample written now goes out: a reader is matched, or the topic is transient-local
+  // (a late reader still gets the last samples). Unwatched topics cost no copy.
+  virtual bool wanted() const = 0;
+  // A sample is waiting in the outbox.
+  virtual void queued() = 0;
 };
 
 class TopicChannelBase {
@@ -37,7 +44,17 @@ class TopicChannelBase {
   const Qos& writer_qos() const { return writer_qos_; }
   const Qos& reader_qos() const { return reader_qos_; }
 
-  void set_dds_writer(std::unique_ptr<DdsWriterLink> link) { dds_writer_ = std::move(link); }
+  // The bridge owns the link and unsets it before it goes (null: local only from then on).
+  void set_dds_writer(DdsWriterLink* link) {
+    if (link && !dds_writer_) open_outbox(writer_qos_.depth);
+    dds_writer_ = link;
+  }
+  // The publisher thread: the oldest sample waiting for DDS into `sample` (of this channel's
+  // type); false when none.
+  virtual bool take_outgoing(void* sample) = 0;
+  // Samples that never reached DDS: the outbox was full when they came (the publisher thread
+  // fell behind by the writer's depth).
+  virtual std::uint64_t outgoing_dropped() const = 0;
   // Called from a DDS listener thread with a sample of this channel's type, which it may take
   // the contents of (the caller reuses it only as a buffer for the next take).
   virtual void deliver_from_dds(void* sample) = 0;
@@ -59,13 +76,15 @@ class TopicChannelBase {
       into.deadline_ns = port.deadline_ns;
   }
 
+  virtual void open_outbox(int depth) = 0;
+
   std::string topic_;
   std::string type_name_;
   eprosima::fastdds::dds::TopicDataType* (*make_type_)();
   int local_writers_ = 0;
   Qos writer_qos_;
   Qos reader_qos_;
-  std::unique_ptr<DdsWriterLink> dds_writer_;
+  DdsWriterLink* dds_writer_ = nullptr;
 };
 
 template <class T>
@@ -87,8 +106,13 @@ class TopicChannel final : public TopicChannelBase {
 
   void publish(const T& sample) {
     for (auto& q : queues_) q->push(sample);
-    if (dds_writer_) dds_writer_->write(&sample);
+    if (dds_writer_ && dds_writer_->wanted()) {
+      outbox_->push(sample);  // a copy into a reused slot; DDS sends it from the publisher thread
+      dds_writer_->queued();
+    }
   }
+  bool take_outgoing(void* sample) override { return outbox_ && outbox_->take(*static_cast<T*>(sample)); }
+  std::uint64_t outgoing_dropped() const override { return outbox_ ? outbox_->dropped() : 0; }
 
   void deliver_from_dds(void* sample) override {
     T& s = *static_cast<T*>(sample);
@@ -100,7 +124,10 @@ class TopicChannel final : public TopicChannelBase {
   void delete_sample(void* sample) const override { delete static_cast<T*>(sample); }
 
  private:
+  void open_outbox(int depth) override { outbox_ = std::make_unique<SubscriberQueue<T>>(depth); }
+
   std::vector<std::unique_ptr<SubscriberQueue<T>>> queues_;
+  std::unique_ptr<SubscriberQueue<T>> outbox_;  // samples on their way to DDS
 };
 
 }  // namespace wysiwyf::detail

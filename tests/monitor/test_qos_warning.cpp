@@ -1,0 +1,49 @@
+// Two processes whose QoS cannot match say so, each on its own side, with the topic and the
+// policy: before, a reliable reader on a best-effort writer silently received nothing.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "../kernel/cli_process.hpp"
+#include "../kernel/test_support.hpp"
+
+namespace wysiwyf::test {
+
+namespace fs = std::filesystem;
+
+TEST(QosMismatch, AReliableReaderOnABestEffortWriterIsReportedOnBothSides) {
+  const fs::path dir = scratch_dir();
+  const fs::path pipeline = dir / "mismatch.yaml";
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: mismatch\ndomain: 64\ndds: {transport: local}\n"
+                             "clock: {mode: sim, step: 1ms, duration: 3s, pace: 1}\n"
+                             "components:\n"
+                             "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing},\n"
+                             "        qos: {out: {reliability: best_effort}}}\n"
+                             "  sink: {type: test_probe, rate: 100, process: consumer, topics: {in: crossing},\n"
+                             "         qos: {in: {reliability: reliable}}}\n";
+  const pid_t producer =
+      spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "producer.log");
+  const pid_t consumer =
+      spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
+  EXPECT_EQ(wait_exit(producer, std::chrono::seconds(60)), 0) << read_file(dir / "producer.log");
+  EXPECT_EQ(wait_exit(consumer, std::chrono::seconds(60)), 0) << read_file(dir / "consumer.log");
+  const std::string produced = read_file(dir / "producer.log"), consumed = read_file(dir / "consumer.log");
+  // As it happens, in the log...
+  EXPECT_NE(produced.find("[dds] topic 'crossing': a reader in another process was refused: RELIABILITY: a reader "
+                          "wants reliable, this writer offers best effort; no samples flow to it"),
+            std::string::npos)
+      << produced;
+  EXPECT_NE(consumed.find("[dds] topic 'crossing': a writer in another process was refused: RELIABILITY: this "
+                          "reader wants reliable, the writer offers best effort; no samples come from it"),
+            std::string::npos)
+      << consumed;
+  // ...and in the run's summary.
+  EXPECT_NE(produced.find("dds: topic 'crossing': 1 endpoint(s) of other processes refused (RELIABILITY)"),
+            std::string::npos)
+      << produced;
+  EXPECT_NE(consumed.find("dds: topic 'crossing': 1 endpoint(s) of other processes refused (RELIABILITY)"),
+            std::string::npos)
+      << consumed;
+}
+
+}  // namespace wysiwyf::test
