@@ -34,5 +34,7 @@ int cmd_validate(Args args);
 int cmd_components(Args args);
 int cmd_topic(Args args);
 int cmd_new(Args args);
+int cmd_record(Args args);
+int cmd_play(Args args);
 
 }  // namespace wysiwyf::cli

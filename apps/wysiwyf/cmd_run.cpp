@@ -64,6 +64,16 @@ void print_report(const RunResult& r, bool real) {
 int cmd_run(Args args) {
   const bool progress = args.flag("--progress");
   const bool no_progress = args.flag("--no-progress");
+  double start_after = 0;
+  if (auto v = args.value("--start-after")) {
+    try {
+      start_after = std::stod(*v);
+    } catch (...) {
+      start_after = -1;
+    }
+    if (!(start_after >= 0) || start_after > 3600)
+      throw UsageError("--start-after: found '" + *v + "'; expected seconds from 0 to 3600");
+  }
   Loader loader;
   std::string process;
   auto loaded = load_and_validate(args, loader, process);
@@ -72,6 +82,7 @@ int cmd_run(Args args) {
   install_stop_signal_handlers();
   RunOptions options;
   options.process = process;
+  options.start_after_s = start_after;
   options.progress = progress || (!no_progress && isatty(STDERR_FILENO));
   Runtime runtime(loaded->spec, loader, options);
   const RunResult result = runtime.run();

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "cli.hpp"
+#include "dds_session.hpp"
 #include "dynamic_yaml.hpp"
 #include "message_libraries.hpp"
 #include "wysiwyf/dds.hpp"
@@ -36,112 +37,6 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 using SamplePrinter = std::function<std::string(const void*)>;
-
-struct TopicInfo {
-  std::string type;
-  std::set<std::string> writers, readers;  // GUIDs
-  ReliabilityQosPolicyKind reliability = BEST_EFFORT_RELIABILITY_QOS;
-  DurabilityQosPolicyKind durability = VOLATILE_DURABILITY_QOS;
-};
-
-// Collects the topics that remote writers and readers announce.
-class Discovery : public DomainParticipantListener {
- public:
-  void on_publisher_discovery(DomainParticipant*, eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
-    using S = eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERY_STATUS;
-    std::ostringstream guid;
-    guid << info.info.guid();
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto& t = topics_[info.info.topicName().to_string()];
-    t.type = info.info.typeName().to_string();
-    if (info.status == S::REMOVED_WRITER) {
-      t.writers.erase(guid.str());
-    } else {
-      t.writers.insert(guid.str());
-      t.reliability = info.info.m_qos.m_reliability.kind;
-      t.durability = info.info.m_qos.m_durability.kind;
-    }
-    cv_.notify_all();
-  }
-  void on_subscriber_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
-    using S = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
-    std::ostringstream guid;
-    guid << info.info.guid();
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto& t = topics_[info.info.topicName().to_string()];
-    t.type = info.info.typeName().to_string();
-    if (info.status == S::REMOVED_READER)
-      t.readers.erase(guid.str());
-    else
-      t.readers.insert(guid.str());
-    cv_.notify_all();
-  }
-
-  std::map<std::string, TopicInfo> topics() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return topics_;
-  }
-  // Waits until some writer announces `topic`; its info, or nullopt at the deadline.
-  std::optional<TopicInfo> wait_for_writer(const std::string& topic, Clock::time_point deadline) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!stop_signal_received()) {
-      auto it = topics_.find(topic);
-      if (it != topics_.end() && !it->second.writers.empty()) return it->second;
-      if (cv_.wait_until(lock, std::min(deadline, Clock::now() + std::chrono::milliseconds(100))) ==
-              std::cv_status::timeout &&
-          Clock::now() >= deadline)
-        break;
-    }
-    return std::nullopt;
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  std::map<std::string, TopicInfo> topics_;
-};
-
-struct Session {
-  DomainParticipant* participant = nullptr;
-  Discovery discovery;
-  ~Session() {
-    if (participant) {
-      participant->delete_contained_entities();
-      DomainParticipantFactory::get_instance()->delete_participant(participant);
-    }
-  }
-};
-
-// --domain / --pipeline / --transport -> a participant that listens to discovery.
-void open(Args& args, Session& s) {
-  int domain = 0;
-  std::string transport = "default";
-  if (auto file = args.value("--pipeline")) {
-    try {
-      const PipelineSpec spec = load_pipeline(*file);
-      domain = spec.domain_id();
-      transport = spec.transport();
-    } catch (const ConfigError& e) {
-      throw UsageError(std::string("cannot read --pipeline: ") + e.what());
-    }
-  }
-  if (auto d = args.value("--domain")) {
-    try {
-      domain = std::stoi(*d);
-    } catch (...) {
-      throw UsageError("--domain: found '" + *d + "'; expected a domain id from 0 to 232");
-    }
-  }
-  if (auto t = args.value("--transport")) transport = *t;
-  DomainParticipantQos qos;
-  try {
-    qos = dds::participant_qos(transport, "wysiwyf-cli");
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  s.participant = DomainParticipantFactory::get_instance()->create_participant(domain, qos, &s.discovery);
-  if (!s.participant) throw std::runtime_error("cannot join DDS domain " + std::to_string(domain));
-}
 
 double seconds_option(Args& args, const std::string& name, double fallback) {
   auto v = args.value(name);

@@ -69,9 +69,10 @@ std::vector<std::string> Args::unknown_options() const {
 
 static const char* kUsage = R"(usage: wysiwyf <command> [options]
 
-  run FILE [--process NAME] [--set PATH=VALUE]... [--progress|--no-progress]
+  run FILE [--process NAME] [--set PATH=VALUE]... [--progress|--no-progress] [--start-after SECONDS]
         Run a pipeline (or one process group of it) until its duration ends, a component
         stops it, or Ctrl-C. PATH is e.g. tracker.params.threshold or clock.duration.
+        --start-after: wait this long with DDS up before t = 0 (a recorder misses nothing).
   validate FILE [--process NAME] [--set PATH=VALUE]...
         Check a pipeline against the component libraries without running it.
   components list
@@ -84,6 +85,15 @@ static const char* kUsage = R"(usage: wysiwyf <command> [options]
   topic hz TOPIC [--domain N | --pipeline FILE] [--transport T] [--window SECONDS] [--duration SECONDS]
         Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
         or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes.
+  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
+        Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
+        DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
+        half second (a killed recorder leaves a file readable up to its last chunk).
+  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]
+        Run PIPELINE on the sim clock with the recorded samples delivered to its readers in the
+        step of their stamps (a recorded run replays bit for bit; --rate is the pace, 0 flat out).
+  play FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--topics A,B] [--rate R] [--loop]
+        Publish the recorded samples onto a DDS domain on the real clock, spaced as recorded.
   new component NAME [--dir DIR]
         Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
         a Harness test) that builds and passes as written.
@@ -113,6 +123,8 @@ int main(int argc, char** argv) {
     if (command == "components") return wysiwyf::cli::cmd_components(std::move(rest));
     if (command == "topic") return wysiwyf::cli::cmd_topic(std::move(rest));
     if (command == "new") return wysiwyf::cli::cmd_new(std::move(rest));
+    if (command == "record") return wysiwyf::cli::cmd_record(std::move(rest));
+    if (command == "play") return wysiwyf::cli::cmd_play(std::move(rest));
     std::cerr << "wysiwyf: unknown command '" << command << "'; expected run, validate, components, topic or new\n\n"
               << kUsage;
     return 2;

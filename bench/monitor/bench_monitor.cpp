@@ -1,6 +1,6 @@
 // What watching costs the loop: config/pipelines/admittance-push.yaml on the real clock (the
 // 1 kHz admittance_sim with spin), run again and again with nothing attached and with each
-// monitor attached from another process, the conditions interleaved round by round in one run.
+// monitor attached from another process (topic hz, topic echo, record --all), the conditions interleaved round by round in one run.
 // Reports admittance_sim's tick p50/p99 (the kernel's last 1024 ticks: the end of each run,
 // long after the monitor attached) as the median over the rounds, and checks that the monitor
 // really received samples.
@@ -52,6 +52,10 @@ std::vector<Condition> conditions() {
       {"topic_echo",
        {"topic", "echo", "haptics/objects", "--domain", domain, "--transport", "local"},
        "child_frame_id"},
+      {"record_all",
+       {"record", "--all", "-o", (kWork / "record.mcap").string(), "--domain", domain, "--transport", "local",
+        "--no-progress"},
+       "  haptics/objects: "},
   };
 }
 

@@ -18,6 +18,8 @@
 #include <type_traits>
 #include <thread>
 
+#include <fastdds/dds/topic/TopicDataType.hpp>
+
 #include "dds_bridge.hpp"
 #include "wysiwyf/detail/doorbell.hpp"
 #include "tick_stats.hpp"
@@ -220,6 +222,43 @@ struct Runtime::Impl final : RunHost {
     }
   }
   static constexpr int kMaxTriggerPasses = 1000;
+
+  // The feed's samples: deserialised with the topic's type into a sample kept per topic, then
+  // delivered like a DDS sample.
+  struct FeedTarget {
+    detail::TopicChannelBase* channel = nullptr;
+    std::unique_ptr<eprosima::fastdds::dds::TopicDataType> type;
+    void* sample = nullptr;
+    ~FeedTarget() {
+      if (channel && sample) channel->delete_sample(sample);
+    }
+  };
+  std::map<std::string, FeedTarget> feed_targets;
+  eprosima::fastrtps::rtps::SerializedPayload_t feed_payload;
+  RunResult* feed_result = nullptr;
+  SampleFeed::Deliver feed_deliver = [this](const std::string& topic, const std::uint8_t* cdr, std::size_t size) {
+    auto refuse = [&](const std::string& why) { feed_result->feed_refused.emplace(topic, why); };
+    auto [it, added] = feed_targets.try_emplace(topic);
+    FeedTarget& target = it->second;
+    if (added) {
+      const auto& channels = bus.channels();
+      const auto c = channels.find(topic);
+      if (c == channels.end() || c->second->local_readers() == 0) return refuse("no component of the run reads it");
+      if (c->second->local_writers() > 0) return refuse("a component of the run publishes it");
+      target.channel = c->second.get();
+      target.type.reset(target.channel->make_type());
+      target.sample = target.channel->create_sample();
+    }
+    if (!target.sample) return;
+    if (feed_payload.max_size < size) feed_payload.reserve(static_cast<std::uint32_t>(size));
+    std::memcpy(feed_payload.data, cdr, size);
+    feed_payload.length = static_cast<std::uint32_t>(size);
+    feed_payload.pos = 0;
+    if (!target.type->deserialize(&feed_payload, target.sample))
+      return refuse("a sample does not deserialise as " + target.channel->type_name());
+    target.channel->deliver_from_dds(target.sample);
+    ++feed_result->fed_samples;
+  };
   bool any_triggered = false;
 
   void publish_diagnostics(Time now, double window_s, bool final) {
@@ -336,6 +375,7 @@ bool Runtime::Impl::setup(RunResult& result) {
   diag_qos.durability = Durability::kTransientLocal;  // a monitor started later sees the latest state
   auto* diag_channel = bus.channel<kernel_msgs::Diagnostics>(kDiagnosticsTopic, "kernel.diagnostics");
   diag_channel->add_writer(diag_qos);
+  diag_channel->reserve_outbox(static_cast<int>(slots.size()));  // one sample per component, at once
   diagnostics = Output<kernel_msgs::Diagnostics>(diag_channel);
   try {
     for (const auto& [name, channel] : bus.channels()) bridge->connect(*channel);
@@ -364,6 +404,7 @@ void Runtime::Impl::progress(std::int64_t t, std::int64_t duration, Clock::time_
 }
 
 void Runtime::Impl::run_sim(RunResult& result) {
+  feed_result = &result;
   const std::int64_t step = spec.step_ns();
   const std::int64_t duration = spec.duration_ns();
   const double pace = spec.pace();
@@ -379,7 +420,8 @@ void Runtime::Impl::run_sim(RunResult& result) {
     }
     if (stop_signal_received()) request_stop("", "signal");
     if (stopping.load(std::memory_order_relaxed)) break;
-    serve_triggered(t);  // samples that came over DDS since the last step
+    if (options.feed) options.feed->due(t, feed_deliver);
+    serve_triggered(t);  // samples that came over DDS (or from the feed) since the last step
     for (auto& slot : slots) {
       if (!fault.empty()) break;
       if (slot->doorbell || t % slot->period_ns != 0) continue;
@@ -485,6 +527,7 @@ void Runtime::Impl::teardown(RunResult& result) {
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();
+  feed_targets.clear();
   if (bridge) {
     for (const auto& h : bridge->health()) {
       std::string line = "topic '" + h.topic + "':";
@@ -516,6 +559,11 @@ RunResult Runtime::run() {
   RunResult result;
   const auto wall_start = Clock::now();
   if (impl_->setup(result)) {
+    if (impl_->options.start_after_s > 0) {
+      std::unique_lock<std::mutex> lock(impl_->stop_mutex);
+      impl_->stop_cv.wait_for(lock, std::chrono::duration<double>(impl_->options.start_after_s),
+                              [this] { return impl_->stopping.load(); });
+    }
     if (impl_->spec.clock_mode() == ClockMode::kSim)
       impl_->run_sim(result);
     else

@@ -64,4 +64,14 @@ std::vector<std::string> config_search_dirs() {
   return dirs;
 }
 
+std::vector<std::string> idl_search_dirs() {
+  std::vector<std::string> dirs = detail::search_path_from_env("WYSIWYF_IDL_PATH");
+  const std::string core = core_library_dir();
+  if (!core.empty()) add_existing(dirs, fs::path(core) / WYSIWYF_LIB_TO_DATA_DIR / "wysiwyf" / "idl");
+  std::error_code ec;
+  if (!core.empty() && fs::equivalent(core, WYSIWYF_BUILD_LIB_DIR, ec))
+    for (const char* d : {"kernel", "msgs"}) add_existing(dirs, fs::path(WYSIWYF_SOURCE_INTERFACES_DIR) / d);
+  return dirs;
+}
+
 }  // namespace wysiwyf

@@ -4,7 +4,9 @@
 // ends, a component asks to stop, another component throws, or SIGINT/SIGTERM arrives.
 #include <atomic>
 #include <functional>
+#include <cstdint>
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +47,10 @@ struct RunResult {
   // What DDS reported per topic over the run, a line each: QoS mismatches with other processes,
   // samples lost on the way in, samples the publisher thread had no time to send. Empty: none.
   std::vector<std::string> dds_problems;
+  // With a feed: samples handed to local readers, and those refused (a topic the run publishes
+  // itself or nobody reads, or bytes that do not deserialise as the topic's type), per topic.
+  std::uint64_t fed_samples = 0;
+  std::map<std::string, std::string> feed_refused;  // topic -> why
   // A component that held, faulted or failed during the run (nullptr: none); `wysiwyf run` exits
   // non-zero with it.
   const ComponentReport* first_unhealthy() const {
@@ -54,10 +60,26 @@ struct RunResult {
   }
 };
 
+// Recorded samples played into a run (`wysiwyf play --into`): on the sim clock, at the start of
+// every step, the kernel asks for the samples due by then and hands each to the local readers of
+// its topic as if it had come over DDS (so data-triggered components tick on it in that step).
+// A topic that a component of the run publishes itself is not fed.
+class SampleFeed {
+ public:
+  // A sample as DDS carries it: CDR with its 4-byte encapsulation header.
+  using Deliver = std::function<void(const std::string& topic, const std::uint8_t* cdr, std::size_t size)>;
+  virtual ~SampleFeed() = default;
+  virtual void due(std::int64_t t_ns, const Deliver& deliver) = 0;
+};
+
 struct RunOptions {
   std::string process;          // empty: every enabled component of the pipeline
   bool progress = false;        // sim clock: a progress line on stderr
   std::ostream* log = nullptr;  // component log lines and lifecycle messages (null: std::cerr)
+  SampleFeed* feed = nullptr;   // sim clock: recorded samples to play in (must outlive run())
+  // Wall-clock seconds to wait after DDS is up and the components are active, before t = 0: a
+  // recorder or monitor in another process is matched by then and misses no sample.
+  double start_after_s = 0;
 };
 
 class Runtime {

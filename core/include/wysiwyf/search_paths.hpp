@@ -19,6 +19,11 @@ std::vector<std::string> message_library_dirs();
 // the source tree's config/.
 std::vector<std::string> config_search_dirs();
 
+// $WYSIWYF_IDL_PATH, then the prefix's share/wysiwyf/idl, then (a build tree's core only) the
+// source tree's interfaces/kernel and interfaces/msgs: the IDL that monitoring tools give as
+// schemas.
+std::vector<std::string> idl_search_dirs();
+
 // The folder of libwysiwyf_core.so, and of the running program (empty when unknown).
 std::string core_library_dir();
 std::string program_dir();

@@ -2,6 +2,7 @@
 // One topic inside a process: the local readers' queues, and the links to DDS that carry the
 // topic to and from other processes and monitors. Local delivery is synchronous (the sim clock's
 // determinism rests on it); DDS delivery is asynchronous.
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -46,9 +47,15 @@ class TopicChannelBase {
 
   // The bridge owns the link and unsets it before it goes (null: local only from then on).
   void set_dds_writer(DdsWriterLink* link) {
-    if (link && !dds_writer_) open_outbox(writer_qos_.depth);
+    // A reliable topic promises every sample: room for 64 ms of a 1 kHz stream while the
+    // publisher thread waits for a core; a best-effort one (images) keeps a few.
+    const int slack = writer_qos_.reliability == Reliability::kReliable ? 64 : 8;
+    if (link && !dds_writer_) open_outbox(std::max({writer_qos_.depth, outbox_depth_, slack}));
     dds_writer_ = link;
   }
+  // Room for this many samples between two drains of the publisher thread, when it is more than
+  // the writer's depth (a keyed topic written once per instance in a burst: the diagnostics).
+  void reserve_outbox(int depth) { outbox_depth_ = depth; }
   // The publisher thread: the oldest sample waiting for DDS into `sample` (of this channel's
   // type); false when none.
   virtual bool take_outgoing(void* sample) = 0;
@@ -85,6 +92,7 @@ class TopicChannelBase {
   Qos writer_qos_;
   Qos reader_qos_;
   DdsWriterLink* dds_writer_ = nullptr;
+  int outbox_depth_ = 1;
 };
 
 template <class T>

@@ -1,0 +1,191 @@
+// wysiwyf record [TOPIC...] -o FILE: every sample of the chosen topics (all without a list), as
+// DDS carried it, into an MCAP file with each type's IDL as its schema.
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "dds_session.hpp"
+#include "idl_schemas.hpp"
+#include "mcap/mcap_writer.hpp"
+#include "raw_cdr_type.hpp"
+#include "wysiwyf/dds.hpp"
+#include "wysiwyf/runtime.hpp"
+
+namespace wysiwyf::cli {
+
+using namespace eprosima::fastdds::dds;
+
+namespace {
+
+std::uint64_t wall_ns() {
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count());
+}
+
+// The file and what goes into it, shared by every topic's listener.
+struct Recording {
+  std::mutex mutex;
+  mcap::Writer writer;
+  std::atomic<std::uint64_t> lost{0};
+  explicit Recording(const std::string& path) : writer(path, mcap::WriterOptions{"", "wysiwyf record"}) {}
+};
+
+// One recorded topic: a reader of raw CDR and its channel in the file.
+class TopicRecorder final : public DataReaderListener {
+ public:
+  TopicRecorder(Recording& rec, std::string topic, std::uint16_t channel, bool stamped)
+      : rec_(rec), topic_(std::move(topic)), channel_(channel), stamped_(stamped) {}
+  void on_data_available(DataReader* reader) override {
+    SampleInfo info;
+    while (reader->take_next_sample(&sample_, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      const std::uint64_t now = wall_ns();
+      // publish_time: the sample's own stamp on the pipeline's clock where its type starts with
+      // a std_msgs::Header (sim time on the sim clock: what play --into replays by); else when
+      // DDS says it was written.
+      std::uint64_t publish = static_cast<std::uint64_t>(info.source_timestamp.to_ns());
+      if (stamped_ && sample_.bytes.size() >= 12) {
+        std::int64_t stamp = 0;
+        std::memcpy(&stamp, sample_.bytes.data() + 4, 8);  // after the encapsulation header
+        if (sample_.bytes[1] == 0x01 && stamp >= 0) publish = static_cast<std::uint64_t>(stamp);
+      }
+      std::lock_guard<std::mutex> lock(rec_.mutex);
+      rec_.writer.write(channel_, sequence_++, now, publish, sample_.bytes.data(), sample_.bytes.size());
+      ++messages;
+    }
+  }
+  void on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) override {
+    std::cerr << "topic '" << topic_ << "': a writer was refused: " << dds::qos_policy_name(status.last_policy_id)
+              << "\n";
+  }
+  void on_sample_lost(DataReader*, const SampleLostStatus& status) override {
+    rec_.lost.fetch_add(static_cast<std::uint64_t>(status.total_count_change));
+  }
+  std::atomic<std::uint64_t> messages{0};
+
+ private:
+  Recording& rec_;
+  std::string topic_;
+  std::uint16_t channel_;
+  bool stamped_;
+  RawCdr sample_;
+  std::uint32_t sequence_ = 0;
+};
+
+}  // namespace
+
+int cmd_record(Args args) {
+  Session s;
+  open(args, s);
+  const auto out = args.value("-o").value_or(args.value("--output").value_or(""));
+  const bool all = args.flag("--all");
+  double duration = 0;
+  if (auto d = args.value("--duration")) {
+    try {
+      duration = std::stod(*d);
+    } catch (...) {
+      duration = -1;
+    }
+    if (!(duration >= 0) || !std::isfinite(duration))
+      throw UsageError("--duration: found '" + *d + "'; expected a number of seconds (0: until Ctrl-C)");
+  }
+  const bool progress = !args.flag("--no-progress") && isatty(STDERR_FILENO);
+  if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
+  const std::vector<std::string> wanted = args.positional();
+  if (out.empty()) throw UsageError("record: expected -o FILE.mcap");
+  if (wanted.empty() && !all) throw UsageError("record: expected topic names, or --all for every topic");
+  install_stop_signal_handlers();
+  Recording rec(out);
+  std::cerr << "recording " << (all ? "every topic" : std::to_string(wanted.size()) + " topic(s)") << " of domain "
+            << s.domain << " (transport " << s.transport << ") into " << out << "\n";
+
+  Subscriber* subscriber = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+  std::map<std::string, std::unique_ptr<TopicRecorder>> recorders;
+  const auto start = Clock::now();
+  auto next_line = start, next_flush = start;
+  while (!stop_signal_received() && (duration == 0 || Clock::now() - start < std::chrono::duration<double>(duration))) {
+    // Topics as writers announce them: each gets a channel (and its type a schema) once.
+    for (const auto& [topic, info] : s.discovery.topics()) {
+      if (info.writers.empty() || recorders.count(topic)) continue;
+      if (!all && std::find(wanted.begin(), wanted.end(), topic) == wanted.end()) continue;
+      std::string searched;
+      const auto schema = idl_schema(info.type, searched);
+      std::uint16_t schema_id = 0, channel = 0;
+      {
+        std::lock_guard<std::mutex> lock(rec.mutex);
+        if (schema) schema_id = rec.writer.add_schema(info.type, "omgidl", schema->text);
+        channel = rec.writer.add_channel(
+            schema_id, topic, "cdr",
+            {{"dds_type", info.type},
+             {"reliability", info.reliability == RELIABLE_RELIABILITY_QOS ? "reliable" : "best_effort"},
+             {"durability", info.durability == VOLATILE_DURABILITY_QOS ? "volatile" : "transient_local"},
+             {"keyed", info.keyed ? "true" : "false"}});
+      }
+      if (!schema)
+        std::cerr << "topic '" << topic << "': no IDL defines " << info.type << " (searched " << searched
+                  << "); recorded without a schema\n";
+      TypeSupport support(new RawCdrType(info.type, info.keyed));
+      support.register_type(s.participant, info.type);
+      Topic* t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
+      Qos qos = Qos::reliable(100);  // deep: a burst waits here instead of being lost
+      qos.reliability =
+          info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
+      qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
+      DataReaderQos rq = dds::reader_qos(qos);
+      rq.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
+      rq.data_sharing().off();  // samples of unknown size: no fixed-size shared buffers
+      auto recorder = std::make_unique<TopicRecorder>(rec, topic, channel, schema && schema->stamped);
+      if (!t ||
+          !subscriber->create_datareader(t, rq, recorder.get(),
+                                         StatusMask::data_available()
+                                             << StatusMask::sample_lost() << StatusMask::requested_incompatible_qos()))
+        throw std::runtime_error("cannot read topic '" + topic + "' (" + info.type + ")");
+      recorders.emplace(topic, std::move(recorder));
+    }
+    const auto now = Clock::now();
+    if (now >= next_flush) {  // a chunk at least every half second: a killed recorder loses no more
+      std::lock_guard<std::mutex> lock(rec.mutex);
+      rec.writer.flush_chunk();
+      next_flush = now + std::chrono::milliseconds(500);
+    }
+    if (progress && now >= next_line) {
+      std::lock_guard<std::mutex> lock(rec.mutex);
+      std::fprintf(stderr, "\r%zu topics  %llu messages  %.1f MB  %llu lost  %.1f s   ", recorders.size(),
+                   static_cast<unsigned long long>(rec.writer.message_count()), rec.writer.bytes_written() / 1e6,
+                   static_cast<unsigned long long>(rec.lost.load()),
+                   std::chrono::duration<double>(now - start).count());
+      std::fflush(stderr);
+      next_line = now + std::chrono::milliseconds(250);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  // Readers first (no listener runs after this), then the file's summary.
+  s.participant->delete_contained_entities();
+  {
+    std::lock_guard<std::mutex> lock(rec.mutex);
+    rec.writer.close();
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  std::cout << "recorded " << rec.writer.message_count() << " messages on " << recorders.size() << " topic(s), "
+            << rec.writer.chunk_count() << " chunks, " << rec.writer.bytes_written() << " bytes into " << out
+            << "; lost " << rec.lost.load() << "\n";
+  for (const auto& [topic, r] : recorders) std::cout << "  " << topic << ": " << r->messages.load() << "\n";
+  if (!all)
+    for (const auto& w : wanted)
+      if (!recorders.count(w)) std::cerr << "topic '" << w << "' had no writer on domain " << s.domain << "\n";
+  return rec.writer.message_count() > 0 ? 0 : 1;
+}
+
+}  // namespace wysiwyf::cli

@@ -1,0 +1,109 @@
+#pragma once
+// What the monitoring commands (topic, record, play) share: a DDS participant on the domain of
+// --domain / --pipeline / --transport that collects what remote writers and readers announce.
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+
+#include <chrono>
+#include <condition_variable>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "cli.hpp"
+#include "wysiwyf/runtime.hpp"
+
+namespace wysiwyf::cli {
+
+using Clock = std::chrono::steady_clock;
+
+struct TopicInfo {
+  std::string type;
+  std::set<std::string> writers, readers;  // GUIDs
+  eprosima::fastdds::dds::ReliabilityQosPolicyKind reliability = eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS;
+  eprosima::fastdds::dds::DurabilityQosPolicyKind durability = eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
+  bool keyed = false;  // the type has @key members (instances)
+};
+
+// Collects the topics that remote writers and readers announce.
+class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERY_STATUS;
+    std::ostringstream guid;
+    guid << info.info.guid();
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& t = topics_[info.info.topicName().to_string()];
+    t.type = info.info.typeName().to_string();
+    if (info.status == S::REMOVED_WRITER) {
+      t.writers.erase(guid.str());
+    } else {
+      t.writers.insert(guid.str());
+      t.reliability = info.info.m_qos.m_reliability.kind;
+      t.durability = info.info.m_qos.m_durability.kind;
+      t.keyed = info.info.topicKind() == eprosima::fastrtps::rtps::WITH_KEY;
+    }
+    cv_.notify_all();
+  }
+  void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                               eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
+    std::ostringstream guid;
+    guid << info.info.guid();
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& t = topics_[info.info.topicName().to_string()];
+    t.type = info.info.typeName().to_string();
+    if (info.status == S::REMOVED_READER)
+      t.readers.erase(guid.str());
+    else
+      t.readers.insert(guid.str());
+    cv_.notify_all();
+  }
+
+  std::map<std::string, TopicInfo> topics() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return topics_;
+  }
+  // Waits until some writer announces `topic`; its info, or nullopt at the deadline.
+  std::optional<TopicInfo> wait_for_writer(const std::string& topic, Clock::time_point deadline) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_signal_received()) {
+      auto it = topics_.find(topic);
+      if (it != topics_.end() && !it->second.writers.empty()) return it->second;
+      if (cv_.wait_until(lock, std::min(deadline, Clock::now() + std::chrono::milliseconds(100))) ==
+              std::cv_status::timeout &&
+          Clock::now() >= deadline)
+        break;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::map<std::string, TopicInfo> topics_;
+};
+
+struct Session {
+  int domain = 0;
+  std::string transport = "default";
+  eprosima::fastdds::dds::DomainParticipant* participant = nullptr;
+  Discovery discovery;
+  ~Session() {
+    if (participant) {
+      participant->delete_contained_entities();
+      eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->delete_participant(participant);
+    }
+  }
+};
+
+// --domain / --pipeline / --transport -> a participant that listens to discovery (its domain
+// and transport are kept in the session, for messages that say where a tool looked).
+void open(Args& args, Session& s);
+
+}  // namespace wysiwyf::cli

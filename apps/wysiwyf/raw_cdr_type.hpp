@@ -1,0 +1,55 @@
+#pragma once
+// A DDS type support that keeps samples as the bytes on the wire (CDR with its encapsulation
+// header) under any type name: the recorder reads every topic with it and the player writes
+// them back, without knowing the types.
+#include <fastdds/dds/topic/TopicDataType.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace wysiwyf::cli {
+
+struct RawCdr {
+  std::vector<std::uint8_t> bytes;
+};
+
+class RawCdrType final : public eprosima::fastdds::dds::TopicDataType {
+ public:
+  // `keyed`: the type has @key members (a reader must say so to match its writers).
+  RawCdrType(const std::string& type_name, bool keyed) {
+    setName(type_name.c_str());
+    m_typeSize = 64 * 1024;  // a first guess for buffers; larger samples grow them
+    m_isGetKeyDefined = keyed;
+  }
+  bool serialize(void* data, eprosima::fastrtps::rtps::SerializedPayload_t* payload) override {
+    const auto& b = static_cast<RawCdr*>(data)->bytes;
+    if (b.size() < 4) return false;
+    if (payload->max_size < b.size()) payload->reserve(static_cast<std::uint32_t>(b.size()));
+    std::memcpy(payload->data, b.data(), b.size());
+    payload->length = static_cast<std::uint32_t>(b.size());
+    payload->encapsulation = b[1] == 0x01 ? CDR_LE : CDR_BE;  // the representation's byte order
+    return true;
+  }
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override {
+    static_cast<RawCdr*>(data)->bytes.assign(payload->data, payload->data + payload->length);
+    return true;
+  }
+  std::function<std::uint32_t()> getSerializedSizeProvider(void* data) override {
+    return [data] { return static_cast<std::uint32_t>(static_cast<RawCdr*>(data)->bytes.size()); };
+  }
+  void* createData() override { return new RawCdr(); }
+  void deleteData(void* data) override { delete static_cast<RawCdr*>(data); }
+  // The bytes are not decoded, so a keyed type's samples all count as one instance here: the
+  // recorder takes each as it comes (per-instance history does not matter to it); the player
+  // does not write keyed types.
+  bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t* handle, bool) override {
+    if (!m_isGetKeyDefined) return false;
+    *handle = eprosima::fastrtps::rtps::InstanceHandle_t();
+    handle->value[0] = 1;
+    return true;
+  }
+};
+
+}  // namespace wysiwyf::cli

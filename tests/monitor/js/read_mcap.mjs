@@ -1,0 +1,84 @@
+// Reads a `wysiwyf record` file with the official MCAP reader (@mcap/core) and decodes its
+// messages with Foxglove's OMG IDL decoder from the schemas in the file. Prints JSON.
+//   node read_mcap.mjs summary FILE      indexed read (summary, chunk indexes, CRCs): per topic
+//                                        the schema, the count, and every message decoded
+//   node read_mcap.mjs stream FILE       front-to-back read of a file that may be cut short
+//   node read_mcap.mjs compare A B TOPIC the TOPIC messages of A and B with equal stamps: equal bytes?
+import { readFileSync } from "node:fs";
+import { McapIndexedReader, McapStreamReader } from "@mcap/core";
+import { parseIDL } from "@foxglove/omgidl-parser";
+import { MessageReader } from "@foxglove/omgidl-serialization";
+
+const json = (v) =>
+  JSON.stringify(v, (k, x) => (typeof x === "bigint" ? Number(x) : ArrayBuffer.isView(x) ? `<${x.length} bytes>` : x));
+
+async function indexed(file) {
+  const bytes = readFileSync(file);
+  const readable = {
+    size: async () => BigInt(bytes.byteLength),
+    read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
+  };
+  return McapIndexedReader.Initialize({ readable });
+}
+
+function decoderFor(schema) {
+  return new MessageReader(schema.name, parseIDL(new TextDecoder().decode(schema.data)));
+}
+
+async function summary(file) {
+  const reader = await indexed(file);
+  const topics = {};
+  const decoders = new Map();
+  for (const [id, ch] of reader.channelsById) {
+    const schema = reader.schemasById.get(ch.schemaId);
+    topics[ch.topic] = { schema: schema?.name ?? null, encoding: schema?.encoding ?? null, metadata: Object.fromEntries(ch.metadata), count: 0, messages: [] };
+    if (schema) decoders.set(id, decoderFor(schema));
+  }
+  for await (const m of reader.readMessages()) {
+    const t = topics[reader.channelsById.get(m.channelId).topic];
+    t.count++;
+    if (decoders.has(m.channelId)) t.messages.push(decoders.get(m.channelId).readMessage(m.data));
+  }
+  return { messages: Number(reader.statistics.messageCount), chunks: reader.chunkIndexes.length, topics };
+}
+
+function stream(file) {
+  const reader = new McapStreamReader({ validateCrcs: true });
+  reader.append(readFileSync(file));
+  const schemas = new Map(), channels = new Map();
+  let messages = 0, decoded = 0, chunks = 0;
+  for (let r; (r = reader.nextRecord()) !== undefined; ) {
+    if (r.type === "Schema") schemas.set(r.id, r);
+    else if (r.type === "Channel") channels.set(r.id, r);
+    else if (r.type === "Message") {
+      messages++;
+      const schema = schemas.get(channels.get(r.channelId).schemaId);
+      if (schema) decoderFor(schema).readMessage(r.data), decoded++;
+    }
+  }
+  return { messages, decoded, done: reader.done() };
+}
+
+async function compare(a, b, topic) {
+  const byStamp = async (file) => {
+    const reader = await indexed(file);
+    const ids = [...reader.channelsById].filter(([, ch]) => ch.topic === topic).map(([id]) => id);
+    const out = new Map();
+    for await (const m of reader.readMessages({ topics: [topic] })) if (ids.includes(m.channelId)) out.set(m.publishTime, Buffer.from(m.data));
+    return out;
+  };
+  const [ma, mb] = [await byStamp(a), await byStamp(b)];
+  let common = 0, differ = 0, first = null;
+  for (const [stamp, bytes] of ma) {
+    if (!mb.has(stamp)) continue;
+    common++;
+    if (!bytes.equals(mb.get(stamp))) { differ++; first ??= Number(stamp); }
+  }
+  return { a: ma.size, b: mb.size, common, differ, first_difference_ns: first };
+}
+
+const [mode, ...args] = process.argv.slice(2);
+if (mode === "summary") console.log(json(await summary(args[0])));
+else if (mode === "stream") console.log(json(stream(args[0])));
+else if (mode === "compare") console.log(json(await compare(args[0], args[1], args[2])));
+else { console.error("usage: read_mcap.mjs summary|stream FILE | compare A B TOPIC"); process.exit(2); }
