@@ -36,5 +36,7 @@ int cmd_topic(Args args);
 int cmd_new(Args args);
 int cmd_record(Args args);
 int cmd_play(Args args);
+int cmd_monitor(Args args);
+int cmd_bridge(Args args);
 
 }  // namespace wysiwyf::cli

@@ -136,21 +136,11 @@ int cmd_record(Args args) {
       if (!schema)
         std::cerr << "topic '" << topic << "': no IDL defines " << info.type << " (searched " << searched
                   << "); recorded without a schema\n";
-      TypeSupport support(new RawCdrType(info.type, info.keyed));
-      support.register_type(s.participant, info.type);
-      Topic* t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
-      Qos qos = Qos::reliable(100);  // deep: a burst waits here instead of being lost
-      qos.reliability =
-          info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
-      qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
-      DataReaderQos rq = dds::reader_qos(qos);
-      rq.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
-      rq.data_sharing().off();  // samples of unknown size: no fixed-size shared buffers
       auto recorder = std::make_unique<TopicRecorder>(rec, topic, channel, schema && schema->stamped);
-      if (!t ||
-          !subscriber->create_datareader(t, rq, recorder.get(),
-                                         StatusMask::data_available()
-                                             << StatusMask::sample_lost() << StatusMask::requested_incompatible_qos()))
+      // Deep: a burst waits here instead of being lost.
+      if (!open_raw_reader(s, subscriber, topic, info, 100, recorder.get(),
+                           StatusMask::data_available()
+                               << StatusMask::sample_lost() << StatusMask::requested_incompatible_qos()))
         throw std::runtime_error("cannot read topic '" + topic + "' (" + info.type + ")");
       recorders.emplace(topic, std::move(recorder));
     }

@@ -105,9 +105,14 @@ int cmd_validate(Args args) {
   Loader loader;
   std::string process;
   auto loaded = load_and_validate(args, loader, process);
+  const bool list = args.flag("--print-components");
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   if (!loaded) return 2;
   const auto& spec = loaded->spec;
+  if (list) {  // one name a line, for scripts
+    for (const auto& c : spec.components) std::cout << c.name << "\n";
+    return 0;
+  }
   std::cout << spec.file << ": ok: pipeline '" << spec.name.value << "', " << spec.components.size()
             << " component(s), process group(s):";
   for (const auto& p : spec.processes()) std::cout << " " << p;

@@ -95,7 +95,7 @@ DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& inf
   Qos qos = Qos::reliable(100);
   qos.reliability = info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
   qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
-  DataReader* reader = sub->create_datareader(t, dds::reader_qos(qos));
+  DataReader* reader = sub->create_datareader(t, dds::reader_qos(qos, info.keyed ? dds::kKeyedTopicInstances : 1));
   if (!reader) throw std::runtime_error("cannot create a reader on topic '" + topic + "'");
   return reader;
 }

@@ -2,12 +2,35 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <iostream>
+
+#include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 
 namespace wysiwyf::cli {
 
 using namespace eprosima::fastdds::dds;
+
+DataReader* open_raw_reader(Session& s, Subscriber* subscriber, const std::string& topic, const TopicInfo& info,
+                            int depth, DataReaderListener* listener, const StatusMask& mask) {
+  // The type under the writer's name (registering it again for another topic is a no-op).
+  TypeSupport support(new RawCdrType(info.type, info.keyed));
+  support.register_type(s.participant, info.type);
+  Topic* t = s.participant->find_topic(topic, eprosima::fastrtps::Duration_t(0, 0));
+  if (!t) t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
+  Qos qos = Qos::reliable(depth);
+  qos.reliability = info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
+  qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
+  DataReaderQos rq = dds::reader_qos(qos, info.keyed ? dds::kKeyedTopicInstances : 1);
+  rq.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
+  rq.data_sharing().off();  // samples of unknown size: no fixed-size shared buffers
+  DataReader* reader = t ? subscriber->create_datareader(t, rq, listener, mask) : nullptr;
+  if (!reader) std::cerr << "cannot read topic '" << topic << "' (" << info.type << ")\n";
+  return reader;
+}
 
 // --domain / --pipeline / --transport -> a participant that listens to discovery.
 void open(Args& args, Session& s) {

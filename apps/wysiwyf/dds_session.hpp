@@ -4,6 +4,9 @@
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
 
 #include <chrono>
 #include <condition_variable>
@@ -101,6 +104,14 @@ struct Session {
     }
   }
 };
+
+// A reader of `topic` as raw CDR (raw_cdr_type.hpp) with the QoS of the writer found there, so
+// that it matches, keeping up to `depth` samples: the recorder, the bridge and the monitor read
+// every topic this way. nullptr (and a message on stderr) if DDS refuses.
+eprosima::fastdds::dds::DataReader* open_raw_reader(Session& s, eprosima::fastdds::dds::Subscriber* subscriber,
+                                                    const std::string& topic, const TopicInfo& info, int depth,
+                                                    eprosima::fastdds::dds::DataReaderListener* listener,
+                                                    const eprosima::fastdds::dds::StatusMask& mask);
 
 // --domain / --pipeline / --transport -> a participant that listens to discovery (its domain
 // and transport are kept in the session, for messages that say where a tool looked).

@@ -1,4 +1,5 @@
 // wysiwyf: run, validate and inspect pipelines of the WYSIWYF display.
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
@@ -67,37 +68,71 @@ std::vector<std::string> Args::unknown_options() const {
 
 }  // namespace wysiwyf::cli
 
-static const char* kUsage = R"(usage: wysiwyf <command> [options]
+namespace {
 
-  run FILE [--process NAME] [--set PATH=VALUE]... [--progress|--no-progress] [--start-after SECONDS]
+// Each command's usage: `wysiwyf --help` prints them all, `wysiwyf COMMAND --help` its own.
+struct CommandHelp {
+  const char* name;
+  const char* text;
+};
+
+const CommandHelp kCommands[] = {
+    {"run", R"(  run FILE [--process NAME] [--set PATH=VALUE]... [--progress|--no-progress] [--start-after SECONDS]
         Run a pipeline (or one process group of it) until its duration ends, a component
         stops it, or Ctrl-C. PATH is e.g. tracker.params.threshold or clock.duration.
         --start-after: wait this long with DDS up before t = 0 (a recorder misses nothing).
-  validate FILE [--process NAME] [--set PATH=VALUE]...
-        Check a pipeline against the component libraries without running it.
-  components list
+)"},
+    {"validate", R"(  validate FILE [--process NAME] [--set PATH=VALUE]... [--print-components]
+        Check a pipeline against the component libraries without running it
+        (--print-components: print its components' names instead, one a line).
+)"},
+    {"components", R"(  components list
   components describe TYPE
         The component types found on the search path; a type's parameters and ports.
-  topic list [--domain N | --pipeline FILE] [--transport T] [--wait SECONDS]
+)"},
+    {"topic", R"(  topic list [--domain N | --pipeline FILE] [--transport T] [--wait SECONDS]
   topic echo TOPIC [--domain N | --pipeline FILE] [--transport T] [--count N] [--timeout SECONDS]
         (--timeout: how long to wait for the first sample, default 10; echo ends after --count
         samples, on Ctrl-C, or when the topic's last writer leaves)
   topic hz TOPIC [--domain N | --pipeline FILE] [--transport T] [--window SECONDS] [--duration SECONDS]
         Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
-        or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes.
-  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
+        or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes. hz gives
+        the wall-clock rate and, for stamped types, the rate on the pipeline's own clock.
+)"},
+    {"monitor",
+     R"(  monitor [--domain N | --pipeline FILE] [--transport T] [--interval SECONDS] [--duration SECONDS] [--once]
+        The component table of every process on the domain (state, achieved rate, tick p50/p99,
+        overruns, dropped and rejected samples, warnings, the last problem) and the display mode,
+        redrawn in place every --interval (0.5 s). --once prints one table and exits.
+)"},
+    {"bridge", R"(  bridge [TOPIC...] [--domain N | --pipeline FILE] [--transport T] [--port P] [--address A]
+         [--video TOPIC] [--plot TOPIC:FIELD]... [--duration SECONDS] [--web-root DIR]
+        Serve the domain to Foxglove (WebSocket protocol v1 at ws://A:P, default 127.0.0.1:8765:
+        every topic advertised with its OMG IDL, samples as CDR, images included) and the web
+        dashboard at http://A:P/ (component table, display mode, live plots, the --video topic,
+        default display/view). A topic is read only while someone subscribes to it.
+        --address 0.0.0.0 serves other machines too (anyone who can reach the port can watch).
+)"},
+    {"record",
+     R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
-  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]
+)"},
+    {"play",
+     R"(  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]
         Run PIPELINE on the sim clock with the recorded samples delivered to its readers in the
         step of their stamps (a recorded run replays bit for bit; --rate is the pace, 0 flat out).
   play FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--topics A,B] [--rate R] [--loop]
         Publish the recorded samples onto a DDS domain on the real clock, spaced as recorded.
-  new component NAME [--dir DIR]
+)"},
+    {"new", R"(  new component NAME [--dir DIR]
         Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
         a Harness test) that builds and passes as written.
+)"},
+};
 
+const char* kFooter = R"(
 Components are searched in $WYSIWYF_COMPONENT_PATH, then lib/wysiwyf beside or above the program,
 then lib/wysiwyf beside libwysiwyf_core.so; configuration files (scenes, robots, included
 pipelines) in $WYSIWYF_CONFIG_PATH, then the prefix's share/wysiwyf/config.
@@ -105,10 +140,28 @@ Exit status: 0 success, 1 the run failed (a component threw, faulted or held: th
 column says which and why), 2 a usage or configuration error.
 )";
 
+void print_usage(std::ostream& out) {
+  out << "usage: wysiwyf <command> [options]     (wysiwyf <command> --help: one command)\n\n";
+  for (const auto& c : kCommands) out << c.text;
+  out << kFooter;
+}
+
+const CommandHelp* find_command(const std::string& name) {
+  for (const auto& c : kCommands)
+    if (name == c.name) return &c;
+  return nullptr;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-    std::cout << kUsage;
+    if (args.size() > 1 && args[0] == "help" && find_command(args[1])) {
+      std::cout << "usage:\n" << find_command(args[1])->text;
+      return 0;
+    }
+    print_usage(args.empty() ? std::cerr : std::cout);
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "--version") {
@@ -116,6 +169,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   const std::string command = args[0];
+  const CommandHelp* help = find_command(command);
+  if (help && std::find_if(args.begin() + 1, args.end(),
+                           [](const std::string& a) { return a == "--help" || a == "-h"; }) != args.end()) {
+    std::cout << "usage:\n" << help->text;
+    return 0;
+  }
   wysiwyf::cli::Args rest(std::vector<std::string>(args.begin() + 1, args.end()));
   try {
     if (command == "run") return wysiwyf::cli::cmd_run(std::move(rest));
@@ -125,11 +184,14 @@ int main(int argc, char** argv) {
     if (command == "new") return wysiwyf::cli::cmd_new(std::move(rest));
     if (command == "record") return wysiwyf::cli::cmd_record(std::move(rest));
     if (command == "play") return wysiwyf::cli::cmd_play(std::move(rest));
-    std::cerr << "wysiwyf: unknown command '" << command << "'; expected run, validate, components, topic or new\n\n"
-              << kUsage;
+    if (command == "monitor") return wysiwyf::cli::cmd_monitor(std::move(rest));
+    if (command == "bridge") return wysiwyf::cli::cmd_bridge(std::move(rest));
+    std::cerr << "wysiwyf: unknown command '" << command << "'; expected one of:";
+    for (const auto& c : kCommands) std::cerr << " " << c.name;
+    std::cerr << "\n";
     return 2;
   } catch (const wysiwyf::cli::UsageError& e) {
-    std::cerr << "wysiwyf " << command << ": " << e.what() << "\n(see wysiwyf --help)\n";
+    std::cerr << "wysiwyf " << command << ": " << e.what() << "\n(see wysiwyf " << command << " --help)\n";
     return 2;
   }
 }

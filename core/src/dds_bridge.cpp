@@ -28,13 +28,13 @@ struct Counters {
 }  // namespace
 
 struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterListener {
-  WriterLink(DdsBridge& b, TopicChannelBase& c, Topic* topic)
+  WriterLink(DdsBridge& b, TopicChannelBase& c, Topic* topic, int instances)
       : bridge(b),
         channel(c),
         always(c.writer_qos().durability == Durability::kTransientLocal),
         buffer(c.create_sample()) {
     writer =
-        b.publisher_->create_datawriter(topic, dds::writer_qos(c.writer_qos()), this,
+        b.publisher_->create_datawriter(topic, dds::writer_qos(c.writer_qos(), instances), this,
                                         StatusMask::publication_matched() << StatusMask::offered_incompatible_qos());
     if (!writer) throw std::runtime_error("cannot create a DDS writer for topic '" + topic->get_name() + "'");
   }
@@ -150,11 +150,12 @@ void DdsBridge::connect(TopicChannelBase& channel) {
   type->auto_fill_type_object(false);
   type->auto_fill_type_information(false);
   if (!participant_->find_type(channel.type_name())) type.register_type(participant_);
+  const int instances = type->m_isGetKeyDefined ? dds::kKeyedTopicInstances : 1;
   Topic* topic = participant_->create_topic(channel.topic(), channel.type_name(), TOPIC_QOS_DEFAULT);
   if (!topic)
     throw std::runtime_error("cannot create DDS topic '" + channel.topic() + "' of type " + channel.type_name());
   if (channel.local_writers() > 0) {
-    auto link = std::make_unique<WriterLink>(*this, channel, topic);
+    auto link = std::make_unique<WriterLink>(*this, channel, topic, instances);
     WriterLink* raw = link.get();
     {
       std::lock_guard<std::mutex> lock(writers_mutex_);
@@ -164,7 +165,7 @@ void DdsBridge::connect(TopicChannelBase& channel) {
     if (!publisher_thread_.joinable()) publisher_thread_ = std::thread([this] { publish_loop(); });
   } else if (channel.local_readers() > 0) {
     auto link = std::make_unique<ReaderLink>(*this, channel);
-    if (!subscriber_->create_datareader(topic, dds::reader_qos(channel.reader_qos()), link.get(),
+    if (!subscriber_->create_datareader(topic, dds::reader_qos(channel.reader_qos(), instances), link.get(),
                                         StatusMask::data_available()
                                             << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()))
       throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'");

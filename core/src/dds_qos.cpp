@@ -46,7 +46,7 @@ namespace {
 
 // What a writer and a reader of one port share: the port's QoS, and memory and transport choices.
 template <class EndpointQos>
-EndpointQos endpoint_qos(EndpointQos qos, const Qos& q) {
+EndpointQos endpoint_qos(EndpointQos qos, const Qos& q, int instances) {
   qos.reliability().kind =
       q.reliability == Reliability::kReliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
   qos.durability().kind =
@@ -54,6 +54,11 @@ EndpointQos endpoint_qos(EndpointQos qos, const Qos& q) {
   qos.history().kind = KEEP_LAST_HISTORY_QOS;
   qos.history().depth = q.depth;
   if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);
+  if (instances > 1) {
+    qos.resource_limits().max_instances = instances;
+    qos.resource_limits().max_samples_per_instance = q.depth;
+    qos.resource_limits().max_samples = instances * q.depth;
+  }
   // Reuse sample buffers instead of allocating per write; data sharing between processes on
   // one host (bounded types) so frames are not copied through a socket.
   qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
@@ -63,9 +68,9 @@ EndpointQos endpoint_qos(EndpointQos qos, const Qos& q) {
 
 }  // namespace
 
-DataWriterQos writer_qos(const Qos& q) { return endpoint_qos(DATAWRITER_QOS_DEFAULT, q); }
+DataWriterQos writer_qos(const Qos& q, int instances) { return endpoint_qos(DATAWRITER_QOS_DEFAULT, q, instances); }
 
-DataReaderQos reader_qos(const Qos& q) { return endpoint_qos(DATAREADER_QOS_DEFAULT, q); }
+DataReaderQos reader_qos(const Qos& q, int instances) { return endpoint_qos(DATAREADER_QOS_DEFAULT, q, instances); }
 
 std::string qos_policy_name(int policy_id) {
   switch (policy_id) {

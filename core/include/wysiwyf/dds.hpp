@@ -21,8 +21,14 @@ const std::vector<std::string>& transport_names();
 // Throws std::invalid_argument for any other name.
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
 
-eprosima::fastdds::dds::DataWriterQos writer_qos(const Qos& qos);
-eprosima::fastdds::dds::DataReaderQos reader_qos(const Qos& qos);
+// `instances`: how many instances (key values) a keyed topic may have, each with its own history
+// of qos.depth samples. (Fast DDS's default is 10: the diagnostics of an 11th component were
+// silently refused.)
+eprosima::fastdds::dds::DataWriterQos writer_qos(const Qos& qos, int instances = 1);
+eprosima::fastdds::dds::DataReaderQos reader_qos(const Qos& qos, int instances = 1);
+
+// The instances a keyed topic of a pipeline may have: one per component (the diagnostics), with room.
+constexpr int kKeyedTopicInstances = 256;
 
 // A Fast DDS QosPolicyId_t by its DDS name ("RELIABILITY", "DURABILITY", ...).
 std::string qos_policy_name(int policy_id);

@@ -1,0 +1,458 @@
+#include "ws_server.hpp"
+
+#include <array>
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <chrono>
+#include <deque>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace wysiwyf::bridge {
+
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = net::ip::tcp;
+using json = nlohmann::json;
+
+namespace {
+
+constexpr const char* kFoxglove = "foxglove.websocket.v1";
+constexpr const char* kDashboard = "wysiwyf.dashboard.v1";
+constexpr std::uint32_t kMaxChannels = 4096;
+
+// The subprotocol the server speaks out of a client's offer ("a, b"), or "" if none.
+std::string pick_subprotocol(std::string_view offered) {
+  std::string list(offered);
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const auto b = item.find_first_not_of(' '), e = item.find_last_not_of(' ');
+    if (b == std::string::npos) continue;
+    const std::string p = item.substr(b, e - b + 1);
+    if (p == kFoxglove || p == kDashboard) return p;
+  }
+  return "";
+}
+
+const char* content_type(const std::filesystem::path& file) {
+  const auto ext = file.extension().string();
+  if (ext == ".html") return "text/html; charset=utf-8";
+  if (ext == ".js" || ext == ".mjs") return "text/javascript; charset=utf-8";
+  if (ext == ".css") return "text/css; charset=utf-8";
+  if (ext == ".json") return "application/json";
+  if (ext == ".png") return "image/png";
+  if (ext == ".svg") return "image/svg+xml";
+  return "application/octet-stream";
+}
+
+std::string channel_json(const Channel& c) {
+  return json{{"id", c.id},
+              {"topic", c.topic},
+              {"encoding", c.encoding},
+              {"schemaName", c.schema_name},
+              {"schema", c.schema},
+              {"schemaEncoding", c.schema_encoding}}
+      .dump();
+}
+
+}  // namespace
+
+class WsSession;
+
+struct WsServer::Impl {
+  ServerOptions options;
+  WsServer* owner = nullptr;
+  net::io_context io;
+  tcp::acceptor acceptor{io};
+  // I/O thread only.
+  std::map<std::uint32_t, Channel> channels;
+  std::set<std::shared_ptr<WsSession>> sessions;
+  // Any thread.
+  std::unique_ptr<std::atomic<int>[]> subscriber_counts { new std::atomic<int>[ kMaxChannels ]() };
+  std::atomic<std::uint64_t> sent{0}, dropped{0};
+  std::atomic<std::size_t> foxglove_clients{0}, dashboard_clients{0};
+
+  void accept();
+  void subscribed(std::uint32_t channel, int change) {
+    const int now = subscriber_counts[channel].fetch_add(change) + change;
+    if (owner->on_channel_wanted && ((change > 0 && now == 1) || (change < 0 && now == 0)))
+      owner->on_channel_wanted(channel, now > 0);
+  }
+};
+
+// One WebSocket client, Foxglove or dashboard.
+class WsSession : public std::enable_shared_from_this<WsSession> {
+ public:
+  WsSession(beast::tcp_stream&& stream, std::shared_ptr<WsServer::Impl> server, std::string protocol)
+      : ws_(std::move(stream)), server_(std::move(server)), protocol_(std::move(protocol)) {}
+
+  bool foxglove() const { return protocol_ == kFoxglove; }
+
+  void accept(http::request<http::string_body> req) {
+    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    ws_.set_option(websocket::stream_base::decorator([p = protocol_](websocket::response_type& res) {
+      res.set(http::field::sec_websocket_protocol, p);
+      res.set(http::field::server, "wysiwyf bridge");
+    }));
+    ws_.async_accept(req, [self = shared_from_this()](beast::error_code ec) { self->on_accept(ec); });
+  }
+
+  void send_text(std::string text) {
+    enqueue({"", std::make_shared<const std::string>(std::move(text)), false, false});
+  }
+  // Message data of a channel this client subscribed to: the header is per client (it names the
+  // subscription), the payload is shared by all.
+  void send_message(std::uint32_t channel, std::uint64_t receive_ns,
+                    const std::shared_ptr<const std::string>& payload) {
+    auto it = subscription_of_channel_.find(channel);
+    if (it == subscription_of_channel_.end()) return;
+    std::string header(13, '\0');
+    header[0] = 0x01;
+    for (int i = 0; i < 4; ++i) header[1 + i] = static_cast<char>((it->second >> (8 * i)) & 0xff);
+    for (int i = 0; i < 8; ++i) header[5 + i] = static_cast<char>((receive_ns >> (8 * i)) & 0xff);
+    enqueue({std::move(header), payload, true, true});
+  }
+  void send_binary(const std::shared_ptr<const std::string>& bytes, bool droppable) {
+    enqueue({"", bytes, true, droppable});
+  }
+
+  void close() {
+    if (closed_) return;
+    closed_ = true;
+    for (const auto& [sub, channel] : channel_of_subscription_) server_->subscribed(channel, -1);
+    channel_of_subscription_.clear();
+    subscription_of_channel_.clear();
+    (foxglove() ? server_->foxglove_clients : server_->dashboard_clients).fetch_sub(1);
+    server_->sessions.erase(shared_from_this());
+    beast::error_code ec;
+    beast::get_lowest_layer(ws_).socket().close(ec);
+  }
+
+ private:
+  struct Frame {
+    std::string header;
+    std::shared_ptr<const std::string> body;
+    bool binary = false;
+    bool droppable = false;
+  };
+
+  void on_accept(beast::error_code ec) {
+    if (ec) return;
+    server_->sessions.insert(shared_from_this());
+    (foxglove() ? server_->foxglove_clients : server_->dashboard_clients).fetch_add(1);
+    if (foxglove()) {
+      send_text(json{{"op", "serverInfo"},
+                     {"name", server_->options.name},
+                     {"capabilities", json::array()},
+                     {"metadata", json{{"wysiwyf", "DDS topics as CDR with their OMG IDL"}}},
+                     {"sessionId", std::to_string(std::chrono::system_clock::now().time_since_epoch().count())}}
+                    .dump());
+      std::string channels = R"({"op":"advertise","channels":[)";
+      bool first = true;
+      for (const auto& [id, c] : server_->channels) {
+        channels += (first ? "" : ",") + channel_json(c);
+        first = false;
+      }
+      send_text(channels + "]}");
+    } else if (server_->owner->dashboard_greeting) {
+      for (auto& text : server_->owner->dashboard_greeting()) send_text(std::move(text));
+    }
+    read();
+  }
+
+  void read() {
+    ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+  }
+  void on_read(beast::error_code ec) {
+    if (ec) {
+      close();
+      return;
+    }
+    if (ws_.got_text()) {
+      const std::string text = beast::buffers_to_string(buffer_.data());
+      if (foxglove())
+        handle_foxglove(text);
+      else if (server_->owner->on_dashboard_request)
+        server_->owner->on_dashboard_request(text);
+    }
+    buffer_.consume(buffer_.size());
+    read();
+  }
+
+  void status(int level, const std::string& message) {
+    send_text(json{{"op", "status"}, {"level", level}, {"message", message}}.dump());
+  }
+
+  void handle_foxglove(const std::string& text) {
+    json m = json::parse(text, nullptr, false);
+    if (m.is_discarded() || !m.is_object() || !m.contains("op")) {
+      status(2, "expected a JSON object with an \"op\"; got: " + text.substr(0, 80));
+      return;
+    }
+    const std::string op = m.value("op", "");
+    if (op == "subscribe") {
+      for (const auto& s : m.value("subscriptions", json::array())) {
+        const auto id = s.value("id", std::uint32_t(0)), channel = s.value("channelId", std::uint32_t(0));
+        if (!server_->channels.count(channel)) {
+          status(2, "subscribe: no channel " + std::to_string(channel) + " is advertised");
+        } else if (channel_of_subscription_.count(id)) {
+          status(2, "subscribe: subscription id " + std::to_string(id) + " is in use");
+        } else if (subscription_of_channel_.count(channel)) {
+          status(2, "subscribe: channel " + std::to_string(channel) + " is already subscribed by this client");
+        } else {
+          channel_of_subscription_[id] = channel;
+          subscription_of_channel_[channel] = id;
+          server_->subscribed(channel, +1);
+        }
+      }
+    } else if (op == "unsubscribe") {
+      for (const auto& j : m.value("subscriptionIds", json::array())) {
+        const auto id = j.get<std::uint32_t>();
+        auto it = channel_of_subscription_.find(id);
+        if (it == channel_of_subscription_.end()) continue;
+        subscription_of_channel_.erase(it->second);
+        server_->subscribed(it->second, -1);
+        channel_of_subscription_.erase(it);
+      }
+    } else {
+      status(1, "op '" + op + "' is not supported by this server (it only streams: subscribe, unsubscribe)");
+    }
+  }
+
+  void enqueue(Frame f) {
+    if (closed_) return;
+    const std::size_t size = f.header.size() + f.body->size();
+    if (f.droppable && queued_bytes_ + size > server_->options.client_queue_bytes) {
+      server_->dropped.fetch_add(1);
+      if (!warned_drops_ && foxglove()) {
+        warned_drops_ = true;
+        status(1, "this client reads slower than the topics come: messages are being dropped");
+      }
+      return;
+    }
+    queued_bytes_ += size;
+    queue_.push_back(std::move(f));
+    if (!writing_) write_next();
+  }
+  void write_next() {
+    writing_ = true;
+    Frame& f = queue_.front();
+    ws_.binary(f.binary);
+    const std::array<net::const_buffer, 2> buffers{net::buffer(f.header), net::buffer(*f.body)};
+    ws_.async_write(buffers, [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_write(ec); });
+  }
+  void on_write(beast::error_code ec) {
+    queued_bytes_ -= queue_.front().header.size() + queue_.front().body->size();
+    queue_.pop_front();
+    server_->sent.fetch_add(1);
+    if (ec) {
+      close();
+      return;
+    }
+    if (queue_.empty())
+      writing_ = false;
+    else
+      write_next();
+  }
+
+  websocket::stream<beast::tcp_stream> ws_;
+  beast::flat_buffer buffer_;
+  std::shared_ptr<WsServer::Impl> server_;
+  std::string protocol_;
+  std::map<std::uint32_t, std::uint32_t> channel_of_subscription_, subscription_of_channel_;
+  std::deque<Frame> queue_;
+  std::size_t queued_bytes_ = 0;
+  bool writing_ = false, closed_ = false, warned_drops_ = false;
+};
+
+// A plain HTTP connection: the dashboard's files, or the upgrade to a WebSocket.
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(tcp::socket&& socket, std::shared_ptr<WsServer::Impl> server)
+      : stream_(std::move(socket)), server_(std::move(server)) {}
+  void read() {
+    req_ = {};
+    stream_.expires_after(std::chrono::seconds(30));
+    http::async_read(stream_, buffer_, req_,
+                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+  }
+
+ private:
+  void on_read(beast::error_code ec) {
+    if (ec) return;
+    if (websocket::is_upgrade(req_)) {
+      const std::string protocol = pick_subprotocol(std::string(req_[http::field::sec_websocket_protocol]));
+      if (protocol.empty()) {
+        respond(http::status::bad_request, "text/plain",
+                std::string("expected the WebSocket subprotocol ") + kFoxglove + " (Foxglove) or " + kDashboard +
+                    " (the dashboard); the client offered '" + std::string(req_[http::field::sec_websocket_protocol]) +
+                    "'\n");
+        return;
+      }
+      stream_.expires_never();
+      std::make_shared<WsSession>(std::move(stream_), server_, protocol)->accept(std::move(req_));
+      return;
+    }
+    serve_file();
+  }
+
+  void serve_file() {
+    if (req_.method() != http::verb::get && req_.method() != http::verb::head) {
+      respond(http::status::method_not_allowed, "text/plain", "only GET\n");
+      return;
+    }
+    std::string target(req_.target());
+    target = target.substr(0, target.find('?'));
+    if (target == "/") target = "/index.html";
+    const bool safe = target.find("..") == std::string::npos &&
+                      target.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-/") ==
+                          std::string::npos;
+    const auto file = server_->options.web_root / target.substr(1);
+    std::ifstream in(file, std::ios::binary);
+    if (!safe || server_->options.web_root.empty() || !in) {
+      respond(http::status::not_found, "text/plain",
+              "no such file: " + target +
+                  (server_->options.web_root.empty() ? " (this bridge serves no dashboard: its files were not found)"
+                                                     : "") +
+                  "\n");
+      return;
+    }
+    std::ostringstream body;
+    body << in.rdbuf();
+    respond(http::status::ok, content_type(file), body.str());
+  }
+
+  void respond(http::status status, const std::string& type, std::string body) {
+    auto res = std::make_shared<http::response<http::string_body>>(status, req_.version());
+    res->set(http::field::server, "wysiwyf bridge");
+    res->set(http::field::content_type, type);
+    res->set(http::field::cache_control, "no-cache");
+    res->keep_alive(req_.keep_alive());
+    res->body() = req_.method() == http::verb::head ? "" : std::move(body);
+    res->prepare_payload();
+    http::async_write(stream_, *res, [self = shared_from_this(), res](beast::error_code ec, std::size_t) {
+      if (!ec && res->keep_alive()) self->read();
+    });
+  }
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  http::request<http::string_body> req_;
+  std::shared_ptr<WsServer::Impl> server_;
+};
+
+void WsServer::Impl::accept() {
+  acceptor.async_accept(net::make_strand(io), [this](beast::error_code ec, tcp::socket socket) {
+    if (ec == net::error::operation_aborted) return;
+    if (!ec) {
+      socket.set_option(tcp::no_delay(true));
+      // The Impl outlives every session: the destructor stops the I/O thread before it goes.
+      std::make_shared<HttpSession>(std::move(socket), std::shared_ptr<Impl>(owner->impl_))->read();
+    }
+    accept();
+  });
+}
+
+WsServer::WsServer(ServerOptions options) : impl_(std::make_shared<Impl>()) {
+  impl_->options = std::move(options);
+  impl_->owner = this;
+  beast::error_code ec;
+  const auto address = net::ip::make_address(impl_->options.address, ec);
+  if (ec) throw std::runtime_error("--address: '" + impl_->options.address + "' is not an IP address");
+  const tcp::endpoint endpoint(address, impl_->options.port);
+  impl_->acceptor.open(endpoint.protocol(), ec);
+  if (!ec) impl_->acceptor.set_option(net::socket_base::reuse_address(true), ec);
+  if (!ec) impl_->acceptor.bind(endpoint, ec);
+  if (!ec) impl_->acceptor.listen(net::socket_base::max_listen_connections, ec);
+  if (ec)
+    throw std::runtime_error("cannot listen on " + impl_->options.address + ":" + std::to_string(impl_->options.port) +
+                             ": " + ec.message() + " (another bridge there? --port picks another)");
+}
+
+void WsServer::start() {
+  impl_->accept();
+  io_thread_ = std::thread([impl = impl_] { impl->io.run(); });
+}
+
+WsServer::~WsServer() { stop(); }
+
+void WsServer::stop() {
+  if (!io_thread_.joinable()) return;
+  net::post(impl_->io, [impl = impl_] {
+    beast::error_code ec;
+    impl->acceptor.close(ec);
+    for (auto s : std::set<std::shared_ptr<WsSession>>(impl->sessions)) s->close();
+    impl->io.stop();
+  });
+  io_thread_.join();
+}
+
+std::uint16_t WsServer::port() const { return impl_->acceptor.local_endpoint().port(); }
+
+void WsServer::advertise(const Channel& channel) {
+  if (channel.id >= kMaxChannels) throw std::runtime_error("too many channels (at most 4096)");
+  net::post(impl_->io, [impl = impl_, channel] {
+    impl->channels[channel.id] = channel;
+    const std::string text = R"({"op":"advertise","channels":[)" + channel_json(channel) + "]}";
+    for (const auto& s : impl->sessions)
+      if (s->foxglove()) s->send_text(text);
+  });
+}
+
+void WsServer::unadvertise(std::uint32_t channel_id) {
+  net::post(impl_->io, [impl = impl_, channel_id] {
+    impl->channels.erase(channel_id);
+    const std::string text = json{{"op", "unadvertise"}, {"channelIds", {channel_id}}}.dump();
+    for (const auto& s : impl->sessions)
+      if (s->foxglove()) s->send_text(text);
+  });
+}
+
+int WsServer::subscribers(std::uint32_t channel_id) const {
+  return channel_id < kMaxChannels ? impl_->subscriber_counts[channel_id].load() : 0;
+}
+
+void WsServer::publish(std::uint32_t channel_id, std::uint64_t receive_ns, const std::uint8_t* data, std::size_t size) {
+  if (subscribers(channel_id) == 0) return;
+  auto payload = std::make_shared<const std::string>(reinterpret_cast<const char*>(data), size);
+  net::post(impl_->io, [impl = impl_, channel_id, receive_ns, payload] {
+    for (const auto& s : impl->sessions)
+      if (s->foxglove()) s->send_message(channel_id, receive_ns, payload);
+  });
+}
+
+void WsServer::dashboard_text(std::string text) {
+  auto shared = std::make_shared<std::string>(std::move(text));
+  net::post(impl_->io, [impl = impl_, shared] {
+    for (const auto& s : impl->sessions)
+      if (!s->foxglove()) s->send_text(*shared);
+  });
+}
+
+void WsServer::dashboard_binary(std::vector<std::uint8_t> bytes) {
+  auto shared = std::make_shared<const std::string>(bytes.begin(), bytes.end());
+  net::post(impl_->io, [impl = impl_, shared] {
+    for (const auto& s : impl->sessions)
+      if (!s->foxglove()) s->send_binary(shared, true);
+  });
+}
+
+ServerStats WsServer::stats() const {
+  ServerStats s;
+  s.foxglove_clients = impl_->foxglove_clients.load();
+  s.dashboard_clients = impl_->dashboard_clients.load();
+  s.messages_sent = impl_->sent.load();
+  s.messages_dropped = impl_->dropped.load();
+  return s;
+}
+
+}  // namespace wysiwyf::bridge
