@@ -68,6 +68,16 @@ std::string fit(std::string s, std::size_t width) {
   return s;
 }
 
+// "dropped at image: 3, pose: 1" from a row's dropped_by_port ("" when none dropped).
+std::string dropped_by_port(const json& row) {
+  if (!row.contains("dropped_by_port") || !row["dropped_by_port"].is_object() || row["dropped_by_port"].empty())
+    return "";
+  std::string out = "dropped at ";
+  for (const auto& [port, count] : row["dropped_by_port"].items())
+    out += (out.size() > 11 ? ", " : "") + port + ": " + count.dump();
+  return out;
+}
+
 int terminal_width() {
   winsize w{};
   if (isatty(STDOUT_FILENO) && ioctl(STDOUT_FILENO, TIOCGWINSZ, &w) == 0 && w.ws_col > 40) return w.ws_col;
@@ -110,6 +120,7 @@ std::string render(int domain, const std::map<std::string, std::pair<json, Clock
     if (age[instance] > 3.0) state = "silent";  // its process stopped reporting
     std::string problem = j->value("last_error", "");
     if (problem.empty()) problem = j->value("last_warning", "");
+    if (problem.empty()) problem = dropped_by_port(*j);
     const std::string rate = num(*j, "tick_rate_hz", 1) + "/" + num(*j, "rate_hz", 0);
     out << std::left << std::setw(16) << fit(instance, 15) << std::setw(18) << fit(j->value("type", ""), 17)
         << std::setw(10) << fit(j->value("process", ""), 9) << std::setw(9) << state << std::right << std::setw(15)

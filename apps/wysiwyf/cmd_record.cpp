@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -34,12 +36,93 @@ std::uint64_t wall_ns() {
           .count());
 }
 
-// The file and what goes into it, shared by every topic's listener.
+// The file and what goes into it. The DDS listeners only queue samples (they run on the
+// transport's receive thread: blocking it on the disk would lose the next samples of every
+// topic); a writer thread puts them into the file. The queue is bounded in bytes.
 struct Recording {
-  std::mutex mutex;
+  struct Pending {
+    std::uint16_t channel;
+    std::uint32_t sequence;
+    std::uint64_t log_ns, publish_ns;
+    std::vector<std::uint8_t> bytes;
+  };
+  static constexpr std::size_t kMaxQueuedBytes = std::size_t{1} << 30;
+
+  std::mutex mutex;  // the writer (file)
   mcap::Writer writer;
-  std::atomic<std::uint64_t> lost{0};
-  explicit Recording(const std::string& path) : writer(path, mcap::WriterOptions{"", "wysiwyf record"}) {}
+  std::atomic<std::uint64_t> lost{0};        // DDS says samples were lost before reaching the recorder
+  std::atomic<std::uint64_t> overflowed{0};  // samples dropped because the disk fell 1 GiB behind
+
+  explicit Recording(const std::string& path)
+      : writer(path, mcap::WriterOptions{"", "wysiwyf record"}), thread_([this] { write_loop(); }) {}
+  ~Recording() { stop(); }
+
+  // From a listener: false if the queue is full (the sample is dropped and counted).
+  bool enqueue(Pending&& p) {
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      if (queued_bytes_ + p.bytes.size() > kMaxQueuedBytes) {
+        overflowed.fetch_add(1);
+        return false;
+      }
+      queued_bytes_ += p.bytes.size();
+      queue_.push_back(std::move(p));
+    }
+    cv_.notify_one();
+    return true;
+  }
+  // A buffer for the next sample: one the writer thread is done with, so a listener copying a
+  // megabyte image does not fault in fresh pages (it runs on the transport's receive thread).
+  std::vector<std::uint8_t> buffer() {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (free_.empty()) return {};
+    std::vector<std::uint8_t> b = std::move(free_.back());
+    free_.pop_back();
+    return b;
+  }
+  // Writes what is queued and stops the writer thread.
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      if (stopping_) return;
+      stopping_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  void write_loop() {
+    std::deque<Pending> batch;
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(queue_mutex_);
+        cv_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;  // stopping, and all written
+        batch.swap(queue_);
+      }
+      std::size_t bytes = 0;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& p : batch) {
+          writer.write(p.channel, p.sequence, p.log_ns, p.publish_ns, p.bytes.data(), p.bytes.size());
+          bytes += p.bytes.size();
+        }
+      }
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      queued_bytes_ -= bytes;
+      for (auto& p : batch)  // keep up to 256 buffers for reuse
+        if (free_.size() < 256) free_.push_back(std::move(p.bytes));
+      batch.clear();
+    }
+  }
+  std::mutex queue_mutex_;
+  std::condition_variable cv_;
+  std::deque<Pending> queue_;
+  std::vector<std::vector<std::uint8_t>> free_;
+  std::size_t queued_bytes_ = 0;
+  bool stopping_ = false;
+  std::thread thread_;
 };
 
 // One recorded topic: a reader of raw CDR and its channel in the file.
@@ -49,7 +132,9 @@ class TopicRecorder final : public DataReaderListener {
       : rec_(rec), topic_(std::move(topic)), channel_(channel), stamped_(stamped) {}
   void on_data_available(DataReader* reader) override {
     SampleInfo info;
-    while (reader->take_next_sample(&sample_, &info) == ReturnCode_t::RETCODE_OK) {
+    for (;;) {
+      if (sample_.bytes.capacity() == 0) sample_.bytes = rec_.buffer();
+      if (reader->take_next_sample(&sample_, &info) != ReturnCode_t::RETCODE_OK) break;
       if (!info.valid_data) continue;
       const std::uint64_t now = wall_ns();
       // publish_time: the sample's own stamp on the pipeline's clock where its type starts with
@@ -61,9 +146,8 @@ class TopicRecorder final : public DataReaderListener {
         std::memcpy(&stamp, sample_.bytes.data() + 4, 8);  // after the encapsulation header
         if (sample_.bytes[1] == 0x01 && stamp >= 0) publish = static_cast<std::uint64_t>(stamp);
       }
-      std::lock_guard<std::mutex> lock(rec_.mutex);
-      rec_.writer.write(channel_, sequence_++, now, publish, sample_.bytes.data(), sample_.bytes.size());
-      ++messages;
+      if (rec_.enqueue({channel_, sequence_++, now, publish, std::move(sample_.bytes)})) ++messages;
+      sample_.bytes = {};
     }
   }
   void on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) override {
@@ -72,8 +156,9 @@ class TopicRecorder final : public DataReaderListener {
   }
   void on_sample_lost(DataReader*, const SampleLostStatus& status) override {
     rec_.lost.fetch_add(static_cast<std::uint64_t>(status.total_count_change));
+    lost.fetch_add(static_cast<std::uint64_t>(status.total_count_change));
   }
-  std::atomic<std::uint64_t> messages{0};
+  std::atomic<std::uint64_t> messages{0}, lost{0};
 
  private:
   Recording& rec_;
@@ -154,15 +239,16 @@ int cmd_record(Args args) {
       std::lock_guard<std::mutex> lock(rec.mutex);
       std::fprintf(stderr, "\r%zu topics  %llu messages  %.1f MB  %llu lost  %.1f s   ", recorders.size(),
                    static_cast<unsigned long long>(rec.writer.message_count()), rec.writer.bytes_written() / 1e6,
-                   static_cast<unsigned long long>(rec.lost.load()),
+                   static_cast<unsigned long long>(rec.lost.load() + rec.overflowed.load()),
                    std::chrono::duration<double>(now - start).count());
       std::fflush(stderr);
       next_line = now + std::chrono::milliseconds(250);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  // Readers first (no listener runs after this), then the file's summary.
+  // Readers first (no listener runs after this), the queue, then the file's summary.
   s.participant->delete_contained_entities();
+  rec.stop();
   {
     std::lock_guard<std::mutex> lock(rec.mutex);
     rec.writer.close();
@@ -170,8 +256,11 @@ int cmd_record(Args args) {
   if (progress) std::fprintf(stderr, "\n");
   std::cout << "recorded " << rec.writer.message_count() << " messages on " << recorders.size() << " topic(s), "
             << rec.writer.chunk_count() << " chunks, " << rec.writer.bytes_written() << " bytes into " << out
-            << "; lost " << rec.lost.load() << "\n";
-  for (const auto& [topic, r] : recorders) std::cout << "  " << topic << ": " << r->messages.load() << "\n";
+            << "; lost " << rec.lost.load() << " before the recorder, " << rec.overflowed.load()
+            << " in it (the disk more than 1 GiB behind)\n";
+  for (const auto& [topic, r] : recorders)
+    std::cout << "  " << topic << ": " << r->messages.load()
+              << (r->lost ? ", lost " + std::to_string(r->lost.load()) : "") << "\n";
   if (!all)
     for (const auto& w : wanted)
       if (!recorders.count(w)) std::cerr << "topic '" << w << "' had no writer on domain " << s.domain << "\n";

@@ -9,7 +9,10 @@
 #include <fastrtps/types/DynamicData.h>
 #include <fastrtps/types/DynamicPubSubType.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <condition_variable>
 #include <functional>
@@ -18,16 +21,20 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "cli.hpp"
 #include "dds_session.hpp"
 #include "dynamic_yaml.hpp"
+#include "idl_schemas.hpp"
+#include "raw_cdr_type.hpp"
 #include "message_libraries.hpp"
 #include "wysiwyf/dds.hpp"
 #include "wysiwyf/msgs.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/runtime.hpp"
+#include "wysiwyf/validator.hpp"
 
 namespace wysiwyf::cli {
 
@@ -59,6 +66,36 @@ long count_option(Args& args, const std::string& name) {
   } catch (...) {
   }
   throw UsageError(name + ": found '" + *v + "'; expected a whole number of samples (0: no limit)");
+}
+
+// Why no writer was found for `topic`: where the tool looked, and the topics there that come
+// closest to the name (a typo, a missing prefix).
+std::string no_writer_message(const Session& s, const std::string& topic, double timeout,
+                              const std::map<std::string, TopicInfo>& topics) {
+  std::ostringstream out;
+  out << "no writer on topic '" << topic << "' in DDS domain " << s.domain << " (transport " << s.transport
+      << ") within " << timeout << " s";
+  // The closest name (a typo), then names that contain it or that it contains (a missing prefix).
+  std::vector<std::string> written, close;
+  for (const auto& [name, info] : topics)
+    if (!info.writers.empty()) written.push_back(name);
+  if (const std::string nearest = closest_name(topic, written); !nearest.empty()) close.push_back(nearest);
+  for (const auto& name : written)
+    if ((name.find(topic) != std::string::npos || topic.find(name) != std::string::npos) &&
+        std::find(close.begin(), close.end(), name) == close.end())
+      close.push_back(name);
+  const std::size_t with_writers = written.size();
+  if (!close.empty()) {
+    out << "; did you mean";
+    for (std::size_t i = 0; i < close.size() && i < 3; ++i) out << (i ? ", '" : " '") << close[i] << "'";
+    out << "?";
+  } else if (with_writers == 0) {
+    out << "; no topic has a writer there (is the pipeline running, on this domain? --pipeline FILE takes its "
+           "domain and transport)";
+  } else {
+    out << "; " << with_writers << " topic(s) have writers there: wysiwyf topic list";
+  }
+  return out.str();
 }
 
 // Whether the reader still has a writer to hear from (after it had one): once every writer of
@@ -112,7 +149,9 @@ int topic_list(Args& args) {
   for (const auto& [name, t] : topics)
     std::cout << std::left << std::setw(32) << name << std::setw(40) << t.type << std::setw(8) << t.writers.size()
               << t.readers.size() << "\n";
-  if (topics.empty()) std::cerr << "no topics seen in " << wait << " s\n";
+  if (topics.empty())
+    std::cerr << "no topics seen in DDS domain " << s.domain << " (transport " << s.transport << ") in " << wait
+              << " s (is the pipeline running, on this domain? --pipeline FILE takes its domain and transport)\n";
   return 0;
 }
 
@@ -126,7 +165,7 @@ int topic_echo(Args& args, const std::string& topic) {
   const auto info = s.discovery.wait_for_writer(
       topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout)));
   if (!info) {
-    std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
+    std::cerr << no_writer_message(s, topic, timeout, s.discovery.topics()) << "\n";
     return 1;
   }
   SamplePrinter print;
@@ -161,6 +200,43 @@ int topic_echo(Args& args, const std::string& topic) {
   return printed > 0 ? 0 : 1;
 }
 
+// Samples of one topic as raw CDR with their arrival time and, for stamped types, their stamp.
+class Arrivals final : public DataReaderListener {
+ public:
+  explicit Arrivals(bool stamped) : stamped_(stamped) {}
+  struct Arrival {
+    Clock::time_point at;
+    std::optional<std::int64_t> stamp_ns;
+  };
+  void on_data_available(DataReader* reader) override {
+    SampleInfo si;
+    while (reader->take_next_sample(&sample_, &si) == ReturnCode_t::RETCODE_OK) {
+      if (!si.valid_data) continue;
+      Arrival a{Clock::now(), std::nullopt};
+      // A std_msgs::Header first: the stamp is the 8 bytes after the encapsulation (little endian).
+      if (stamped_ && sample_.bytes.size() >= 12 && sample_.bytes[1] == 0x01) {
+        std::int64_t stamp = 0;
+        std::memcpy(&stamp, sample_.bytes.data() + 4, 8);
+        a.stamp_ns = stamp;
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      arrivals_.push_back(a);
+      ++total;
+    }
+  }
+  std::vector<Arrival> take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::exchange(arrivals_, {});
+  }
+  std::atomic<std::uint64_t> total{0};
+
+ private:
+  bool stamped_;
+  RawCdr sample_;
+  std::mutex mutex_;
+  std::vector<Arrival> arrivals_;
+};
+
 int topic_hz(Args& args, const std::string& topic) {
   Session s;
   open(args, s);
@@ -172,51 +248,61 @@ int topic_hz(Args& args, const std::string& topic) {
   const auto info = s.discovery.wait_for_writer(
       topic, Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout)));
   if (!info) {
-    std::cerr << "no writer on topic '" << topic << "' within " << timeout << " s\n";
+    std::cerr << no_writer_message(s, topic, timeout, s.discovery.topics()) << "\n";
     return 1;
   }
-  SamplePrinter print;
-  DataReader* reader = subscribe(s, topic, *info, print);
-  void* sample = reader->type()->createData();
+  // Any type: the samples are counted, not decoded; the stamp is read where the IDL says the
+  // type starts with a header.
+  std::string searched;
+  const auto schema = idl_schema(info->type, searched);
+  Arrivals arrivals(schema && schema->stamped);
+  Subscriber* subscriber = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+  DataReader* reader = open_raw_reader(s, subscriber, topic, *info, 100, &arrivals, StatusMask::data_available());
+  if (!reader) return 1;
+  std::cout << "# topic " << topic << " (" << info->type << ") in domain " << s.domain
+            << (schema && schema->stamped ? "; 'stamps': the rate on the pipeline's clock (sim time on the sim clock)"
+                                          : "; the type has no header: wall-clock rate only")
+            << "\n"
+            << std::flush;
   const auto start = Clock::now();
   auto window_end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(window));
-  std::vector<double> gaps;
-  std::optional<Clock::time_point> last;
-  std::uint64_t total = 0;
+  std::optional<Arrivals::Arrival> last;
   while (!stop_signal_received()) {
     if (duration > 0 && Clock::now() - start >= std::chrono::duration<double>(duration)) break;
-    if (writers_gone(reader) && reader->get_unread_count() == 0) {
-      std::cerr << "every writer of topic '" << topic << "' has gone\n";
-      break;
+    std::this_thread::sleep_until(std::min(window_end, Clock::now() + std::chrono::milliseconds(50)));
+    if (Clock::now() < window_end) {
+      if (writers_gone(reader) && arrivals.total == 0) break;
+      continue;
     }
-    if (reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 20'000'000))) {
-      SampleInfo si;
-      while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK) {
-        if (!si.valid_data) continue;
-        const auto now = Clock::now();
-        if (last) gaps.push_back(std::chrono::duration<double>(now - *last).count());
-        last = now;
-        ++total;
+    window_end += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(window));
+    std::vector<Arrivals::Arrival> batch = arrivals.take();
+    if (batch.empty()) {
+      std::cout << "no new samples\n" << std::flush;
+      if (writers_gone(reader)) {
+        std::cerr << "every writer of topic '" << topic << "' has gone\n";
+        break;
       }
+      continue;
     }
-    if (Clock::now() >= window_end) {
-      if (gaps.empty()) {
-        std::cout << "no new samples\n";
-      } else {
-        double sum = 0, sq = 0, lo = gaps[0], hi = gaps[0];
-        for (double g : gaps) sum += g, sq += g * g, lo = std::min(lo, g), hi = std::max(hi, g);
-        const double mean = sum / gaps.size();
-        const double sd = std::sqrt(std::max(0.0, sq / gaps.size() - mean * mean));
-        std::cout << std::fixed << std::setprecision(3) << "rate " << 1.0 / mean << " Hz  min " << lo * 1e3
-                  << " ms  max " << hi * 1e3 << " ms  std " << sd * 1e3 << " ms  n " << gaps.size() + 1 << "\n"
-                  << std::flush;
-      }
-      gaps.clear();
-      window_end += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(window));
-    }
+    if (last) batch.insert(batch.begin(), *last);  // the gap across windows counts
+    last = batch.back();
+    if (batch.size() < 2) continue;
+    std::vector<double> gaps;
+    for (std::size_t i = 1; i < batch.size(); ++i)
+      gaps.push_back(std::chrono::duration<double>(batch[i].at - batch[i - 1].at).count());
+    double sum = 0, sq = 0, lo = gaps[0], hi = gaps[0];
+    for (double g : gaps) sum += g, sq += g * g, lo = std::min(lo, g), hi = std::max(hi, g);
+    const double mean = sum / gaps.size();
+    const double sd = std::sqrt(std::max(0.0, sq / gaps.size() - mean * mean));
+    std::cout << std::fixed << std::setprecision(3) << "rate " << 1.0 / mean << " Hz  min " << lo * 1e3 << " ms  max "
+              << hi * 1e3 << " ms  std " << sd * 1e3 << " ms  n " << gaps.size();
+    if (batch.front().stamp_ns && batch.back().stamp_ns && *batch.back().stamp_ns > *batch.front().stamp_ns)
+      std::cout << "  |  stamps " << (batch.size() - 1) * 1e9 / (*batch.back().stamp_ns - *batch.front().stamp_ns)
+                << " Hz over " << (*batch.back().stamp_ns - *batch.front().stamp_ns) * 1e-9 << " s";
+    std::cout << "\n" << std::flush;
   }
-  reader->type()->deleteData(sample);
-  return total > 0 ? 0 : 1;
+  s.participant->delete_contained_entities();
+  return arrivals.total > 0 ? 0 : 1;
 }
 
 }  // namespace

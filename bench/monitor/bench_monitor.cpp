@@ -1,6 +1,7 @@
 // What watching costs the loop: config/pipelines/admittance-push.yaml on the real clock (the
 // 1 kHz admittance_sim with spin), run again and again with nothing attached and with each
-// monitor attached from another process (topic hz, topic echo, record --all), the conditions interleaved round by round in one run.
+// monitor attached from another process (topic hz, topic echo, record --all, the Foxglove bridge
+// with a client subscribed to every topic), the conditions interleaved round by round in one run.
 // Reports admittance_sim's tick p50/p99 (the kernel's last 1024 ticks: the end of each run,
 // long after the monitor attached) as the median over the rounds, and checks that the monitor
 // really received samples.
@@ -11,6 +12,8 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -34,36 +37,44 @@ using namespace wysiwyf;
 namespace {
 
 constexpr int kDomain = 203;
+constexpr const char* kBridgePort = "18203";
 const fs::path kWork = fs::path(WYSIWYF_BENCH_WORK_DIR) / "monitor";
 
-// A monitor: the `wysiwyf` arguments that attach it (empty: nothing attached), and how to tell
-// from its output file that it saw the loop's samples.
+// A monitor: the processes that attach it (each a program and its arguments; none: nothing
+// attached), and how to tell from the last one's output that it saw the loop's samples.
 struct Condition {
   std::string name;
-  std::vector<std::string> args;
-  std::string proof;  // text its output must contain
+  std::vector<std::vector<std::string>> processes;
+  std::string proof;  // text the last process's output must contain
 };
+
+std::vector<std::string> cli(std::vector<std::string> args) {
+  args.insert(args.begin(), WYSIWYF_CLI);
+  return args;
+}
 
 std::vector<Condition> conditions() {
   const std::string domain = std::to_string(kDomain);
   return {
       {"nothing", {}, ""},
-      {"topic_hz", {"topic", "hz", "robot/setpoint", "--domain", domain, "--transport", "local"}, "rate "},
+      {"topic_hz", {cli({"topic", "hz", "robot/setpoint", "--domain", domain, "--transport", "local"})}, "rate "},
       {"topic_echo",
-       {"topic", "echo", "haptics/objects", "--domain", domain, "--transport", "local"},
+       {cli({"topic", "echo", "haptics/objects", "--domain", domain, "--transport", "local"})},
        "child_frame_id"},
       {"record_all",
-       {"record", "--all", "-o", (kWork / "record.mcap").string(), "--domain", domain, "--transport", "local",
-        "--no-progress"},
+       {cli({"record", "--all", "-o", (kWork / "record.mcap").string(), "--domain", domain, "--transport", "local",
+             "--no-progress"})},
        "  haptics/objects: "},
+      {"bridge_all",
+       {cli({"bridge", "--domain", domain, "--transport", "local", "--port", kBridgePort}),
+        {WYSIWYF_FOXGLOVE_SINK, kBridgePort}},
+       "received "},
   };
 }
 
 class Child {
  public:
-  Child(const std::vector<std::string>& args, const fs::path& out) {
-    std::vector<std::string> argv_s{WYSIWYF_CLI};
-    argv_s.insert(argv_s.end(), args.begin(), args.end());
+  Child(std::vector<std::string> argv_s, const fs::path& out) {
     std::vector<char*> argv;
     for (auto& a : argv_s) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -72,7 +83,7 @@ class Child {
     posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
     if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) != 0)
-      throw std::runtime_error(std::string("cannot start ") + WYSIWYF_CLI);
+      throw std::runtime_error("cannot start " + argv_s.front());
     posix_spawn_file_actions_destroy(&actions);
   }
   ~Child() {
@@ -98,13 +109,16 @@ Figures run_once(const Condition& c, int round) {
   const ValidationResult v = validate_pipeline(spec, loader);
   if (!v.errors.empty()) throw std::runtime_error(v.errors.front().str());
   fs::create_directories(kWork);
-  const fs::path out = kWork / (c.name + "-" + std::to_string(round) + ".txt");
-  std::unique_ptr<Child> monitor;
-  if (!c.args.empty()) monitor = std::make_unique<Child>(c.args, out);
+  fs::path out;
+  std::vector<std::unique_ptr<Child>> monitor;
+  for (std::size_t i = 0; i < c.processes.size(); ++i) {
+    out = kWork / (c.name + "-" + std::to_string(round) + "-" + std::to_string(i) + ".txt");
+    monitor.push_back(std::make_unique<Child>(c.processes[i], out));
+  }
   std::ostringstream log;
   Runtime runtime(spec, loader, RunOptions{"", false, &log});
   const RunResult r = runtime.run();
-  monitor.reset();
+  while (!monitor.empty()) monitor.pop_back();  // the client first, then the bridge
   if (!r.ok) throw std::runtime_error(r.error + "\n" + log.str());
   if (!c.proof.empty()) {
     std::ifstream in(out);
@@ -151,9 +165,61 @@ void TickWithMonitor(benchmark::State& state, const std::string& name) {
   }
 }
 
+// The recorder's throughput: `record --all` on the whole demo (demo-sim.yaml: 42 topics, a dozen
+// 640x480 image topics at 25 Hz among them), every sample kept or the benchmark fails.
+void RecordDemo(benchmark::State& state) {
+  try {
+    const fs::path file = kWork / "demo.mcap", out = kWork / "record-demo.txt";
+    Loader loader({WYSIWYF_COMPONENT_DIR});
+    const PipelineSpec spec =
+        load_pipeline(std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/demo-sim.yaml",
+                      {"domain=" + std::to_string(kDomain + 1), "record.params.path=" + (kWork / "demo.mp4").string(),
+                       "metrics.params.summary=" + (kWork / "demo-metrics.json").string(), "clock.pace=0",
+                       std::string("clock.duration=") + (bench::smoke() ? "1s" : "12s")});
+    const ValidationResult v = validate_pipeline(spec, loader);
+    if (!v.errors.empty()) throw std::runtime_error(v.errors.front().str());
+    fs::create_directories(kWork);
+    double seconds = 0;
+    {
+      Child recorder(
+          cli({"record", "--all", "-o", file.string(), "--domain", std::to_string(kDomain + 1), "--no-progress"}), out);
+      std::ostringstream log;
+      RunOptions options{"", false, &log};
+      options.start_after_s = 2;  // the recorder matched before t = 0
+      Runtime runtime(spec, loader, options);
+      const auto start = std::chrono::steady_clock::now();
+      const RunResult r = runtime.run();
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - 2;
+      std::this_thread::sleep_for(std::chrono::seconds(2));  // the last samples reach the file
+      if (!r.ok) throw std::runtime_error(r.error + "\n" + log.str());
+    }
+    std::ifstream in(out);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    unsigned long long messages = 0, topics = 0, chunks = 0, bytes = 0, lost = 0, overflowed = 0;
+    const auto summary = text.find("recorded ");
+    if (summary == std::string::npos ||
+        std::sscanf(text.c_str() + summary,
+                    "recorded %llu messages on %llu topic(s), %llu chunks, %llu bytes into %*s lost %llu before the "
+                    "recorder, %llu in it",
+                    &messages, &topics, &chunks, &bytes, &lost, &overflowed) != 6)
+      throw std::runtime_error("cannot read the recorder's summary:\n" + text);
+    fs::remove(file);
+    if (lost + overflowed > 0) throw std::runtime_error("the recorder lost samples:\n" + text);
+    for (auto _ : state) benchmark::DoNotOptimize(messages);
+    state.counters["messages"] = static_cast<double>(messages);
+    state.counters["topics"] = static_cast<double>(topics);
+    state.counters["MB_per_s"] = static_cast<double>(bytes) / 1e6 / seconds;
+    state.counters["messages_per_s"] = static_cast<double>(messages) / seconds;
+    state.counters["lost"] = static_cast<double>(lost + overflowed);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+  }
+}
+
 const bool registered = [] {
   for (const auto& c : conditions())
     benchmark::RegisterBenchmark(("AdmittanceTick/" + c.name).c_str(), TickWithMonitor, c.name)->Iterations(1);
+  benchmark::RegisterBenchmark("RecordDemo/all_topics", RecordDemo)->Iterations(1)->Unit(benchmark::kSecond);
   return true;
 }();
 

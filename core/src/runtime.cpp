@@ -58,6 +58,7 @@ struct Slot final : ComponentHost {
   std::string last_error;
   std::uint64_t diag_seq = 0;
   std::vector<const detail::QueueCounters*> inputs;
+  std::map<std::string, detail::QueueCounters*> inputs_by_port;
   std::unique_ptr<detail::Doorbell> doorbell;  // data-triggered: rung by its trigger inputs
   std::int64_t trigger_timeout_ns = 0;         // data-triggered: tick anyway after this much silence (0: never)
   std::int64_t last_tick_ns = -1;              // sim clock: when it last ticked
@@ -280,6 +281,14 @@ struct Runtime::Impl final : RunHost {
       d.ticks(s.ticks);
       d.overruns(s.overruns);
       d.dropped_samples(slot->dropped());
+      d.dropped_by_port().clear();
+      for (const auto& [port, queue] : slot->inputs_by_port)
+        if (queue->dropped() > 0 && d.dropped_by_port().size() < 32) {
+          kernel_msgs::PortCount c;
+          c.port(port.substr(0, 63));
+          c.count(queue->dropped());
+          d.dropped_by_port().push_back(c);
+        }
       {  // what the component reported, read at once (not held while writing: its thread may report)
         std::lock_guard<std::mutex> lock(slot->health_mutex);
         d.state(!slot->last_error.empty() || slot->health == Health::kFault ? ComponentState::STATE_FAULT
@@ -355,6 +364,7 @@ bool Runtime::Impl::setup(RunResult& result) {
       return false;
     }
     slot->inputs = ctx.input_queues();
+    slot->inputs_by_port = ctx.input_queues_by_port();
     if (slot->spec->is_triggered()) {
       slot->doorbell = std::make_unique<detail::Doorbell>();
       any_triggered = true;

@@ -178,6 +178,13 @@ std::string to_yaml(const kernel_msgs::Diagnostics& m) {
   y.kv("tick_late_p50_us", m.tick_late_p50_us()).kv("tick_late_p99_us", m.tick_late_p99_us());
   y.kv("tick_late_max_us", m.tick_late_max_us());
   y.kv("ticks", m.ticks()).kv("overruns", m.overruns()).kv("dropped_samples", m.dropped_samples());
+  if (m.dropped_by_port().empty()) {
+    y.kv("dropped_by_port", "{}");
+  } else {
+    y.key("dropped_by_port").in();
+    for (const auto& p : m.dropped_by_port()) y.kv(p.port().to_string(), p.count());
+    y.out();
+  }
   y.kv("rejected_samples", m.rejected_samples()).kv("warnings", m.warnings()).str("last_warning", m.last_warning());
   y.str("last_error", m.last_error());
   return y.text();

@@ -16,6 +16,12 @@ function fixed(v, digits) {
   return typeof v === "number" ? v.toFixed(digits) : "-";
 }
 
+// "dropped at image: 3, pose: 1": the input ports whose queues dropped samples.
+function droppedByPort(ports) {
+  const list = Object.entries(ports || {}).map(([port, n]) => `${port}: ${n}`);
+  return list.length ? `dropped at ${list.join(", ")}` : "";
+}
+
 function componentRow(d) {
   const tbody = document.querySelector("#components tbody");
   let tr = rows.get(d.instance);
@@ -37,7 +43,7 @@ function componentRow(d) {
     `${fixed(d.tick_rate_hz, 1)} / ${fixed(d.rate_hz, 0)}`,
     fixed(d.tick_time_p50_us, 1), fixed(d.tick_time_p99_us, 1),
     d.overruns, d.dropped_samples, d.rejected_samples, d.warnings,
-    d.last_error || d.last_warning || "",
+    d.last_error || d.last_warning || droppedByPort(d.dropped_by_port),
   ];
   cells.forEach((c, i) => { tr.children[i].textContent = c; });
   tr.children[3].className = `state-${d.state}`;

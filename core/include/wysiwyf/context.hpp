@@ -75,6 +75,8 @@ class Context {
   const std::vector<ConfigIssue>& issues() const { return issues_; }
   // Run mode: the queues of the component's inputs, for the kernel's diagnostics.
   const std::vector<const detail::QueueCounters*>& input_queues() const { return input_queues_; }
+  // Run mode: the queue of each input port, by port name (per-port diagnostics).
+  const std::map<std::string, detail::QueueCounters*>& input_queues_by_port() const { return input_by_port_; }
   // Run mode: the queue of one input port (for a trigger's doorbell); nullptr when none.
   detail::QueueCounters* input_queue(const std::string& port) const {
     const auto it = input_by_port_.find(port);

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -37,6 +36,8 @@ class TopicChannelBase {
 
   const std::string& topic() const { return topic_; }
   const std::string& type_name() const { return type_name_; }
+  // The largest serialised sample of the type (its bounds), from its type support.
+  std::uint32_t max_serialized_size() const;
   eprosima::fastdds::dds::TopicDataType* make_type() const { return make_type_(); }
 
   int local_writers() const { return local_writers_; }
@@ -47,9 +48,11 @@ class TopicChannelBase {
 
   // The bridge owns the link and unsets it before it goes (null: local only from then on).
   void set_dds_writer(DdsWriterLink* link) {
-    // A reliable topic promises every sample: room for 64 ms of a 1 kHz stream while the
-    // publisher thread waits for a core; a best-effort one (images) keeps a few.
-    const int slack = writer_qos_.reliability == Reliability::kReliable ? 64 : 8;
+    // Room for 64 ms of a 1 kHz stream while the publisher thread waits for a core or sends a
+    // burst of images (a demo frame is a dozen of them: tens of ms); only a best-effort topic of
+    // large samples (images) keeps just a few, its slots being megabytes each.
+    const bool large = max_serialized_size() > 64 * 1024;
+    const int slack = writer_qos_.reliability == Reliability::kReliable || !large ? 64 : 8;
     if (link && !dds_writer_) open_outbox(std::max({writer_qos_.depth, outbox_depth_, slack}));
     dds_writer_ = link;
   }
