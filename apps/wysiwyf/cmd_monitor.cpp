@@ -6,6 +6,7 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -70,11 +71,18 @@ std::string fit(std::string s, std::size_t width) {
 
 // "dropped at image: 3, pose: 1" from a row's dropped_by_port ("" when none dropped).
 std::string dropped_by_port(const json& row) {
-  if (!row.contains("dropped_by_port") || !row["dropped_by_port"].is_object() || row["dropped_by_port"].empty())
+  if (!row.contains("dropped_by_port") || !row["dropped_by_port"].is_array() || row["dropped_by_port"].empty())
     return "";
   std::string out = "dropped at ";
-  for (const auto& [port, count] : row["dropped_by_port"].items())
-    out += (out.size() > 11 ? ", " : "") + port + ": " + count.dump();
+  for (const auto& p : row["dropped_by_port"])
+    out += (out.size() > 11 ? ", " : "") + p.value("port", "?") + ": " + p.value("count", json(0)).dump();
+  return out;
+}
+
+// An enumerator as a word: STATE_ACTIVE -> active, MODE_SURFACE -> surface.
+std::string label(const std::string& enumerator) {
+  std::string out = enumerator.substr(enumerator.find('_') == std::string::npos ? 0 : enumerator.find('_') + 1);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
 }
 
@@ -91,7 +99,7 @@ std::string render(int domain, const std::map<std::string, std::pair<json, Clock
   out << "wysiwyf monitor  domain " << domain << "  ";
   if (auto it = mode.find(""); it != mode.end()) {
     const auto& m = it->second.first;
-    out << "display mode: " << m.value("mode", "?");
+    out << "display mode: " << label(m.value("mode", "?"));
     if (!m.value("reason", "").empty()) out << " (" << m.value("reason", "") << ")";
   } else {
     out << "display mode: -";
@@ -116,7 +124,7 @@ std::string render(int domain, const std::map<std::string, std::pair<json, Clock
   std::sort(ordered.begin(), ordered.end());
   for (const auto& [order, j] : ordered) {
     const std::string instance = j->value("instance", "");
-    std::string state = j->value("state", "?");
+    std::string state = label(j->value("state", "?"));
     if (age[instance] > 3.0) state = "silent";  // its process stopped reporting
     std::string problem = j->value("last_error", "");
     if (problem.empty()) problem = j->value("last_warning", "");

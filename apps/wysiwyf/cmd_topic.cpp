@@ -4,10 +4,8 @@
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastrtps/types/DynamicTypePtr.h>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
-#include <fastdds/dds/topic/TypeSupport.hpp>
-#include <fastrtps/types/DynamicData.h>
-#include <fastrtps/types/DynamicPubSubType.h>
 
 #include <algorithm>
 #include <atomic>
@@ -19,6 +17,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -26,12 +25,11 @@
 
 #include "cli.hpp"
 #include "dds_session.hpp"
-#include "dynamic_yaml.hpp"
+#include "cdr_yaml.hpp"
 #include "idl_schemas.hpp"
 #include "raw_cdr_type.hpp"
 #include "message_libraries.hpp"
 #include "wysiwyf/dds.hpp"
-#include "wysiwyf/msgs.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/runtime.hpp"
 #include "wysiwyf/validator.hpp"
@@ -43,7 +41,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-using SamplePrinter = std::function<std::string(const void*)>;
+using SamplePrinter = std::function<std::string(const RawCdr&)>;
 
 double seconds_option(Args& args, const std::string& name, double fallback) {
   auto v = args.value(name);
@@ -106,33 +104,17 @@ bool writers_gone(DataReader* reader) {
   return status.total_count > 0 && status.current_count == 0;
 }
 
-// A reader on `topic` with the QoS of the writer found there, so that it matches, and how to
-// print its samples: a type this build knows by its printer, any other from a message library.
+// A reader of `topic`'s samples as DDS carried them (raw CDR, the writer's QoS), and how to
+// print them: walked by the description of any type this build or a message library describes.
 DataReader* subscribe(Session& s, const std::string& topic, const TopicInfo& info, SamplePrinter& print) {
-  TypeSupport support;
-  if (const MessageType* type = msgs::registry().find(info.type)) {
-    support.reset(type->make_type());
-    print = type->to_yaml;
-  } else {
-    eprosima::fastrtps::types::DynamicType_ptr dynamic;
-    std::string searched;
-    if (!find_dynamic_type(info.type, dynamic, searched))
-      throw std::runtime_error("topic '" + topic + "' carries " + info.type +
-                               ", which neither this build nor a message library knows (searched " + searched + ")");
-    support.reset(new eprosima::fastrtps::types::DynamicPubSubType(dynamic));
-    print = [dynamic](const void* sample) {
-      return dynamic_to_yaml(*static_cast<eprosima::fastrtps::types::DynamicData*>(const_cast<void*>(sample)), dynamic);
-    };
-  }
-  support->auto_fill_type_object(false);  // as the pipelines' endpoints (core/src/dds_bridge.cpp)
-  support->auto_fill_type_information(false);
-  support.register_type(s.participant, info.type);
-  Topic* t = s.participant->create_topic(topic, info.type, TOPIC_QOS_DEFAULT);
+  eprosima::fastrtps::types::DynamicType_ptr type;
+  std::string searched;
+  if (!find_dynamic_type(info.type, type, searched))
+    throw std::runtime_error("topic '" + topic + "' carries " + info.type +
+                             ", which neither this build nor a message library describes (searched " + searched + ")");
+  print = [type](const RawCdr& sample) { return cdr_to_yaml(sample.bytes.data(), sample.bytes.size(), type); };
   Subscriber* sub = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
-  Qos qos = Qos::reliable(100);
-  qos.reliability = info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
-  qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
-  DataReader* reader = sub->create_datareader(t, dds::reader_qos(qos, info.keyed ? dds::kKeyedTopicInstances : 1));
+  DataReader* reader = open_raw_reader(s, sub, topic, info, 100, nullptr, StatusMask::none());
   if (!reader) throw std::runtime_error("cannot create a reader on topic '" + topic + "'");
   return reader;
 }
@@ -171,7 +153,6 @@ int topic_echo(Args& args, const std::string& topic) {
   SamplePrinter print;
   DataReader* reader = subscribe(s, topic, *info, print);
   std::cout << "# topic " << topic << " (" << info->type << ")\n" << std::flush;
-  void* sample = reader->type()->createData();
   long printed = 0;
   // --timeout bounds the wait for the first sample; after it, echo runs until --count samples,
   // Ctrl-C, or the topic's last writer leaves.
@@ -190,13 +171,19 @@ int topic_echo(Args& args, const std::string& topic) {
       continue;
     }
     SampleInfo si;
-    while (reader->take_next_sample(sample, &si) == ReturnCode_t::RETCODE_OK && (count == 0 || printed < count)) {
+    RawCdr sample;
+    while ((count == 0 || printed < count) && reader->take_next_sample(&sample, &si) == ReturnCode_t::RETCODE_OK) {
       if (!si.valid_data) continue;
-      std::cout << "---\n" << print(sample) << std::flush;
+      std::string text;
+      try {
+        text = print(sample);
+      } catch (const std::runtime_error& e) {
+        text = "# cannot read this sample: " + std::string(e.what()) + "\n";
+      }
+      std::cout << "---\n" << text << std::flush;
       ++printed;
     }
   }
-  reader->type()->deleteData(sample);
   return printed > 0 ? 0 : 1;
 }
 

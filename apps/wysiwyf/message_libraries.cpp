@@ -1,4 +1,5 @@
 #include "message_libraries.hpp"
+#include "wysiwyf/msgs.hpp"
 
 #include <dlfcn.h>
 #include <fastrtps/types/DynamicTypePtr.h>
@@ -56,6 +57,7 @@ const Loaded& load_all() {
 }  // namespace
 
 bool find_dynamic_type(const std::string& type_name, types::DynamicType_ptr& type, std::string& searched) {
+  msgs::register_type_objects();  // this build's own types, described as any library's
   const Loaded& l = load_all();
   types::TypeObjectFactory* factory = types::TypeObjectFactory::get_instance();
   const types::TypeIdentifier* id = factory->get_type_identifier(type_name, true);

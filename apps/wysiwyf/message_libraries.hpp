@@ -11,8 +11,8 @@ class DynamicType_ptr;
 
 namespace wysiwyf::cli {
 
-// The dynamic type named `type_name` (e.g. "lab::msg::Gesture") from the loaded message
-// libraries; false when none has it, with `searched` saying which libraries and folders were read.
+// The dynamic type named `type_name` (e.g. "lab::msg::Gesture", "wysiwyf::msg::JointState") from
+// this build's types or the loaded message libraries; false when none has it, with `searched` saying which libraries and folders were read.
 bool find_dynamic_type(const std::string& type_name, eprosima::fastrtps::types::DynamicType_ptr& type,
                        std::string& searched);
 

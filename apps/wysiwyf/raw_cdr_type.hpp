@@ -22,6 +22,11 @@ class RawCdrType final : public eprosima::fastdds::dds::TopicDataType {
     setName(type_name.c_str());
     m_typeSize = 64 * 1024;  // a first guess for buffers; larger samples grow them
     m_isGetKeyDefined = keyed;
+    // Announced by name only: a tool that registered type objects (its own types', message
+    // libraries') would otherwise send them in discovery, and Fast DDS 2.9 participants that
+    // receive them crash building their sequence types (a pipeline died when the bridge attached).
+    auto_fill_type_object(false);
+    auto_fill_type_information(false);
   }
   bool serialize(void* data, eprosima::fastrtps::rtps::SerializedPayload_t* payload) override {
     const auto& b = static_cast<RawCdr*>(data)->bytes;

@@ -58,7 +58,7 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   EXPECT_EQ(wait_exit(diag, std::chrono::seconds(30)), 0) << read_file(dir / "diag.log");
   const std::string diagnostics = read_file(dir / "diag.log");
   EXPECT_NE(diagnostics.find("instance: \"src\""), std::string::npos) << diagnostics;
-  EXPECT_NE(diagnostics.find("state: active"), std::string::npos) << diagnostics;
+  EXPECT_NE(diagnostics.find("state: STATE_ACTIVE"), std::string::npos) << diagnostics;
   EXPECT_NE(diagnostics.find("rate_hz: 100"), std::string::npos) << diagnostics;
 
   // SIGTERM stops the producer cleanly.

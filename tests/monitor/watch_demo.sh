@@ -35,6 +35,7 @@ echo "== the demo, and the bridge on it"
 "$cli" run "$src/config/pipelines/demo-sim.yaml" --set domain="$domain" --set dds.transport=local \
   --set record.params.path="$work/demo.mp4" --set metrics.params.summary="$work/metrics.json" \
   --set clock.duration=600s --no-progress >"$work/run.log" 2>&1 &
+demo=$!
 pids+=($!); disown
 "$cli" bridge --domain "$domain" --transport local --port 0 >"$work/bridge.log" 2>&1 &
 pids+=($!); disown
@@ -92,3 +93,5 @@ tmux -L "$tmux_socket" capture-pane -p -t monitor >"$work/pane.txt"
 [[ $(grep -c "^wysiwyf monitor" "$work/pane.txt") == 1 ]] || fail "the table is not redrawn in place"
 grep -q "^physics  *admittance_sim  *main  *active" "$work/pane.txt" || fail "physics is not shown active"
 echo "ok: the monitor shows all ${#components[@]} components, in place"
+# Watching never hurts the watched (a tool announcing type objects once crashed a pipeline).
+kill -0 "$demo" 2>/dev/null || { tail -20 "$work/run.log"; fail "the demo died while it was watched"; }

@@ -49,8 +49,8 @@ void DashboardFeed::on_sample(const std::string& topic, const std::string& type,
   const auto now = Clock::now();
   if (topic == options_.video_topic) {
     if (now - frame_sent_ < kFramePeriod || server_.stats().dashboard_clients == 0) return;
-    if (const void* image = decoder_.decode(type, cdr); image && type == "wysiwyf::msg::Image") {
-      video_frame(image);
+    if (const msg::Image* image = type == "wysiwyf::msg::Image" ? decoder_.image(cdr) : nullptr) {
+      video_frame(*image);
       frame_sent_ = now;
     }
     return;
@@ -69,7 +69,7 @@ void DashboardFeed::on_sample(const std::string& topic, const std::string& type,
     server_.dashboard_text(std::move(text));
   }
   if (mode) {
-    const std::string name = sample->value("mode", "");
+    const std::string name = sample->value("mode", "");  // e.g. MODE_SURFACE
     mode_ = json{{"op", "mode"}, {"sample", *sample}}.dump();
     if (name != mode_name_ || now - mode_sent_ >= kModePeriod) {
       server_.dashboard_text(mode_);
@@ -89,8 +89,7 @@ void DashboardFeed::on_sample(const std::string& topic, const std::string& type,
   }
 }
 
-void DashboardFeed::video_frame(const void* sample) {
-  const auto& m = *static_cast<const msg::Image*>(sample);
+void DashboardFeed::video_frame(const msg::Image& m) {
   if (!image::problem(m, {"rgb8", "bgr8", "rgba8", "mono8"}).empty()) return;
   const cv::Mat pixels = image::view(m);
   cv::Mat bgr;

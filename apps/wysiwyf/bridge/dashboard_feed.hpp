@@ -53,7 +53,7 @@ class DashboardFeed {
     std::chrono::steady_clock::time_point last{};
   };
   void add_plot(const std::string& topic, const std::string& field);
-  void video_frame(const void* image);
+  void video_frame(const msg::Image& image);
 
   WsServer& server_;
   DashboardOptions options_;

@@ -1,14 +1,19 @@
 #include "sample_json.hpp"
 
 #include <fastdds/dds/topic/TopicDataType.hpp>
+#include <fastrtps/types/DynamicTypePtr.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <cstring>
 
+#include "../cdr_yaml.hpp"
+#include "../message_libraries.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::bridge {
+
+namespace types = eprosima::fastrtps::types;
 
 namespace {
 
@@ -67,51 +72,38 @@ std::optional<double> number_at(const nlohmann::json& sample, const std::string&
 }
 
 struct SampleDecoder::Decoder {
-  const MessageType* type = nullptr;
-  std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support;
-  void* sample = nullptr;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload;
-  ~Decoder() {
-    if (sample) support->deleteData(sample);
-  }
+  types::DynamicType_ptr type;
 };
 
 SampleDecoder::SampleDecoder() = default;
 SampleDecoder::~SampleDecoder() = default;
 
-bool SampleDecoder::knows(const std::string& type_name) const { return msgs::registry().find(type_name) != nullptr; }
-
-const void* SampleDecoder::decode(const std::string& type_name, const std::vector<std::uint8_t>& cdr) {
-  auto& d = decoders_[type_name];
-  if (!d) {
-    const MessageType* type = msgs::registry().find(type_name);
-    if (!type) return nullptr;
-    d = std::make_unique<Decoder>();
-    d->type = type;
-    d->support.reset(type->make_type());
-    d->sample = d->support->createData();
-  }
-  if (!d->type || cdr.size() < 4) return nullptr;
-  if (d->payload.max_size < cdr.size()) d->payload.reserve(static_cast<std::uint32_t>(cdr.size()));
-  std::memcpy(d->payload.data, cdr.data(), cdr.size());
-  d->payload.length = static_cast<std::uint32_t>(cdr.size());
-  d->payload.pos = 0;
-  try {
-    if (!d->support->deserialize(&d->payload, d->sample)) return nullptr;
-  } catch (...) {  // bytes that are not this type
-    return nullptr;
-  }
-  return d->sample;
-}
-
 std::optional<nlohmann::json> SampleDecoder::to_json(const std::string& type_name,
                                                      const std::vector<std::uint8_t>& cdr) {
-  const void* sample = decode(type_name, cdr);
-  if (!sample) return std::nullopt;
+  auto [it, added] = decoders_.try_emplace(type_name);
+  if (added) {
+    types::DynamicType_ptr type;
+    std::string searched;
+    if (cli::find_dynamic_type(type_name, type, searched)) it->second = std::make_unique<Decoder>(Decoder{type});
+  }
+  if (!it->second) return std::nullopt;
   try {
-    return yaml_to_json(decoders_[type_name]->type->to_yaml(sample));
-  } catch (const YAML::Exception&) {
+    return yaml_to_json(cli::cdr_to_yaml(cdr.data(), cdr.size(), it->second->type));
+  } catch (...) {  // bytes that are not this type
     return std::nullopt;
+  }
+}
+
+const msg::Image* SampleDecoder::image(const std::vector<std::uint8_t>& cdr) {
+  static auto* support = MessageTraits<msg::Image>::make_type();
+  if (cdr.size() < 4) return nullptr;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
+  std::memcpy(payload.data, cdr.data(), cdr.size());
+  payload.length = static_cast<std::uint32_t>(cdr.size());
+  try {
+    return support->deserialize(&payload, &image_) ? &image_ : nullptr;
+  } catch (...) {
+    return nullptr;
   }
 }
 

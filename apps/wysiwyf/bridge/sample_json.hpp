@@ -1,7 +1,7 @@
 #pragma once
-// A sample as DDS carried it (CDR) -> JSON, for the dashboard: decoded with the type support of
-// a type this build knows (interfaces/msgs, the kernel's Diagnostics) and walked through its YAML
-// printer, so the page sees the same field names as `wysiwyf topic echo` prints.
+// A sample as DDS carried it (CDR) -> JSON, for the dashboard and `wysiwyf monitor`: decoded as
+// the dynamic type of any type this build or a message library describes (message_libraries.hpp)
+// and walked as `wysiwyf topic echo` prints it, so the field names and values are echo's.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -10,9 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace eprosima::fastdds::dds {
-class TopicDataType;
-}
+#include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::bridge {
 
@@ -27,16 +25,15 @@ class SampleDecoder {
  public:
   SampleDecoder();
   ~SampleDecoder();
-  // Whether this build can decode `type_name`.
-  bool knows(const std::string& type_name) const;
-  // The sample as JSON; nullopt if the type is unknown or the bytes do not decode.
+  // The sample as JSON; nullopt if no type description is found or the bytes do not decode.
   std::optional<nlohmann::json> to_json(const std::string& type_name, const std::vector<std::uint8_t>& cdr);
-  // The decoded sample itself (valid until the next call for this type), for typed uses (images).
-  const void* decode(const std::string& type_name, const std::vector<std::uint8_t>& cdr);
+  // An Image sample (valid until the next call), for the pixels; nullptr if it does not decode.
+  const msg::Image* image(const std::vector<std::uint8_t>& cdr);
 
  private:
   struct Decoder;
-  std::map<std::string, std::unique_ptr<Decoder>> decoders_;
+  std::map<std::string, std::unique_ptr<Decoder>> decoders_;  // null: no description found
+  msg::Image image_;
 };
 
 }  // namespace wysiwyf::bridge

@@ -18,8 +18,14 @@ function fixed(v, digits) {
 
 // "dropped at image: 3, pose: 1": the input ports whose queues dropped samples.
 function droppedByPort(ports) {
-  const list = Object.entries(ports || {}).map(([port, n]) => `${port}: ${n}`);
+  const list = (ports || []).map((p) => `${p.port}: ${p.count}`);
   return list.length ? `dropped at ${list.join(", ")}` : "";
+}
+
+// An enumerator as a word: STATE_ACTIVE -> active, MODE_SURFACE -> surface.
+function label(enumerator) {
+  const s = String(enumerator ?? "?");
+  return s.slice(s.indexOf("_") + 1).toLowerCase();
 }
 
 function componentRow(d) {
@@ -38,15 +44,16 @@ function componentRow(d) {
     document.getElementById("no-components").hidden = true;
   }
   tr.dataset.updated = Date.now();
+  const state = label(d.state);
   const cells = [
-    d.instance, d.type, d.process, d.state,
+    d.instance, d.type, d.process, state,
     `${fixed(d.tick_rate_hz, 1)} / ${fixed(d.rate_hz, 0)}`,
     fixed(d.tick_time_p50_us, 1), fixed(d.tick_time_p99_us, 1),
     d.overruns, d.dropped_samples, d.rejected_samples, d.warnings,
     d.last_error || d.last_warning || droppedByPort(d.dropped_by_port),
   ];
   cells.forEach((c, i) => { tr.children[i].textContent = c; });
-  tr.children[3].className = `state-${d.state}`;
+  tr.children[3].className = `state-${state}`;
   tr.dataset.tickRate = d.tick_rate_hz;
 }
 
@@ -62,8 +69,9 @@ setInterval(() => {
 
 function showMode(m) {
   const el = document.getElementById("mode");
-  el.textContent = m.mode;
-  el.className = `mode mode-${m.mode}`;
+  const mode = label(m.mode);
+  el.textContent = mode;
+  el.className = `mode mode-${mode}`;
   text("mode-reason", m.reason ? `(${m.reason})` : "");
 }
 
