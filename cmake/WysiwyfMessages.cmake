@@ -6,7 +6,8 @@
 #    (ctx.input<lab::msg::Gesture>(...)); link the target <name> and include it;
 #  - the type objects of every type (fastddsgen -typeobject) and an entry point, so the wysiwyf
 #    tools load the library from ${CMAKE_BINARY_DIR}/lib/wysiwyf/messages (installed:
-#    <libdir>/wysiwyf/messages) and print samples of these types (`wysiwyf topic echo`).
+#    <libdir>/wysiwyf/messages) and print samples of these types (`wysiwyf topic echo`);
+#  - the IDL files beside it (messages/idl/), the schema `wysiwyf record` and `bridge` give.
 # OUTPUT_DIR puts the library elsewhere and does not install it (test-only types).
 # wysiwyf_fastddsgen(<idl> OUT_DIR <dir> WORK_DIR <dir> [INCLUDE_DIRS <dirs>] SOURCES <var> HEADERS <var>)
 # One IDL file through fastddsgen at build time: its struct, TypeSupport and type-object code in
@@ -108,7 +109,19 @@ ${registrations}  return \"${name}\";
     set(ARG_OUTPUT_DIR ${CMAKE_BINARY_DIR}/lib/wysiwyf/messages)
     install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/wysiwyf/messages)
     install(FILES ${headers} ${out}/messages.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${name}/${name})
+    install(FILES ${ARG_IDL} DESTINATION ${CMAKE_INSTALL_LIBDIR}/wysiwyf/messages/idl)
   endif()
+  # The IDL beside the library (messages/idl/): the recorder and the bridge give it as the
+  # types' schema (idl_search_dirs()), so Foxglove and MCAP readers decode them too.
+  set(idl_copies)
+  foreach(idl ${ARG_IDL})
+    get_filename_component(abs ${idl} ABSOLUTE)
+    list(APPEND idl_copies ${abs})
+  endforeach()
+  add_custom_command(TARGET ${name} POST_BUILD
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${ARG_OUTPUT_DIR}/idl
+    COMMAND ${CMAKE_COMMAND} -E copy ${idl_copies} ${ARG_OUTPUT_DIR}/idl
+    VERBATIM)
   set_target_properties(${name} PROPERTIES
     LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIR}
     INSTALL_RPATH "$ORIGIN/../..${WYSIWYF_LIBRARY_DIR_RPATH}")

@@ -71,6 +71,8 @@ std::vector<std::string> idl_search_dirs() {
   std::error_code ec;
   if (!core.empty() && fs::equivalent(core, WYSIWYF_BUILD_LIB_DIR, ec))
     for (const char* d : {"kernel", "msgs"}) add_existing(dirs, fs::path(WYSIWYF_SOURCE_INTERFACES_DIR) / d);
+  // Users' types: the IDL that wysiwyf_add_messages puts beside each message library.
+  for (const auto& d : message_library_dirs()) add_existing(dirs, fs::path(d) / "idl");
   return dirs;
 }
 

@@ -73,10 +73,18 @@ wysiwyf validate "$project/contacts.yaml" --set domain="$domain"
 wysiwyf topic echo example/contacts --domain "$domain" --transport local --count 2 --timeout 30 \
   >"$scratch/echo.txt" 2>&1 &
 echo_pid=$!
-trap 'kill $echo_pid 2>/dev/null || true' EXIT
+wysiwyf record example/contacts -o "$scratch/contacts.mcap" --domain "$domain" --transport local --no-progress \
+  >"$scratch/record.txt" 2>&1 &
+record_pid=$!
+trap 'kill $echo_pid $record_pid 2>/dev/null || true' EXIT
 sleep 1
-wysiwyf run "$project/contacts.yaml" --set domain="$domain" --no-progress | tee "$scratch/run.txt"
+wysiwyf run "$project/contacts.yaml" --set domain="$domain" --no-progress --start-after 1 | tee "$scratch/run.txt"
 wait $echo_pid || { cat "$scratch/echo.txt"; fail "topic echo of the user's type"; }
+kill -INT $record_pid; wait $record_pid || { cat "$scratch/record.txt"; fail "record of the user's type"; }
+cat "$scratch/record.txt"
+# The user's IDL, installed beside the message library, is the recorded schema.
+grep -q "no IDL defines" "$scratch/record.txt" && fail "the recorder found no IDL for the user's type"
+grep -aq "struct ContactSummary" "$scratch/contacts.mcap" || fail "the recording lacks the user's IDL as schema"
 cat "$scratch/echo.txt"
 grep -q "example::msg::ContactSummary" "$scratch/echo.txt" || fail "echo did not name the type"
 grep -q "^contact: 2" "$scratch/echo.txt" || fail "echo did not print the second contact"
