@@ -7,9 +7,11 @@
 // really received samples.
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
+#include <sched.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -46,6 +48,9 @@ struct Condition {
   std::string name;
   std::vector<std::vector<std::string>> processes;
   std::string proof;  // text the last process's output must contain
+  // The haptic loop on a core of its own: physics pinned to CPU 1 (`cpus: [1]`), the rest of
+  // the pipeline process (DDS, the publisher thread) and the monitors on CPU 0.
+  bool pinned = false;
 };
 
 std::vector<std::string> cli(std::vector<std::string> args) {
@@ -53,7 +58,7 @@ std::vector<std::string> cli(std::vector<std::string> args) {
   return args;
 }
 
-std::vector<Condition> conditions() {
+std::vector<Condition> base_conditions() {
   const std::string domain = std::to_string(kDomain);
   return {
       {"nothing", {}, ""},
@@ -70,6 +75,32 @@ std::vector<Condition> conditions() {
         {WYSIWYF_FOXGLOVE_SINK, kBridgePort}},
        "received "},
   };
+}
+
+// Each condition as is, then (on a machine of 2 CPUs or more) pinned.
+std::vector<Condition> conditions() {
+  std::vector<Condition> all = base_conditions();
+  if (sysconf(_SC_NPROCESSORS_ONLN) >= 2)
+    for (Condition c : base_conditions()) {
+      c.name = "pinned_" + c.name;
+      c.pinned = true;
+      all.push_back(c);
+    }
+  return all;
+}
+
+// This process (and what it starts from now on) on `cpus` only.
+void run_on(const std::vector<int>& cpus) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  for (int cpu : cpus) CPU_SET(cpu, &set);
+  if (sched_setaffinity(0, sizeof(set), &set) != 0) throw std::runtime_error("sched_setaffinity failed");
+}
+
+std::vector<int> all_cpus() {
+  std::vector<int> cpus;
+  for (long i = 0; i < sysconf(_SC_NPROCESSORS_ONLN); ++i) cpus.push_back(static_cast<int>(i));
+  return cpus;
 }
 
 class Child {
@@ -102,14 +133,26 @@ struct Figures {
 
 Figures run_once(const Condition& c, int round) {
   Loader loader({WYSIWYF_COMPONENT_DIR});
+  std::vector<std::string> sets{"domain=" + std::to_string(kDomain),
+                                "dds.transport=local",
+                                "clock.mode=real",
+                                "clock.pace=null",
+                                "clock.step=null",
+                                std::string("clock.duration=") + (bench::smoke() ? "1500ms" : "4s")};
+  if (c.pinned) sets.push_back("physics.cpus=1");
   const PipelineSpec spec =
-      load_pipeline(std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/admittance-push.yaml",
-                    {"domain=" + std::to_string(kDomain), "dds.transport=local", "clock.mode=real", "clock.pace=null",
-                     "clock.step=null", std::string("clock.duration=") + (bench::smoke() ? "1500ms" : "4s")});
+      load_pipeline(std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/admittance-push.yaml", sets);
   const ValidationResult v = validate_pipeline(spec, loader);
   if (!v.errors.empty()) throw std::runtime_error(v.errors.front().str());
   fs::create_directories(kWork);
   fs::path out;
+  if (c.pinned) run_on({0});  // the monitors started next, and DDS's threads, inherit it
+  struct Unpin {
+    bool pinned;
+    ~Unpin() {
+      if (pinned) run_on(all_cpus());
+    }
+  } unpin{c.pinned};
   std::vector<std::unique_ptr<Child>> monitor;
   for (std::size_t i = 0; i < c.processes.size(); ++i) {
     out = kWork / (c.name + "-" + std::to_string(round) + "-" + std::to_string(i) + ".txt");
@@ -153,7 +196,8 @@ void TickWithMonitor(benchmark::State& state, const std::string& name) {
     const auto& m = measurements();
     std::vector<double> p50, p99, base50, base99;
     for (const auto& f : m.at(name)) p50.push_back(f.p50_us), p99.push_back(f.p99_us);
-    for (const auto& f : m.at("nothing")) base50.push_back(f.p50_us), base99.push_back(f.p99_us);
+    const std::string base = name.rfind("pinned_", 0) == 0 ? "pinned_nothing" : "nothing";
+    for (const auto& f : m.at(base)) base50.push_back(f.p50_us), base99.push_back(f.p99_us);
     for (auto _ : state) benchmark::DoNotOptimize(p50.data());
     state.counters["p50_us"] = median(p50);
     state.counters["p99_us"] = median(p99);

@@ -71,7 +71,7 @@ const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
 const std::vector<std::string> kComponentKeys = {
-    "type", "rate", "process", "enabled", "spin", "priority", "trigger", "trigger_timeout", "params", "topics", "qos"};
+    "type", "rate", "process", "enabled", "spin", "priority", "cpus", "trigger", "trigger_timeout", "params", "topics", "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
 
@@ -414,6 +414,26 @@ class Parser {
               label + " priority: found " + describe_node(m) + "; expected a SCHED_FIFO priority from 1 to 99");
       else
         c.priority.assign(p, at(m, file));
+    }
+    if (const YAML::Node m = n["cpus"]) {  // one CPU or a list of them
+      const std::string expected = "; expected a CPU number (0, 1, ...) or a list of them, e.g. [1] or [2, 3]";
+      std::vector<YAML::Node> items;
+      if (m.IsSequence())
+        for (const auto& item : m) items.push_back(item);
+      else
+        items.push_back(m);
+      std::vector<int> cpus;
+      bool ok = !items.empty();
+      if (!ok) error(at(m, file), label + " cpus: found an empty list" + expected);
+      for (const YAML::Node& cpu : items) {
+        int i = -1;
+        if (!cpu.IsScalar() || !to_int(cpu, i) || i < 0 || i >= 1024) {
+          error(at(cpu, file), label + " cpus: found " + describe_node(cpu) + expected);
+          ok = false;
+        }
+        cpus.push_back(i);
+      }
+      if (ok) c.cpus.assign(cpus, at(m, file));
     }
     if (const YAML::Node m = n["trigger"]) apply_trigger(m, file, label, c);
     if (const YAML::Node m = n["trigger_timeout"])

@@ -316,6 +316,27 @@ struct Runtime::Impl final : RunHost {
                                "; expected CAP_SYS_NICE or an rtprio limit (ulimit -r); running at normal priority");
   }
 
+  // Pins the slot's thread to its `cpus`; a CPU this machine lacks, or a refusal, is said and the
+  // thread runs where the process may.
+  void set_cpus(Slot& slot) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    const long online = sysconf(_SC_NPROCESSORS_ONLN);
+    std::string list;
+    for (int cpu : slot.spec->cpus.value) {
+      list += (list.empty() ? "" : ", ") + std::to_string(cpu);
+      if (cpu >= online) {
+        log(slot.spec->name, "cpus: CPU " + std::to_string(cpu) + " does not exist (this machine has " +
+                                 std::to_string(online) + ", 0 to " + std::to_string(online - 1) +
+                                 "); the thread is not pinned");
+        return;
+      }
+      CPU_SET(cpu, &set);
+    }
+    if (const int err = pthread_setaffinity_np(pthread_self(), sizeof(set), &set); err != 0)
+      log(slot.spec->name, "cpus [" + list + "] refused: " + std::strerror(err) + "; the thread is not pinned");
+  }
+
   bool setup(RunResult& result);
   void run_sim(RunResult& result);
   void run_real(RunResult& result);
@@ -464,6 +485,7 @@ void Runtime::Impl::run_real(RunResult& result) {
     threads.emplace_back([this, slot, start] {
       prctl(PR_SET_TIMERSLACK, 1UL);  // by default Linux may wake this thread up to 50 us late
       if (slot->spec->priority.set) set_fifo_priority(*slot);
+      if (slot->spec->cpus.set) set_cpus(*slot);
       if (slot->doorbell) {  // data-triggered: one tick per ring; late = from the sample's arrival
         using Wake = detail::Doorbell::Wake;
         const auto timeout = std::chrono::nanoseconds(slot->trigger_timeout_ns);

@@ -55,6 +55,21 @@ TEST(RealClock, SpinAndPriorityRunAndTheLatenessOfEveryTickIsReported) {
   }
 }
 
+TEST(RealClock, CpusPinAComponentsThreadAndACpuTheMachineLacksIsSaid) {
+  // cpus: [0] exists everywhere (pinned, nothing said); a CPU beyond the machine's is said, and
+  // the component runs unpinned.
+  std::string said;
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 56\ndds: {transport: local}\nclock: {mode: real, duration: 50ms}\ncomponents:\n"
+      "  pinned: {type: test_probe, rate: 1000, cpus: [0]}\n"
+      "  nowhere: {type: test_probe, rate: 1000, cpus: 1023}\n",
+      {}, &said);
+  ASSERT_TRUE(r.ok) << r.error;
+  for (const auto& c : r.components) EXPECT_GT(c.ticks, 0u) << c.name;
+  EXPECT_EQ(said.find("[pinned] cpus"), std::string::npos) << said;
+  EXPECT_NE(said.find("[nowhere] cpus: CPU 1023 does not exist (this machine has "), std::string::npos) << said;
+}
+
 TEST(DdsSetup, AFastDdsXmlParticipantProfileCanBeNamed) {
   const auto dir = scratch_dir();
   std::ofstream(dir / "profiles.xml") << R"(<?xml version="1.0" encoding="UTF-8" ?>
