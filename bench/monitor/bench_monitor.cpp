@@ -140,8 +140,7 @@ Figures run_once(const Condition& c, int round) {
                                 "clock.step=null",
                                 std::string("clock.duration=") + (bench::smoke() ? "1500ms" : "4s")};
   if (c.pinned) sets.push_back("physics.cpus=1");
-  const PipelineSpec spec =
-      load_pipeline(std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/admittance-push.yaml", sets);
+  const PipelineSpec spec = load_pipeline(std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/admittance-push.yaml", sets);
   const ValidationResult v = validate_pipeline(spec, loader);
   if (!v.errors.empty()) throw std::runtime_error(v.errors.front().str());
   fs::create_directories(kWork);

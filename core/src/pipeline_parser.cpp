@@ -70,8 +70,8 @@ namespace {
 const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain", "clock", "dds", "components"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
-const std::vector<std::string> kComponentKeys = {
-    "type", "rate", "process", "enabled", "spin", "priority", "cpus", "trigger", "trigger_timeout", "params", "topics", "qos"};
+const std::vector<std::string> kComponentKeys = {"type", "rate",    "process",         "enabled", "spin",   "priority",
+                                                 "cpus", "trigger", "trigger_timeout", "params",  "topics", "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
 

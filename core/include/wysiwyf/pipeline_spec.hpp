@@ -44,8 +44,8 @@ struct ComponentSpec {
   Sourced<std::string> process;
   Sourced<bool> enabled;
   // Real clock only (ignored on the sim clock, so a pipeline swaps clocks by one line):
-  Sourced<std::int64_t> spin_ns;  // wake this long before each tick and busy-wait the rest
-  Sourced<int> priority;          // SCHED_FIFO priority of the component's thread, 1..99
+  Sourced<std::int64_t> spin_ns;   // wake this long before each tick and busy-wait the rest
+  Sourced<int> priority;           // SCHED_FIFO priority of the component's thread, 1..99
   Sourced<std::vector<int>> cpus;  // the CPUs the component's thread may run on (pinned)
   // Input ports whose samples tick the component (data-triggered) instead of its period; the
   // sim clock ticks it in the same step, right after the producer.
