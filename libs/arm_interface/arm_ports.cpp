@@ -1,19 +1,54 @@
 #include "arm_interface/arm_ports.hpp"
 
+#include <utility>
+
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::robot {
 
-void ArmPorts::declare(Context& ctx) {
+void ArmPorts::declare(Context& ctx, Report report) {
+  report_ = std::move(report);
   setpoint = ctx.input<msg::CartesianSetpoint>(
       "setpoint", "base_T_dev and its twist, at any period of 1-20 ms (one writer: a second is a validation error)",
       Qos::reliable(32).one_writer());
+  request = ctx.input<msg::ArmRequest>(
+      "request", "the supervisor's requests: CLEAR_INPUT_FAULT once its inputs are good again (optional)",
+      Qos::reliable(8).optional_input());
   joint_state_out_ =
       ctx.output<msg::JointState>("joint_state", "measured joint angles (encoders), velocities, motor torques");
   device_pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
   status_out_ = ctx.output<msg::RobotStatus>(
       "status", "safety state (RobotStatus): ok following a source, holding, or fault, with the reason",
       Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
+}
+
+void ArmPorts::take_setpoints(const ArmParams& params, SetpointFollower& follower, std::int64_t now_ns) {
+  while (setpoint.take(setpoint_msg_)) {
+    if (const std::string why = params.source_problem(setpoint_msg_); !why.empty()) {
+      report_.reject_setpoint(setpoint, why);
+      continue;
+    }
+    if (follower.take(setpoint_msg_, now_ns) == SetpointFollower::Taken::kRefused)
+      report_.reject_setpoint(setpoint, follower.refusal());
+  }
+}
+
+void ArmPorts::take_requests(SafetyGate& gate, std::int64_t now_ns) {
+  while (request.take(request_msg_)) {
+    if (request_msg_.request() != msg::ARM_CLEAR_INPUT_FAULT) {
+      report_.reject_request(request, "unknown request " + std::to_string(static_cast<int>(request_msg_.request())));
+      continue;
+    }
+    const std::string was = gate.reason();
+    if (gate.clear_input_fault(now_ns))
+      report_.log("cleared the input fault '" + was + "' as asked: " + request_msg_.reason().c_str());
+    else if (gate.state() != SafetyState::kFault)
+      continue;  // (already cleared: a request in flight)
+    else
+      report_.reject_request(request, gate.input_fault()
+                                          ? "still braking: ask again once the arm stands still"
+                                          : "the fault is the arm's own, only a restart clears it: " + was);
+  }
 }
 
 void ArmPorts::publish_measurement(std::int64_t stamp_ns, std::uint64_t seq, const Vector6d& q, const Vector6d& qd,

@@ -3,12 +3,15 @@
 // setpoint input, and the joint_state, device_pose and status outputs with the messages of one
 // measurement (reused: no allocation per tick).
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include <Eigen/Geometry>
 
+#include "arm_interface/arm_params.hpp"
 #include "arm_interface/gate_status.hpp"
 #include "puma_model/types.hpp"
+#include "setpoint_following/setpoint_follower.hpp"
 #include "wysiwyf/context.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -16,9 +19,25 @@ namespace wysiwyf::robot {
 
 class ArmPorts {
  public:
-  void declare(Context& ctx);
+  // How the component reports what its inputs brought (its own reject() and log(), which only
+  // it may call): a sample it cannot use, on the port it came in on; a line for its log.
+  struct Report {
+    std::function<void(const Input<msg::CartesianSetpoint>&, const std::string&)> reject_setpoint;
+    std::function<void(const Input<msg::ArmRequest>&, const std::string&)> reject_request;
+    std::function<void(const std::string&)> log;
+  };
+  void declare(Context& ctx, Report report);
 
   Input<msg::CartesianSetpoint> setpoint;
+  Input<msg::ArmRequest> request;
+
+  // Every setpoint that came, to the follower (the gate faults on bad ones); one from a source
+  // the arm does not take, or one the follower refuses for its stamp, is reported on the
+  // setpoint port (counted, logged) and changes nothing.
+  void take_setpoints(const ArmParams& params, SetpointFollower& follower, std::int64_t now_ns);
+  // Requests to the arm: CLEAR_INPUT_FAULT clears an input fault once the arm stands still; one
+  // that cannot be honoured (a fault of the arm, still braking, no fault) is reported.
+  void take_requests(SafetyGate& gate, std::int64_t now_ns);
 
   // joint_state (angles, velocities, motor torques) and device_pose (base_T_tip) of one
   // measurement, with one sequence number.
@@ -32,12 +51,15 @@ class ArmPorts {
   Health health(const SafetyGate& gate) { return status_.health(gate); }
 
  private:
+  Report report_;
   Output<msg::JointState> joint_state_out_;
   Output<msg::PoseStamped> device_pose_out_;
   Output<msg::RobotStatus> status_out_;
   GateStatus status_;
   msg::JointState joint_msg_;
   msg::PoseStamped pose_msg_;
+  msg::CartesianSetpoint setpoint_msg_;
+  msg::ArmRequest request_msg_;
 };
 
 }  // namespace wysiwyf::robot

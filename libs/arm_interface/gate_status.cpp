@@ -6,7 +6,7 @@ bool GateStatus::publish(std::int64_t now_ns, const SafetyGate& gate, const std:
                          Output<msg::RobotStatus>& out) {
   const SafetyState state = gate.state();
   const bool changed = last_ns_ < 0 || state != last_state_ || gate.reason() != last_reason_ ||
-                       (state == SafetyState::kOk && source != last_source_);
+                       (state == SafetyState::kOk && source != last_source_) || gate.input_fault() != msg_.clearable();
   if (!changed && now_ns - last_ns_ < 100'000'000) return false;
   last_ns_ = now_ns;
   const bool new_fault = changed && state == SafetyState::kFault;
@@ -22,6 +22,7 @@ bool GateStatus::publish(std::int64_t now_ns, const SafetyGate& gate, const std:
     msg_.source(state == SafetyState::kOk ? source.substr(0, 31) : std::string());
     msg_.reason(gate.reason().substr(0, 127));
   }
+  msg_.clearable(gate.input_fault());
   fill_header(msg_.header(), now_ns, seq_++, "base");
   out.write(msg_);
   return new_fault;

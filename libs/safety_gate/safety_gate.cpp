@@ -47,6 +47,9 @@ void SafetyConfig::validate() const {
   // c = a / k >= a dt / 2 keeps the braking set invariant under one period of full braking.
   if (!(approach_rate > 0.0 && approach_rate * dt <= 2.0)) fail("approach_rate must be in (0, 2 / dt]");
   if (!(setpoint_timeout > 0.0)) fail("setpoint_timeout must be > 0");
+  if (!(setpoint_periods >= 1.0)) fail("setpoint_periods must be >= 1");
+  if (!(max_setpoint_age > 0.0) || !(max_setpoint_lead >= 0.0))
+    fail("max_setpoint_age must be > 0 and max_setpoint_lead >= 0");
   if (!(max_setpoint_step > 0.0) || !(max_setpoint_rotation > 0.0)) fail("setpoint step limits must be > 0");
   if (!(max_setpoint_speed > 0.0) || !(max_setpoint_angular_speed > 0.0)) fail("setpoint speed limits must be > 0");
   if (!(max_joint_target_step > 0.0)) fail("max_joint_target_step must be > 0");
@@ -73,13 +76,33 @@ double SafetyGate::braking_speed(int j, double distance) const {
 }
 
 void SafetyGate::set_state(SafetyState state, std::string reason) {
+  if (state == SafetyState::kOk && state_ != SafetyState::kOk) n_intervals_ = next_interval_ = 0, period_ns_ = 0;
   state_ = state;
   reason_ = std::move(reason);
   if (state != SafetyState::kOk) have_target_ = false;
 }
 
+std::int64_t SafetyGate::setpoint_loss_timeout_ns() const {
+  const auto timeout = static_cast<std::int64_t>(config_.setpoint_timeout * 1e9);
+  if (period_ns_ <= 0) return timeout;
+  const auto dt = static_cast<std::int64_t>(config_.dt * 1e9);
+  return std::min(timeout,
+                  static_cast<std::int64_t>(config_.setpoint_periods * static_cast<double>(std::max(period_ns_, dt))));
+}
+
+// Several setpoints in one servo period are one arrival; the period is the longest gap of the
+// window, so a stream's jitter never reads as its loss.
+void SafetyGate::learn_period(std::int64_t now_ns) {
+  if (state_ != SafetyState::kOk || now_ns <= last_setpoint_ns_) return;
+  intervals_[next_interval_] = now_ns - last_setpoint_ns_;
+  next_interval_ = (next_interval_ + 1) % kPeriodWindow;
+  n_intervals_ = std::min(n_intervals_ + 1, kPeriodWindow);
+  period_ns_ = *std::max_element(intervals_, intervals_ + n_intervals_);
+}
+
 void SafetyGate::reset(const Vector6d& q_measured, std::int64_t now_ns) {
   started_ = true;
+  cause_ = FaultCause::kArm;  // (a bad measurement below is the arm's)
   ref_ = JointReference{};
   have_target_ = false;
   last_setpoint_ns_ = now_ns;
@@ -99,9 +122,17 @@ void SafetyGate::reset(const Vector6d& q_measured, std::int64_t now_ns) {
   set_state(SafetyState::kHolding, "waiting for the first setpoint");
 }
 
-void SafetyGate::fault(const std::string& reason) {
+void SafetyGate::fault(const std::string& reason, FaultCause cause) {
   if (state_ == SafetyState::kFault) return;  // the first reason stays
+  cause_ = cause;
   set_state(SafetyState::kFault, reason);
+}
+
+bool SafetyGate::clear_input_fault(std::int64_t now_ns) {
+  if (!input_fault() || !started_ || ref_.qd.cwiseAbs().maxCoeff() != 0.0) return false;
+  last_setpoint_ns_ = now_ns;
+  set_state(SafetyState::kHolding, "input fault cleared (was: " + reason_ + "); waiting for a setpoint");
+  return true;
 }
 
 bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, const Eigen::Isometry3d& reference_pose,
@@ -109,22 +140,24 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
   if (state_ == SafetyState::kFault) return false;
   if (!finite(sp.position) || !sp.quaternion_xyzw.allFinite() || !finite(sp.linear_velocity) ||
       !finite(sp.angular_velocity)) {
-    fault("setpoint rejected: non-finite number (NaN or inf) in its pose or twist");
+    fault("setpoint rejected: non-finite number (NaN or inf) in its pose or twist", FaultCause::kInput);
     return false;
   }
   const double qn = sp.quaternion_xyzw.norm();
   if (std::abs(qn - 1.0) > 1e-3) {
-    fault(format("setpoint rejected: malformed orientation, quaternion norm %.6g (need 1)", qn));
+    fault(format("setpoint rejected: malformed orientation, quaternion norm %.6g (need 1)", qn), FaultCause::kInput);
     return false;
   }
   const double v = sp.linear_velocity.norm(), w = sp.angular_velocity.norm();
   if (v > config_.max_setpoint_speed) {
-    fault(format("setpoint rejected: linear speed %.3f m/s above the limit %.3f m/s", v, config_.max_setpoint_speed));
+    fault(format("setpoint rejected: linear speed %.3f m/s above the limit %.3f m/s", v, config_.max_setpoint_speed),
+          FaultCause::kInput);
     return false;
   }
   if (w > config_.max_setpoint_angular_speed) {
     fault(format("setpoint rejected: angular speed %.3f rad/s above the limit %.3f rad/s", w,
-                 config_.max_setpoint_angular_speed));
+                 config_.max_setpoint_angular_speed),
+          FaultCause::kInput);
     return false;
   }
   const Eigen::Quaterniond q(sp.quaternion_xyzw[3] / qn, sp.quaternion_xyzw[0] / qn, sp.quaternion_xyzw[1] / qn,
@@ -139,17 +172,21 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
   const double step = (candidate.translation() - from.translation()).norm();
   if (step > config_.max_setpoint_step) {
     fault(std::string("setpoint rejected: ") + format("%.4f m from the ", step) + from_what +
-          format(" (limit %.4f m)", config_.max_setpoint_step));
+              format(" (limit %.4f m)", config_.max_setpoint_step),
+          FaultCause::kInput);
     return false;
   }
   const double turn = Eigen::AngleAxisd(Eigen::Matrix3d(candidate.linear() * from.linear().transpose())).angle();
   if (turn > config_.max_setpoint_rotation) {
     fault(std::string("setpoint rejected: ") + format("turned %.4f rad from the ", turn) + from_what +
-          format(" (limit %.4f rad)", config_.max_setpoint_rotation));
+              format(" (limit %.4f rad)", config_.max_setpoint_rotation),
+          FaultCause::kInput);
     return false;
   }
+  learn_period(now_ns);
   last_setpoint_ = candidate;
   last_setpoint_ns_ = now_ns;
+  if (source_ != sp.source) source_.assign(sp.source);  // (reuses its buffer: no allocation per setpoint)
   if (!following) set_state(SafetyState::kOk, "following setpoints");
   pose = candidate;
   return true;
@@ -158,7 +195,7 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
 void SafetyGate::set_joint_target(const IkResult& ik, const Vector6d& qd_target) {
   if (state_ != SafetyState::kOk) return;
   if (!ik.ok()) {
-    fault(std::string("inverse kinematics: ") + robot::to_string(ik.status));
+    fault(std::string("inverse kinematics: ") + robot::to_string(ik.status), FaultCause::kInput);
     return;
   }
   if (!ik.q.allFinite() || !qd_target.allFinite()) {
@@ -170,8 +207,9 @@ void SafetyGate::set_joint_target(const IkResult& ik, const Vector6d& qd_target)
     const double jump = std::abs(ik.q[j] - previous[j]);
     if (jump > config_.max_joint_target_step) {
       fault("joint " + std::to_string(j + 1) +
-            format(" target jumped %.4f rad in one servo period (limit %.4f rad): an IK branch change?", jump,
-                   config_.max_joint_target_step));
+                format(" target jumped %.4f rad in one servo period (limit %.4f rad): an IK branch change?", jump,
+                       config_.max_joint_target_step),
+            FaultCause::kInput);
       return;
     }
   }
@@ -221,11 +259,14 @@ void SafetyGate::check_wrench(const Eigen::Vector3d& force, const Eigen::Vector3
 
 const JointReference& SafetyGate::step(std::int64_t now_ns) {
   const double dt = config_.dt;
-  if (state_ == SafetyState::kOk) {
-    const double silent = static_cast<double>(now_ns - last_setpoint_ns_) * 1e-9;
-    if (silent > config_.setpoint_timeout)
-      set_state(SafetyState::kHolding, format("no setpoint for %.0f ms (timeout %.0f ms): braking to a hold",
-                                              silent * 1e3, config_.setpoint_timeout * 1e3));
+  if (state_ == SafetyState::kOk && now_ns - last_setpoint_ns_ > setpoint_loss_timeout_ns()) {
+    const double silent_ms = static_cast<double>(now_ns - last_setpoint_ns_) * 1e-6;
+    const double timeout_ms = static_cast<double>(setpoint_loss_timeout_ns()) * 1e-6;
+    std::string why = format("no setpoint for %.0f ms", silent_ms) + (source_.empty() ? "" : " from '" + source_ + "'");
+    why += period_ns_ > 0 ? format(" (its stream came every %.0f ms; lost after %.0f ms)",
+                                   static_cast<double>(period_ns_) * 1e-6, timeout_ms)
+                          : format(" (timeout %.0f ms)", timeout_ms);
+    set_state(SafetyState::kHolding, why + ": braking to a hold");
   }
   const bool track = started_ && state_ == SafetyState::kOk && have_target_;
   for (int j = 0; j < kDof; ++j) {

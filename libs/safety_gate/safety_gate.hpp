@@ -19,11 +19,17 @@
 //    beyond the limits, an IK failure or branch change, a measured force or torque above its
 //    limit, a following error or an overspeed latch a fault with a reason, and the reference
 //    brakes to a standstill within the limits and holds there. Faults stay until reset().
-//  - When setpoints stop coming (none for setpoint_timeout, e.g. three periods of a 20 ms
-//    stream) it brakes and holds too, but that is not latched: a fresh setpoint within
-//    max_setpoint_step of where the arm stopped resumes the motion.
+//  - When setpoints stop coming it brakes and holds too, but that is not latched: a fresh
+//    setpoint within max_setpoint_step of where the arm stopped resumes the motion. The stream is
+//    lost after setpoint_periods of its own period (learned from the arrivals of its last
+//    setpoints: 3 ms for a 1 kHz stream, 60 ms for a 50 Hz one), at most setpoint_timeout.
+//  - A fault that bad input caused (a setpoint refused above, an unreachable or jumping IK
+//    target) may be cleared once the reference is at rest (clear_input_fault: the supervisor's
+//    request once its inputs are good again); a fault of the arm itself (limits, overspeed,
+//    following error, force, a bad measurement) stays until reset().
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Geometry>
 
@@ -40,7 +46,10 @@ struct SafetyConfig {
   double acceleration_fraction = 0.8;                    // of the acceleration limits, for the reference
   double approach_rate = 50.0;                           // 1/s: first-order rate of the final approach
   double dt = 1e-3;                                      // servo period [s]
-  double setpoint_timeout = 0.06;                        // s without a setpoint before braking to a hold
+  double setpoint_timeout = 0.06;                        // s without a setpoint before braking to a hold, at most
+  double setpoint_periods = 3.0;                         // the stream's own periods without a setpoint: lost
+  double max_setpoint_age = 0.05;                        // s: a setpoint stamped longer ago is stale (refused)
+  double max_setpoint_lead = 0.005;                      // s: one stamped further ahead is from the future (refused)
   double max_setpoint_step = 0.1;                        // m between consecutive setpoints
   double max_setpoint_rotation = 0.5;                    // rad between consecutive setpoints
   double max_setpoint_speed = 2.0;                       // m/s in a setpoint's twist
@@ -61,12 +70,17 @@ enum class SafetyState {
 };
 const char* to_string(SafetyState state);
 
+// What latched a fault: bad input (a setpoint), which the supervisor may clear once its input is
+// good again, or the arm itself (a measurement out of bounds), which only reset() clears.
+enum class FaultCause { kInput, kArm };
+
 // A Cartesian setpoint as it arrived (base_T_dev and its twist in base coordinates), unchecked.
 struct SetpointInput {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector4d quaternion_xyzw = Eigen::Vector4d(0, 0, 0, 1);
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  std::string_view source;  // who sent it (named when its stream is lost)
 };
 
 struct JointReference {
@@ -103,8 +117,13 @@ class SafetyGate {
   void check_measured(const Vector6d& q, const Vector6d& qd);
   void check_wrench(const Eigen::Vector3d& force, const Eigen::Vector3d& torque);
 
-  // Latches a fault (the first reason is kept until reset()).
-  void fault(const std::string& reason);
+  // Latches a fault (the first reason and cause are kept until reset()).
+  void fault(const std::string& reason, FaultCause cause = FaultCause::kArm);
+  // Clears a fault that bad input caused, once the reference has braked to a standstill: the gate
+  // then holds until a setpoint near the arm comes. Returns false (and changes nothing) for a
+  // fault of the arm, while still braking, or when there is no fault.
+  bool clear_input_fault(std::int64_t now_ns);
+  bool input_fault() const { return state_ == SafetyState::kFault && cause_ == FaultCause::kInput; }
 
   // Advances the reference by one servo period (also runs the watchdog).
   const JointReference& step(std::int64_t now_ns);
@@ -115,6 +134,13 @@ class SafetyGate {
   // fault's reason.
   const std::string& reason() const { return reason_; }
   const JointReference& reference() const { return ref_; }
+  // The setpoint stream's period, learned from its last setpoints' arrivals (the longest of the
+  // last kPeriodWindow intervals); 0 while unknown (fewer than two since following began).
+  std::int64_t setpoint_period_ns() const { return period_ns_; }
+  // How long the stream may be silent before the gate brakes to a hold: setpoint_periods of its
+  // period (of the servo period at least), at most setpoint_timeout, which alone applies while
+  // the period is unknown.
+  std::int64_t setpoint_loss_timeout_ns() const;
   const SafetyConfig& config() const { return config_; }
   // The bounds the reference keeps (hard limits scaled by the fractions, margin applied).
   const Vector6d& reference_velocity_limit() const { return v_max_; }
@@ -126,6 +152,9 @@ class SafetyGate {
 
  private:
   void set_state(SafetyState state, std::string reason);
+  void learn_period(std::int64_t now_ns);
+
+  static constexpr int kPeriodWindow = 8;
 
   SafetyConfig config_;
   Vector6d v_max_, a_max_, c_;
@@ -133,7 +162,12 @@ class SafetyGate {
   std::string reason_ = "not started (reset() not called)";
   JointReference ref_;
   bool started_ = false;
+  FaultCause cause_ = FaultCause::kArm;
   std::int64_t last_setpoint_ns_ = 0;
+  std::string source_;                          // of the last accepted setpoint
+  std::int64_t intervals_[kPeriodWindow] = {};  // between the last setpoints' arrivals, ns
+  int n_intervals_ = 0, next_interval_ = 0;
+  std::int64_t period_ns_ = 0;
   Eigen::Isometry3d last_setpoint_ = Eigen::Isometry3d::Identity();
   bool have_target_ = false;
   Vector6d target_q_ = Vector6d::Zero();

@@ -20,9 +20,13 @@ class SetpointFollower {
   // this. tracker_hz: natural frequency of the tracker; dt: the servo period.
   SetpointFollower(const PumaModel& model, std::string tip_name, SafetyGate& gate, double tracker_hz, double dt);
 
-  // A setpoint as it arrived. One for another frame than base_T_<tip>, or one the gate refuses,
-  // faults the gate.
-  void take(const msg::CartesianSetpoint& setpoint, std::int64_t now_ns);
+  enum class Taken { kFollowed, kRefused, kFaulted };
+  // A setpoint as it arrived. One whose stamp is stale (older than max_setpoint_age: a zero stamp),
+  // from the future (beyond max_setpoint_lead) or older than the last followed one is refused
+  // and changes nothing (refusal() says why): it does not feed the watchdog either. One for
+  // another frame than base_T_<tip>, or one the gate refuses, faults the gate (an input fault).
+  Taken take(const msg::CartesianSetpoint& setpoint, std::int64_t now_ns);
+  const std::string& refusal() const { return refusal_; }
   // Every servo period, before SafetyGate::step(): advances the tracker and sets the gate's target.
   void update(std::int64_t now_ns);
 
@@ -30,6 +34,8 @@ class SetpointFollower {
   const std::string& source() const { return source_; }
 
  private:
+  double loss_timeout() const;  // s
+
   const PumaModel& model_;
   std::string tip_name_;
   SafetyGate& gate_;
@@ -37,7 +43,8 @@ class SetpointFollower {
   CartesianTracker tracker_;
   bool have_target_ = false;
   Vector6d q_target_ = Vector6d::Zero();
-  std::string source_;
+  std::string source_, refusal_;
+  std::int64_t last_stamp_ns_ = 0;  // of the last followed setpoint, while following
 };
 
 }  // namespace wysiwyf::robot

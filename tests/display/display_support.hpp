@@ -88,7 +88,7 @@ inline std::string loop_yaml(const LoopSetup& s, const std::filesystem::path& di
     << "  arm: {type: puma_sim, rate: 1000, params: {initial_q: " << s.initial_q << ", setpoint_source: supervisor},\n"
     << "    topics: {setpoint: robot/setpoint, hand_target: sim/hand_target, joint_state: robot/joint_state,\n"
     << "             device_pose: robot/device_pose, wrench: robot/wrench, hand_pose: sim/hand_pose, status: "
-       "robot/status}}\n"
+       "robot/status,\n             request: robot/request}}\n"
     << "  hand: {type: hand_tracker_sim, rate: 100, params: {" << s.tracker
     << "}, topics: {hand_pose: sim/hand_pose, hand: hand/position}}\n"
     << "  planner: {type: surface_planner, rate: 1000, params: {scene: scenes/display_demo.yaml" << s.planner << "},\n"
@@ -103,7 +103,7 @@ inline std::string loop_yaml(const LoopSetup& s, const std::filesystem::path& di
     << "    topics: {surface: display/surface, admittance: display/admittance, wrench: robot/wrench,\n"
     << "             device_pose: robot/device_pose, hand: hand/position, robot_status: robot/status,\n"
     << "             planner_status: display/planner, objects: haptics/objects, setpoint: robot/setpoint,\n"
-    << "             mode: display/mode, attach: display/attach}}\n"
+    << "             mode: display/mode, attach: display/attach, arm_request: robot/request}}\n"
     << "  metrics: {type: display_metrics, rate: 100, params: {scene: scenes/display_demo.yaml},\n"
     << "    topics: {events: user/events, device_pose: robot/device_pose, objects: haptics/objects, contacts: "
        "display/contacts}}\n"

@@ -27,7 +27,8 @@ class SupervisorRig {
         robot_(h_.feed<msg::RobotStatus>("robot_status")),
         planner_(h_.feed<msg::PlannerStatus>("planner_status")),
         out_(h_.watch<msg::CartesianSetpoint>("setpoint")),
-        mode_(h_.watch<msg::DisplayMode>("mode")) {
+        mode_(h_.watch<msg::DisplayMode>("mode")),
+        request_(h_.watch<msg::ArmRequest>("arm_request", 64)) {
     plate_.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
     plate_.translation() = Eigen::Vector3d(0.7, 0, 0.1);
     h_.activate();
@@ -56,7 +57,9 @@ class SupervisorRig {
     msgs::to_msg(plate_, d.pose());
     device_.write(d);
     msg::RobotStatus r;
-    r.state(msg::ARM_OK);
+    r.state(arm_state_);
+    r.clearable(arm_clearable_);
+    r.reason(arm_state_ == msg::ARM_FAULT ? "setpoint rejected: non-finite number" : "");
     robot_.write(r);
     msg::PlannerStatus p;
     p.state(msg::PLAN_IN_PLACE);
@@ -79,6 +82,15 @@ class SupervisorRig {
     return any;
   }
   Harness& harness() { return h_; }
+  // What the arm reports from the next tick on.
+  void arm(msg::ArmState state, bool clearable = false) { arm_state_ = state, arm_clearable_ = clearable; }
+  // The clear requests written since the last call.
+  int requests() {
+    int n = 0;
+    msg::ArmRequest r;
+    while (request_.take(r)) n += r.request() == msg::ARM_CLEAR_INPUT_FAULT;
+    return n;
+  }
 
  private:
   Loader loader_{Loader({WYSIWYF_COMPONENT_DIR})};
@@ -90,7 +102,10 @@ class SupervisorRig {
   Output<msg::PlannerStatus> planner_;
   Input<msg::CartesianSetpoint> out_;
   Input<msg::DisplayMode> mode_;
+  Input<msg::ArmRequest> request_;
   msg::DisplayMode last_mode_;
+  msg::ArmState arm_state_ = msg::ARM_OK;
+  bool arm_clearable_ = false;
   Eigen::Isometry3d plate_ = Eigen::Isometry3d::Identity();
 };
 
@@ -143,6 +158,54 @@ TEST(Supervisor, ASetpointThatJumpsIsAFault) {
 }
 
 // A second writer to the robot's setpoint is a validation error.
+TEST(Supervisor, AnArmFaultOfBadInputIsClearedOnceTheInputsAreGoodAndTheDisplayStartsAgain) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1);
+  for (int t = 0; t < 50; ++t) rig.tick(t, &at);
+  ASSERT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
+  rig.arm(msg::ARM_FAULT, true);  // e.g. an intruder's NaN reached the arm
+  rig.tick(50, &at);
+  ASSERT_EQ(rig.mode(), msg::MODE_FAULT);
+  EXPECT_NE(rig.reason().find("the arm: setpoint rejected"), std::string::npos) << rig.reason();
+  // Every other input good: the request comes after recover_after (0.2 s), then every 100 ms
+  // while the arm still reports the fault.
+  int first = -1, requests = 0;
+  for (int t = 51; t < 600; ++t) {
+    rig.tick(t, &at);
+    const int n = rig.requests();
+    if (n > 0 && first < 0) first = t;
+    requests += n;
+  }
+  EXPECT_GE(first, 50 + 200);
+  EXPECT_LE(first, 50 + 202);
+  EXPECT_EQ(requests, 1 + (599 - first) / 100);
+  EXPECT_EQ(rig.mode(), msg::MODE_FAULT) << "nothing resumes before the arm has cleared";
+  // The arm cleared it and holds: the display starts again through idle, as at the start.
+  rig.arm(msg::ARM_HOLDING);
+  bool idle = false;
+  for (int t = 600; t < 1000 && rig.mode() != msg::MODE_SURFACE; ++t) {
+    rig.tick(t, &at);
+    idle = idle || rig.mode() == msg::MODE_IDLE;
+  }
+  EXPECT_TRUE(idle);
+  EXPECT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
+  EXPECT_EQ(rig.requests(), 0);
+}
+
+TEST(Supervisor, AnArmFaultOfTheArmItselfIsNeverAskedToClear) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1);
+  for (int t = 0; t < 50; ++t) rig.tick(t, &at);
+  rig.arm(msg::ARM_FAULT, false);  // an overspeed, a force above the limit: the arm's own
+  int requests = 0;
+  for (int t = 50; t < 2000; ++t) {
+    rig.tick(t, &at);
+    requests += rig.requests();
+  }
+  EXPECT_EQ(requests, 0);
+  EXPECT_EQ(rig.mode(), msg::MODE_FAULT);
+}
+
 TEST(OneWriter, ASecondWriterToTheRobotsSetpointIsRefused) {
   LoopSetup s;
   s.script = {"wait 1"};

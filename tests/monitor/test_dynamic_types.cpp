@@ -49,6 +49,7 @@ TEST(DynamicTypes, EveryMessageTypeOfThisBuildDecodes) {
   decodes_default<msg::ObjectState>();
   decodes_default<msg::DisplayMode>();
   decodes_default<msg::RobotStatus>();
+  decodes_default<msg::ArmRequest>();
   decodes_default<msg::MarkerObservation>();
   decodes_default<msg::HandPosition>();
   decodes_default<msg::Attachment>();

@@ -52,8 +52,10 @@ ControllerEmulator::Options lockstep_options() {
   return o;
 }
 
-msg::CartesianSetpoint setpoint(const Eigen::Isometry3d& T, const Eigen::Vector3d& v = Eigen::Vector3d::Zero()) {
+msg::CartesianSetpoint setpoint(std::int64_t stamp_ns, const Eigen::Isometry3d& T,
+                                const Eigen::Vector3d& v = Eigen::Vector3d::Zero()) {
   msg::CartesianSetpoint s;
+  s.header().stamp_ns(stamp_ns);
   s.header().frame_id("base");
   s.child_frame_id("dev");
   msgs::to_msg(T, s.pose());
@@ -70,12 +72,12 @@ bool setpoint_at(int ms, int period_ms, msg::CartesianSetpoint& out) {
   const double t = ms * 1e-3;
   if (t < 1.0) {
     T.translation() += Eigen::Vector3d(0, 0.04, 0);
-    out = setpoint(T);
+    out = setpoint(ms * kMs, T);
     return true;
   }
   const double w = 2 * kPi * 0.5, s = t - 1.0;
   T.translation() += Eigen::Vector3d(0, 0.04, 0) + 0.03 * Eigen::Vector3d(0, std::sin(w * s), 1 - std::cos(w * s));
-  out = setpoint(T, 0.03 * w * Eigen::Vector3d(0, std::cos(w * s), std::sin(w * s)));
+  out = setpoint(ms * kMs, T, 0.03 * w * Eigen::Vector3d(0, std::cos(w * s), std::sin(w * s)));
   return true;
 }
 
@@ -201,7 +203,7 @@ TEST(PumaDriver, ALostLinkHoldsAndFaultsAndARestoredOneHoldsAtTheArm) {
   // A setpoint where the arm is resumes following.
   const Eigen::Isometry3d here = model().fk(driver.q.back());
   for (int i = 1700; i < 1800; ++i) {
-    const msg::CartesianSetpoint hold_here = setpoint(here);
+    const msg::CartesianSetpoint hold_here = setpoint(i * kMs, here);
     driver.tick(i % 20 == 0 ? &hold_here : nullptr);
   }
   EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();

@@ -37,9 +37,12 @@ const PumaModel& model() {
   return m;
 }
 
-msg::CartesianSetpoint setpoint(const Eigen::Isometry3d& T, const Eigen::Vector3d& v = Eigen::Vector3d::Zero(),
+// A setpoint made at stamp_ns (the arm refuses stale and future ones).
+msg::CartesianSetpoint setpoint(std::int64_t stamp_ns, const Eigen::Isometry3d& T,
+                                const Eigen::Vector3d& v = Eigen::Vector3d::Zero(),
                                 const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
   msg::CartesianSetpoint s;
+  s.header().stamp_ns(stamp_ns);
   s.header().frame_id("base");
   s.child_frame_id("dev");
   msgs::to_msg(T, s.pose());
@@ -62,6 +65,7 @@ struct Sim {
   Input<msg::PoseStamped> dev, hand;
   Input<msg::WrenchStamped> wrench;
   Input<msg::RobotStatus> status;
+  Output<msg::ArmRequest> request;
   msg::RobotStatus last_status;
   std::vector<Sample> samples;
   std::int64_t t = 0;
@@ -74,7 +78,8 @@ struct Sim {
         dev(h.watch<msg::PoseStamped>("device_pose", 4)),
         hand(h.watch<msg::PoseStamped>("hand_pose", 4)),
         wrench(h.watch<msg::WrenchStamped>("wrench", 4)),
-        status(h.watch<msg::RobotStatus>("status", 64)) {
+        status(h.watch<msg::RobotStatus>("status", 64)),
+        request(h.feed<msg::ArmRequest>("request")) {
     h.activate();
   }
 
@@ -105,7 +110,7 @@ struct Sim {
   }
   void send(const Eigen::Isometry3d& T, const Eigen::Vector3d& v = Eigen::Vector3d::Zero(),
             const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
-    sp.write(setpoint(T, v, w));
+    sp.write(setpoint(t, T, v, w));  // made now
   }
   void send_hand(const Eigen::Vector3d& x) {
     msg::PoseStamped p;
@@ -124,6 +129,13 @@ struct Sim {
       tick();
       if (::testing::Test::HasFatalFailure()) return;
     }
+  }
+  void ask_to_clear() {
+    msg::ArmRequest r;
+    fill_header(r.header(), t, 0, "base");
+    r.request(msg::ARM_CLEAR_INPUT_FAULT);
+    r.reason("test");
+    request.write(r);
   }
   const Sample& last() const { return samples.back(); }
   int state() const { return static_cast<int>(last_status.state()); }
@@ -161,6 +173,26 @@ LimitUse check_limits(const std::vector<Sim::Sample>& s, std::size_t from = 1, b
 }
 
 double max_abs_velocity(const Sim::Sample& s) { return s.qd.cwiseAbs().maxCoeff(); }
+
+// The fingertip parked 2 cm in front of the plate, then driven 20 cm through it (100 N of
+// impedance force) while the arm holds the ready pose with a 40 N force limit: the limit trips.
+struct BlowToThePlate {
+  static std::string params() {
+    const Eigen::Vector3d p = park();
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "{hand_park: [%.9f, %.9f, %.9f], force_limit: 40}", p.x(), p.y(), p.z());
+    return buf;
+  }
+  static Eigen::Vector3d normal() { return model().fk(kReady).linear().col(2); }
+  static Eigen::Vector3d park() { return model().fk(kReady) * Eigen::Vector3d(0.05, 0.04, 0.0) + 0.02 * normal(); }
+  Sim sim{params()};
+  BlowToThePlate() {
+    const Eigen::Isometry3d ready = model().fk(kReady);
+    sim.hold_pose(ready, 100);
+    sim.send_hand(park() - 0.2 * normal());
+    sim.hold_pose(ready, 1000);
+  }
+};
 
 TEST(PumaSim, HoldsStillUnderGravityAtTheReadyPose) {
   Sim sim;
@@ -323,13 +355,134 @@ TEST(PumaSim, NanSetpointHoldsAndFaultsAndTheArmDoesNotMove) {
 TEST(PumaSim, NanWhileMovingBrakesWithinTheLimits) {
   Sim sim;
   stream_circle(sim, 1200, 20, 0.05, 1.0);
-  msg::CartesianSetpoint bad = setpoint(model().fk(kReady));
+  msg::CartesianSetpoint bad = setpoint(sim.t, model().fk(kReady));
   bad.pose().orientation().w(std::numeric_limits<double>::infinity());
   sim.sp.write(bad);
   for (int i = 0; i < 800; ++i) sim.tick();
   check_limits(sim.samples);
   EXPECT_EQ(sim.state(), msg::ARM_FAULT);
   EXPECT_LT(max_abs_velocity(sim.last()), 1e-3);
+}
+
+TEST(PumaSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
+  // The plate accelerates at 1 m/s^2 along y (the second-order hold would extrapolate exactly
+  // that) and the stream stops at 0.2 m/s. From the moment the next setpoint was due no joint may
+  // go faster than it went then; the status says HOLDING within 3 periods of the last setpoint.
+  for (const int period_ms : {1, 5, 20}) {
+    Sim sim;
+    const Eigen::Isometry3d ready = model().fk(kReady);
+    sim.hold_pose(ready, 200, period_ms);
+    const std::int64_t start = sim.t;
+    std::int64_t last_setpoint = 0;
+    std::size_t last_index = 0;
+    for (int i = 0; i < 200; ++i) {  // 0.2 s at 1 m/s^2: 0.2 m/s, 2 cm
+      if ((sim.t / kMs) % period_ms == 0) {
+        const double s = static_cast<double>(sim.t - start) * 1e-9;
+        Eigen::Isometry3d T = ready;
+        T.translation().y() += 0.5 * s * s;
+        sim.send(T, Eigen::Vector3d(0, s, 0));
+        last_setpoint = sim.t, last_index = sim.samples.size();
+      }
+      sim.tick();
+    }
+    ASSERT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+    int held_after_ms = -1;
+    for (int i = 0; i < 400; ++i) {
+      sim.tick();
+      if (held_after_ms < 0 && sim.state() == msg::ARM_HOLDING)
+        held_after_ms = static_cast<int>((sim.t - kMs - last_setpoint) / kMs);
+    }
+    check_limits(sim.samples);
+    // Speeds at the moment the next setpoint was due, and the largest excess over them after.
+    const std::size_t due = last_index + static_cast<std::size_t>(period_ms);
+    const Vector6d at_due = sim.samples[due].qd.cwiseAbs();
+    double excess = 0;
+    for (std::size_t i = due; i < sim.samples.size(); ++i)
+      excess = std::max(excess, (sim.samples[i].qd.cwiseAbs() - at_due).maxCoeff());
+    std::printf(
+        "[measured] %d ms stream lost at %.3f rad/s (fastest joint): HOLDING %d ms after the last setpoint; "
+        "largest joint speed-up after the next was due %.2g rad/s; status '%s'\n",
+        period_ms, at_due.maxCoeff(), held_after_ms, excess, sim.reason().c_str());
+    EXPECT_GT(at_due.maxCoeff(), 0.1) << "the arm was moving";
+    EXPECT_GT(held_after_ms, 0);
+    EXPECT_LE(held_after_ms, 3 * period_ms + 1);
+    EXPECT_LE(excess, 1e-3 + 0.01 * at_due.maxCoeff());
+    EXPECT_NE(sim.reason().find("no setpoint for"), std::string::npos) << sim.reason();
+    EXPECT_NE(sim.reason().find("from 'test'"), std::string::npos) << sim.reason();
+    EXPECT_LT(max_abs_velocity(sim.last()), 1e-3) << "braked to a standstill";
+  }
+}
+
+TEST(PumaSim, StaleFutureAndOutOfOrderSetpointsAreRefusedAndNeverMoveTheArm) {
+  Sim sim;
+  const Eigen::Isometry3d ready = model().fk(kReady);
+  sim.hold_pose(ready, 300, 1);
+  ASSERT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+  const Vector6d before = sim.last().q;
+  Eigen::Isometry3d away = ready;
+  away.translation().x() -= 0.05;  // a valid pose 5 cm off: followed if it got through
+  // The good stream goes on at 1 kHz; after each good setpoint an intruder's with a bad stamp.
+  const std::int64_t bad_stamps[] = {0, -1, 60 * kMs /*stale*/, -10 * kMs /*future*/, kMs / 2 /*out of order*/};
+  for (int i = 0; i < 500; ++i) {
+    sim.send(ready);
+    const std::int64_t offset = bad_stamps[i % 5];
+    sim.sp.write(setpoint(offset == 0    ? 0
+                          : offset == -1 ? std::numeric_limits<std::int64_t>::max()
+                                         : sim.t - offset,
+                          away));
+    sim.tick();
+  }
+  double moved = 0;
+  for (std::size_t i = 300; i < sim.samples.size(); ++i)
+    moved = std::max(moved, (sim.samples[i].q - before).cwiseAbs().maxCoeff());
+  std::printf("[measured] 500 setpoints with bad stamps among good ones: %llu refused, joint motion %.3g rad\n",
+              static_cast<unsigned long long>(sim.h.rejected("setpoint")), moved);
+  EXPECT_EQ(sim.h.rejected("setpoint"), 500u);
+  EXPECT_LT(moved, 2e-4);
+  EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+  // Refused setpoints do not keep the arm alive: without the good stream it holds.
+  for (int i = 0; i < 10; ++i) {
+    sim.sp.write(setpoint(sim.t - 60 * kMs, away));
+    sim.tick();
+  }
+  EXPECT_EQ(sim.state(), msg::ARM_HOLDING) << sim.reason();
+}
+
+TEST(PumaSim, AnInputFaultIsClearedOnRequestOnceTheArmStandsStillButTheArmsOwnIsNot) {
+  Sim sim;
+  stream_circle(sim, 1200, 1, 0.05, 1.0);
+  Eigen::Isometry3d bad = sim.last().dev;
+  bad.translation().y() = std::numeric_limits<double>::quiet_NaN();
+  sim.send(bad);
+  sim.tick();
+  ASSERT_EQ(sim.state(), msg::ARM_FAULT);
+  EXPECT_TRUE(sim.last_status.clearable()) << "a NaN setpoint is bad input";
+  sim.ask_to_clear();  // still braking: refused, the fault stays
+  sim.tick();
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
+  EXPECT_EQ(sim.h.rejected("request"), 1u);
+  for (int i = 0; i < 800; ++i) sim.tick();
+  ASSERT_LT(max_abs_velocity(sim.last()), 1e-3);
+  sim.ask_to_clear();
+  sim.tick();
+  EXPECT_EQ(sim.state(), msg::ARM_HOLDING) << sim.reason();
+  EXPECT_FALSE(sim.last_status.clearable());
+  EXPECT_NE(sim.reason().find("input fault cleared"), std::string::npos) << sim.reason();
+  const Vector6d held = sim.last().q;
+  for (int i = 0; i < 200; ++i) sim.tick();  // holding: nothing moves until a setpoint comes
+  EXPECT_LT((sim.last().q - held).cwiseAbs().maxCoeff(), 2e-4);
+  sim.hold_pose(sim.last().dev, 300, 1);  // a setpoint where the arm is: following again
+  EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+  check_limits(sim.samples);
+
+  // A fault of the arm itself (the measured force above its limit) is not cleared on request.
+  BlowToThePlate blow;
+  ASSERT_EQ(blow.sim.state(), msg::ARM_FAULT);
+  EXPECT_FALSE(blow.sim.last_status.clearable());
+  blow.sim.ask_to_clear();
+  blow.sim.tick();
+  EXPECT_EQ(blow.sim.state(), msg::ARM_FAULT);
+  EXPECT_EQ(blow.sim.h.rejected("request"), 1u);
 }
 
 TEST(PumaSim, CommandingAPoseBeyondAJointLimitNeverExceedsIt) {
@@ -494,20 +647,11 @@ TEST(PumaSim, TheHandPushingThePlateIsMeasuredAndStoppedByIt) {
 }
 
 TEST(PumaSim, AHardBlowTripsTheForceLimit) {
-  const Eigen::Isometry3d ready = model().fk(kReady);
-  const Eigen::Vector3d n = ready.linear().col(2);
-  const Eigen::Vector3d park = ready * Eigen::Vector3d(0.05, 0.04, 0.0) + 0.02 * n;
-  char params[256];
-  std::snprintf(params, sizeof params, "{hand_park: [%.9f, %.9f, %.9f], force_limit: 40}", park.x(), park.y(),
-                park.z());
-  Sim sim(params);
-  sim.hold_pose(ready, 100);
-  sim.send_hand(park - 0.2 * n);  // 100 N of impedance force
-  sim.hold_pose(ready, 1000);
+  BlowToThePlate blow;
   // The blow itself accelerates the arm beyond what the servo would: only positions are checked.
-  check_limits(sim.samples, 1, false);
-  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
-  EXPECT_NE(sim.reason().find("measured force"), std::string::npos) << sim.reason();
+  check_limits(blow.sim.samples, 1, false);
+  EXPECT_EQ(blow.sim.state(), msg::ARM_FAULT);
+  EXPECT_NE(blow.sim.reason().find("measured force"), std::string::npos) << blow.sim.reason();
 }
 
 TEST(PumaSim, TwoRunsGiveIdenticalTraces) {

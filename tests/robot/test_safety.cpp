@@ -187,8 +187,8 @@ TEST_F(SafetyGateTest, WatchdogBrakesWithinTheBrakingBoundAndHoldsThenResumes) {
   for (int i = 1; i <= 1500; ++i) {
     now += kMs;
     check.check(gate.step(now));
-    const double silent = static_cast<double>(now - last_setpoint) * 1e-9;
-    EXPECT_EQ(gate.state(), silent <= config.setpoint_timeout ? SafetyState::kOk : SafetyState::kHolding) << i;
+    const std::int64_t timeout_ns = static_cast<std::int64_t>(config.setpoint_timeout * 1e9);  // (in ns, as the gate)
+    EXPECT_EQ(gate.state(), now - last_setpoint <= timeout_ns ? SafetyState::kOk : SafetyState::kHolding) << i;
     if (stopped_at < 0 && gate.reference().qd.norm() == 0.0) stopped_at = i;
   }
   EXPECT_LE(check.worst_velocity, 1.0 + 1e-12);
@@ -203,6 +203,60 @@ TEST_F(SafetyGateTest, WatchdogBrakesWithinTheBrakingBoundAndHoldsThenResumes) {
   Eigen::Isometry3d pose;
   ASSERT_TRUE(gate.accept_setpoint(now, setpoint_at(model.fk(gate.reference().q)), model.fk(gate.reference().q), pose));
   EXPECT_EQ(gate.state(), SafetyState::kOk);
+}
+
+TEST_F(SafetyGateTest, TheStreamIsLostAfterThreeOfItsOwnPeriodsAtMostTheTimeout) {
+  for (const int period_ms : {1, 7, 20, 30}) {
+    SafetyGate gate(config);
+    start(gate, q0);
+    EXPECT_EQ(gate.setpoint_loss_timeout_ns(), 60 * kMs) << "the timeout while the period is unknown";
+    for (int i = 0; i < 300; ++i) follow(gate, q0, period_ms);
+    ASSERT_EQ(gate.state(), SafetyState::kOk);
+    EXPECT_EQ(gate.setpoint_period_ns(), period_ms * kMs);
+    const std::int64_t expected = std::min<std::int64_t>(3 * period_ms, 60) * kMs;
+    EXPECT_EQ(gate.setpoint_loss_timeout_ns(), expected) << period_ms;
+    const std::int64_t last_setpoint = now - (now / kMs) % period_ms * kMs;
+    while (gate.state() == SafetyState::kOk) {
+      now += kMs;
+      gate.step(now);
+    }
+    EXPECT_EQ(now - last_setpoint, expected + kMs) << period_ms << " ms stream: held one tick after the timeout";
+    EXPECT_NE(gate.reason().find("lost after"), std::string::npos) << gate.reason();
+    // Resumed, the stream's period is learned anew.
+    Eigen::Isometry3d pose;
+    ASSERT_TRUE(
+        gate.accept_setpoint(now, setpoint_at(model.fk(gate.reference().q)), model.fk(gate.reference().q), pose));
+    EXPECT_EQ(gate.setpoint_period_ns(), 0);
+  }
+}
+
+TEST_F(SafetyGateTest, AnInputFaultClearsAtAStandstillAndAnArmFaultDoesNot) {
+  SafetyGate gate(config);
+  start(gate, q0);
+  Vector6d target = q0;
+  for (int i = 0; i < 300; ++i) {
+    target[0] = q0[0] + 0.001 * i;
+    follow(gate, target, 1, Vector6d::Unit(0));
+  }
+  SetpointInput bad = setpoint_at(model.fk(q0));
+  bad.position.x() = kNaN;
+  Eigen::Isometry3d pose;
+  EXPECT_FALSE(gate.accept_setpoint(now, bad, model.fk(q0), pose));
+  ASSERT_TRUE(gate.input_fault());
+  EXPECT_FALSE(gate.clear_input_fault(now)) << "still braking";
+  while (gate.reference().qd.cwiseAbs().maxCoeff() > 0) gate.step(now += kMs);
+  EXPECT_TRUE(gate.clear_input_fault(now));
+  EXPECT_EQ(gate.state(), SafetyState::kHolding);
+  EXPECT_FALSE(gate.clear_input_fault(now)) << "nothing left to clear";
+  follow(gate, gate.reference().q);
+  EXPECT_EQ(gate.state(), SafetyState::kOk);
+  // The arm's own fault stays.
+  gate.check_wrench(Eigen::Vector3d(0, 0, 500), Eigen::Vector3d::Zero());
+  ASSERT_EQ(gate.state(), SafetyState::kFault);
+  EXPECT_FALSE(gate.input_fault());
+  while (gate.reference().qd.cwiseAbs().maxCoeff() > 0) gate.step(now += kMs);
+  EXPECT_FALSE(gate.clear_input_fault(now));
+  EXPECT_EQ(gate.state(), SafetyState::kFault);
 }
 
 TEST_F(SafetyGateTest, NonFiniteSetpointFaultsLatchesAndHoldsUntilReset) {

@@ -16,7 +16,8 @@
 // Faults (held: the last pose again, zero twist, DisplayMode FAULT with the reason): a stale or
 // non-finite input, a setpoint from another source than its port's, a setpoint that jumps faster
 // than max_setpoint_speed, the arm, the planner or admittance_sim failing, a force on the plate
-// with the hand far from it.
+// with the hand far from it. An arm fault that bad input caused (RobotStatus.clearable) is
+// cleared by asking the arm (arm_request) once every other input is good again.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -103,6 +104,9 @@ class Supervisor final : public Component {
                                              Qos{Reliability::kReliable, Durability::kTransientLocal, 8, 0});
     attach_out_ = ctx.output<msg::Attachment>("attach", "where the device holds the virtual object, or that it lets go",
                                               Qos::reliable(4));
+    arm_request_out_ = ctx.output<msg::ArmRequest>(
+        "arm_request", "asks the arm to clear a fault that bad input caused, once the display's inputs are good again",
+        Qos::reliable(8));
     try {
       scene_ = haptics::load_scene(find_config_file(scene_path_));
     } catch (const std::exception& e) {
@@ -338,16 +342,27 @@ class Supervisor final : public Component {
     enter(msg::MODE_FAULT, now_ns, why);
   }
 
+  // Back to idle once every input has been good for recover_after. An arm held by a fault that
+  // bad input caused (a NaN, a jump: clearable) is asked to clear it once everything else is.
   void recover(std::int64_t now_ns) {
     if (!auto_recover_) return;
-    const bool good = surface_.fresh && now_ns - wrench_ns_ <= wrench_timeout_ns_ && robot_ok() &&
+    const bool arm_clearable = robot_ns_ >= 0 && robot_msg_.state() == msg::ARM_FAULT && robot_msg_.clearable();
+    const bool good = surface_.fresh && now_ns - wrench_ns_ <= wrench_timeout_ns_ && (robot_ok() || arm_clearable) &&
                       now_ns - planner_ns_ <= status_timeout_ns_ && planner_msg_.state() != msg::PLAN_FAULT;
     if (!good) {
       good_since_ns_ = -1;
       return;
     }
     if (good_since_ns_ < 0) good_since_ns_ = now_ns;
-    if (now_ns - good_since_ns_ >= recover_after_ns_) enter(msg::MODE_IDLE, now_ns, "inputs good again");
+    if (now_ns - good_since_ns_ < recover_after_ns_) return;
+    if (robot_ok()) return enter(msg::MODE_IDLE, now_ns, "inputs good again");
+    if (now_ns - request_sent_ns_ >= kRequestRepeatNs) {  // until the arm says it has cleared it
+      fill_header(request_msg_.header(), now_ns, request_seq_++, "base");
+      request_msg_.request(msg::ARM_CLEAR_INPUT_FAULT);
+      request_msg_.reason(("the display's inputs are good again after: " + reason_).substr(0, 127));
+      arm_request_out_.write(request_msg_);
+      request_sent_ns_ = now_ns;
+    }
   }
 
   void publish_setpoint(std::int64_t now_ns) {
@@ -377,6 +392,10 @@ class Supervisor final : public Component {
   std::int64_t switch_timeout_ns_ = 0, setpoint_timeout_ns_ = 0, wrench_timeout_ns_ = 0, status_timeout_ns_ = 0;
   bool auto_recover_ = true;
   std::int64_t recover_after_ns_ = 0;
+  static constexpr std::int64_t kRequestRepeatNs = 100'000'000;  // while the arm has not cleared
+  std::int64_t request_sent_ns_ = -kRequestRepeatNs;
+  std::uint64_t request_seq_ = 0;
+  msg::ArmRequest request_msg_;
   // inputs
   Stream surface_, admittance_;
   haptics::SensorReading reading_;
@@ -412,6 +431,7 @@ class Supervisor final : public Component {
   Output<msg::CartesianSetpoint> setpoint_out_;
   Output<msg::DisplayMode> mode_out_;
   Output<msg::Attachment> attach_out_;
+  Output<msg::ArmRequest> arm_request_out_;
 };
 
 }  // namespace wysiwyf::display

@@ -62,7 +62,9 @@ class PumaDriver final : public Component {
     // ---- the robot, the setpoint tracker and the safety gate (as puma_sim)
     arm_ = declare_arm_params(ctx);
 
-    ports_.declare(ctx);
+    ports_.declare(ctx, {[this](const auto& in, const std::string& why) { reject(in, why); },
+                         [this](const auto& in, const std::string& why) { reject(in, why); },
+                         [this](const std::string& line) { log(line); }});
     wrench_in_ = ctx.input<msg::WrenchStamped>(
         "wrench", "the wrist F/T sensor (ft_netft), for the force limit; leave unconnected to go without",
         Qos::sensor(16).optional_input());
@@ -141,13 +143,8 @@ class PumaDriver final : public Component {
       gate_->check_wrench(msgs::to_eigen(wrench_msg_.wrench().force()), msgs::to_eigen(wrench_msg_.wrench().torque()));
 
     // ---- 3. setpoints, trajectory generator, 4. the reference
-    while (ports_.setpoint.take(setpoint_msg_)) {
-      if (const std::string why = arm_.source_problem(setpoint_msg_); !why.empty()) {
-        reject(ports_.setpoint, why);
-        continue;
-      }
-      follower_->take(setpoint_msg_, now.ns);
-    }
+    ports_.take_requests(*gate_, now.ns);
+    ports_.take_setpoints(arm_, *follower_, now.ns);
     follower_->update(now.ns);
     const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
     const JointReference& ref = gate_->step(now.ns);
@@ -224,7 +221,6 @@ class PumaDriver final : public Component {
   std::uint64_t seq_ = 0;
 
   // messages and ports (reused: no allocation per tick)
-  msg::CartesianSetpoint setpoint_msg_;
   msg::WrenchStamped wrench_msg_;
   ArmPorts ports_;
   Input<msg::WrenchStamped> wrench_in_;

@@ -115,7 +115,9 @@ class PumaSim final : public Component {
     contact_d_ = ctx.param<double>("contact_damping", 100.0,
                                    "N s/m, penalty damping of fingertip contact (pushes only)", Range{0, 1e5});
 
-    ports_.declare(ctx);
+    ports_.declare(ctx, {[this](const auto& in, const std::string& why) { reject(in, why); },
+                         [this](const auto& in, const std::string& why) { reject(in, why); },
+                         [this](const std::string& line) { log(line); }});
     hand_in_ = ctx.input<msg::PoseStamped>(
         "hand_target", "where the user's fingertip is driven, and the hand's orientation", Qos::reliable(4));
     wrench_out_ =
@@ -180,13 +182,8 @@ class PumaSim final : public Component {
     gate_->check_wrench(f_sensor, t_sensor);
 
     // ---- 3. setpoints, hand target, trajectory generator
-    while (ports_.setpoint.take(setpoint_msg_)) {
-      if (const std::string why = arm_.source_problem(setpoint_msg_); !why.empty()) {
-        reject(ports_.setpoint, why);
-        continue;
-      }
-      follower_->take(setpoint_msg_, now.ns);
-    }
+    ports_.take_requests(*gate_, now.ns);
+    ports_.take_setpoints(arm_, *follower_, now.ns);
     while (hand_in_.take(hand_msg_)) {
       const Eigen::Vector3d x = msgs::to_eigen(hand_msg_.pose().position());
       Eigen::Quaterniond q = msgs::to_eigen(hand_msg_.pose().orientation());
@@ -335,7 +332,6 @@ class PumaSim final : public Component {
   std::uint64_t seq_ = 0;
 
   // messages and ports (reused: no allocation per tick)
-  msg::CartesianSetpoint setpoint_msg_;
   msg::PoseStamped hand_msg_, hand_msg_out_;
   msg::WrenchStamped wrench_msg_;
   ArmPorts ports_;
