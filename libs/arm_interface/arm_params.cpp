@@ -36,8 +36,19 @@ ArmParams declare_arm_params(Context& ctx) {
       ctx.param<double>("approach_rate", 50.0,
                         "1/s, first-order rate at which the reference closes the last bit of a move", Range{1, 2000});
   c.setpoint_timeout = ctx.param<double>("setpoint_timeout", 0.06,
-                                         "s without a setpoint before braking to a hold (3 periods of a 20 ms stream)",
+                                         "s without a setpoint before braking to a hold, at most (3 periods of a 20 ms "
+                                         "stream; the stream's own period, learned, sets it below that)",
                                          Range{0.002, 10});
+  c.setpoint_periods = ctx.param<double>(
+      "setpoint_periods", 3.0, "the stream is lost after this many of its own (learned) periods without a setpoint",
+      Range{1, 100});
+  c.max_setpoint_age =
+      ctx.param<double>("max_setpoint_age", 0.05,
+                        "s: a setpoint stamped longer ago (by the arm's clock) is stale and refused", Range{0.001, 10});
+  c.max_setpoint_lead = ctx.param<double>(
+      "max_setpoint_lead", 0.005,
+      "s: a setpoint stamped further ahead of the arm's clock is refused (allow for the hosts' clock sync)",
+      Range{0, 1});
   c.max_setpoint_step =
       ctx.param<double>("max_setpoint_step", 0.1,
                         "m a setpoint may lie from the previous one (or from the arm when starting)", Range{1e-4, 10});
