@@ -30,8 +30,8 @@ SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, 
     return refuse("from the future: stamped %.1f ms ahead (max_setpoint_lead %.1f ms)", -age * 1e3,
                   c.max_setpoint_lead * 1e3);
   if (gate_.following() && stamp < last_stamp_ns_)
-    return refuse("out of order: stamped %.3f ms before the last followed setpoint%.0s",
-                  static_cast<double>(last_stamp_ns_ - stamp) * 1e-6, 0.0);
+    return refuse("out of order: stamped %.3f ms before the last followed setpoint",
+                  static_cast<double>(last_stamp_ns_ - stamp) * 1e-6, 0.0);  // (an unused argument is allowed)
   const std::string frame = m.header().frame_id().c_str(), child = m.child_frame_id().c_str();
   if ((!frame.empty() && frame != "base" && frame != "base_link") || (!child.empty() && child != tip_name_)) {
     gate_.fault("setpoint rejected: it places '" + child + "' in '" + frame + "'; this arm follows base_T_" + tip_name_,
