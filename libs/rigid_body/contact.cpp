@@ -86,32 +86,32 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   const std::array<Vec3, 8> ca = corners_world(ma, poses[a]), cb = corners_world(mb, poses[b]);
   // Corners of one box against the faces of the other, in the other's frame.
   auto vertex_faces = [&](int va, int vb, const std::array<Vec3, 8>& corners) {
-    const BodyModel& other = models[vb];
+    const Vec3& h = models[vb].half_extents;
     const Pose& pose = poses[vb];
+    // Round-off puts a corner that lies on an edge or a corner of the other box (equal boxes
+    // stacked face on face) a hair outside one of the faces that meet there: within this, on them.
+    const double tie = 1e-9 * h.maxCoeff();
+    const Vec3 toward = pose.R.transpose() * (poses[va].x - pose.x);  // this box's centre, other's frame
     for (int v = 0; v < 8; ++v) {
       const Vec3 local = pose.R.transpose() * (corners[v] - pose.x);
-      if ((local.cwiseAbs().array() <= other.half_extents.array()).all()) {
-        // Inside the other box: only its nearest face is a contact (the others would push the
-        // corner out through the far side, against the true one).
-        int best = 0;
-        double best_gap = -1e300;
-        for (int face = 0; face < 6; ++face) {
-          const int axis = face / 2;
-          const double gap = ((face % 2) ? local[axis] : -local[axis]) - other.half_extents[axis];
-          if (gap > best_gap) best_gap = gap, best = face;
-        }
-        if (best_gap > -depth) out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, best, 1});
-        continue;
+      // Inside the other box (or on it): only its nearest face is a contact (the others would
+      // push the corner out through the far side, against the true one). Outside: the face the
+      // corner is over, if within the margin. Of faces as near within round-off (a corner on an
+      // edge), the one that looks toward this box's centre: the one the boxes meet at.
+      const bool inside = (local.cwiseAbs().array() <= h.array() + tie).all();
+      int best = -1;
+      double best_gap = -1e300, best_facing = -1e300;
+      for (int face = 0; face < 6; ++face) {
+        const int axis = face / 2, j = (axis + 1) % 3, k = (axis + 2) % 3;
+        if (!inside && (std::abs(local[j]) > h[j] + tie || std::abs(local[k]) > h[k] + tie)) continue;
+        const double side = (face % 2) ? 1.0 : -1.0;
+        const double gap = side * local[axis] - h[axis];
+        const double facing = side * toward[axis] / h[axis];
+        if (gap > best_gap + tie || (gap > best_gap - tie && facing > best_facing))
+          best = face, best_gap = std::max(gap, best_gap), best_facing = facing;
       }
-      for (int axis = 0; axis < 3; ++axis) {
-        const int j = (axis + 1) % 3, k = (axis + 2) % 3;
-        if (std::abs(local[j]) > other.half_extents[j] || std::abs(local[k]) > other.half_extents[k]) continue;
-        for (int side = 0; side < 2; ++side) {
-          const double gap = (side ? local[axis] : -local[axis]) - other.half_extents[axis];
-          if (gap < margin && gap > -depth)
-            out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, 2 * axis + side, 1});
-        }
-      }
+      if (best >= 0 && best_gap < margin && best_gap > -depth)
+        out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, best, 1});
     }
   };
   vertex_faces(a, b, ca);

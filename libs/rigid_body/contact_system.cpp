@@ -83,14 +83,7 @@ void ContactSystem::applied_loads(const WorldState& state, const std::vector<Pos
   }
 }
 
-void ContactSystem::free_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
-                               const std::vector<Pose>& poses, double tangent_horizon) {
-  const auto m = static_cast<Eigen::Index>(live);
-  b.resize(m);
-  b_free.resize(m);
-  if (tangent_horizon > 0) bt.resize(2 * m), vt.resize(2 * m);
-  const double ws = 2 * M_PI * model.params.stabilisation_hz;
-  // Each dynamic body's accelerations under the applied loads alone.
+void ContactSystem::accelerations(const std::vector<BodyState>& states, const std::vector<Pose>& poses) {
   body_acc.resize(model.bodies.size());
   for (const int body : model.dynamic) {
     auto& [linear, angular] = body_acc[static_cast<std::size_t>(body)];
@@ -98,6 +91,15 @@ void ContactSystem::free_terms(const ActiveContact* active, std::size_t live, co
     linear = force[body] * p.inv_mass;
     angular = p.inv_inertia * (torque[body] - p.omega.cross(states[body].L));
   }
+}
+
+void ContactSystem::free_terms(const ActiveContact* active, std::size_t live, const std::vector<Pose>& poses,
+                               double tangent_horizon) {
+  const auto m = static_cast<Eigen::Index>(live);
+  b.resize(m);
+  b_free.resize(m);
+  if (tangent_horizon > 0) bt.resize(2 * m), vt.resize(2 * m);
+  const double ws = 2 * M_PI * model.params.stabilisation_hz;
   for (std::size_t i = 0; i < live; ++i) {
     const auto& c = active[i].point;
     double acc = 0, gap_rate = 0;

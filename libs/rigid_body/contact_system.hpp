@@ -61,10 +61,12 @@ struct ContactSystem {
   // force, torque: gravity and the user's wrench, plus (with_friction) the friction that the
   // state's resting contacts hold.
   void applied_loads(const WorldState& state, const std::vector<Pose>& poses, bool with_friction);
-  // The first `live` rows' free terms under force/torque: b (with gap feedback), b_free, and for
+  // Each dynamic body's accelerations under force/torque alone (body_acc), for free_terms.
+  void accelerations(const std::vector<BodyState>& states, const std::vector<Pose>& poses);
+  // The first `live` rows' free terms under force/torque (after accelerations()): b (with gap feedback), b_free, and for
   // tangent_horizon > 0 bt (tangential acceleration that stops sliding within the horizon) and vt.
-  void free_terms(const ActiveContact* active, std::size_t live, const std::vector<BodyState>& states,
-                  const std::vector<Pose>& poses, double tangent_horizon);
+  void free_terms(const ActiveContact* active, std::size_t live, const std::vector<Pose>& poses,
+                  double tangent_horizon);
 
   const WorldModel& model;
   // A row of J: a unit force along a contact direction as it acts on each side's body (force and

@@ -19,13 +19,17 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   // Sliding contacts and the unit direction of their friction (in the tangent basis).
   std::vector<bool> moving(static_cast<std::size_t>(m), false), sliding;
   std::vector<Eigen::Vector2d> against(static_cast<std::size_t>(m), Eigen::Vector2d::Zero()), direction;
+  // With stick_first every contact with friction is first asked to stick: to meet its target
+  // (bt: stop sliding by the horizon) within its cone; one that cannot slides at the rim, against
+  // its velocity if it slides (maximal dissipation), else along the force it needed. A sliding
+  // contact is no exception: mu f_n against its velocity, held for a whole step, reversed a slow
+  // one within the step (a spinning cube's corners swapped direction every step and it never
+  // stopped); one that the cone can stop within the horizon stops.
   for (Eigen::Index i = 0; i < m; ++i) {
     const Eigen::Vector2d v = vt.segment<2>(2 * i);
-    if (mu[i] <= 0.0 || v.norm() > sliding_speed) {
-      moving[static_cast<std::size_t>(i)] = true;  // (a frictionless contact: a slider with no force)
-      against[static_cast<std::size_t>(i)] =
-          v.norm() > 0.0 ? Eigen::Vector2d(-v.normalized()) : Eigen::Vector2d::Zero();
-    }
+    // (a frictionless contact: a slider with no force)
+    if (mu[i] <= 0.0 || (!stick_first && v.norm() > sliding_speed)) moving[static_cast<std::size_t>(i)] = true;
+    if (v.norm() > sliding_speed) against[static_cast<std::size_t>(i)] = -v.normalized();
   }
   // Convergence is judged on what the forces do, A [fn; ft] (contact-space accelerations or
   // velocity changes): with redundant contacts the forces themselves are not unique.
@@ -107,8 +111,10 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         const double bound = mu[i] * r.fn[i];
         if (need.norm() > bound * (1 + 1e-12) + 1e-300) {  // it cannot stick: it starts to slide
           sliding[static_cast<std::size_t>(i)] = true;
-          direction[static_cast<std::size_t>(i)] =
-              need.norm() > 0.0 ? Eigen::Vector2d(need.normalized()) : Eigen::Vector2d::Zero();
+          const Eigen::Vector2d& slip = against[static_cast<std::size_t>(i)];
+          direction[static_cast<std::size_t>(i)] = !slip.isZero()      ? slip
+                                                   : need.norm() > 0.0 ? Eigen::Vector2d(need.normalized())
+                                                                       : Eigen::Vector2d::Zero();
           changed = true;
         }
       }

@@ -23,6 +23,7 @@ std::vector<BodyModel> one_state_each(std::vector<BodyModel>& models, const std:
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, WorldParams params)
     : model_(one_state_each(models, initial), params), state_(model_, std::move(initial)), contact_system_(model_) {
+  impact_friction_.stick_first = false;
   const WorldParams& p = model_.params;
   const CvodeOptions options{p.rtol, p.atol, p.initial_step, p.restart_growth, p.nonlinear_convergence};
   const int size = std::max<int>(1, kStateSize * static_cast<int>(model_.dynamic.size()));
@@ -38,12 +39,18 @@ void World::set_state(int i, const BodyState& s) { state_.set_body(model_, i, s)
 double World::energy() const { return state_.energy(model_); }
 
 std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
-  std::size_t live = 0;
-  for (auto& c : state_.resting) {
-    c.point = evaluate(c.feature, model_.bodies, poses);
-    if (c.point.valid) std::swap(c, state_.resting[live++]);
+  std::vector<ActiveContact>& resting = state_.resting;
+  std::size_t total = 0;
+  for (ContactIsland& island : state_.islands) {
+    std::size_t live = island.begin;
+    for (std::size_t i = island.begin; i < island.end; ++i) {
+      resting[i].point = evaluate(resting[i].feature, model_.bodies, poses);
+      if (resting[i].point.valid) std::swap(resting[i], resting[live++]);
+    }
+    island.live = live - island.begin;
+    total += island.live;
   }
-  return live;
+  return total;
 }
 
 void World::update_friction(double dt) {
@@ -54,30 +61,41 @@ void World::update_friction(double dt) {
   std::vector<Pose>& poses = work_.poses;
   state_.poses_of(model_, state_.bodies, poses);
   const std::size_t live = evaluate_resting(poses);
-  const bool any = live > 0 && cs.friction_coefficients(resting.data(), live);
-  if (any) {
+  if (live > 0) {
     cs.applied_loads(state_, poses, false);
-    cs.build(resting.data(), live, poses, true);
-    cs.free_terms(resting.data(), live, state_.bodies, poses, dt);
-    // The last step's friction (classify_contacts carries it over while the contacts stay the
-    // same), in the tangent bases, starts the rounds.
-    work_.ft_start.resize(static_cast<Eigen::Index>(2 * live));
-    for (std::size_t i = 0; i < live; ++i)
-      for (std::size_t j = 0; j < 2; ++j)
-        work_.ft_start[static_cast<Eigen::Index>(2 * i + j)] = cs.tangents[i][j].dot(resting[i].friction);
+    cs.accelerations(state_.bodies, poses);
   }
-  for (auto& c : resting) c.friction.setZero();  // before solving: no failed solve leaves it applied
-  if (!any) return;
-  FrictionResult r = friction_.solve(lcp_, cs.A, cs.b, cs.bt, cs.mu, cs.vt, work_.ft_start);
-  if (!r.ok) r = friction_.solve(lcp_, cs.A, cs.b_free, cs.bt, cs.mu, cs.vt);
-  report_.friction_rounds += r.iterations;
-  if (!r.ok) return;  // frictionless this step; the normal LCP of the right-hand side reports it
-  if (!r.converged) ++report_.friction_unconverged;
-  for (std::size_t i = 0; i < live; ++i) {
-    const auto k = static_cast<Eigen::Index>(i);
-    resting[i].friction = r.ft[2 * k] * cs.tangents[i][0] + r.ft[2 * k + 1] * cs.tangents[i][1];
+  bool any = false;
+  for (const ContactIsland& island : state_.islands) {
+    ActiveContact* active = resting.data() + island.begin;
+    const std::size_t n = island.live;
+    const bool friction = n > 0 && cs.friction_coefficients(active, n);
+    if (friction) {
+      cs.build(active, n, poses, true);
+      cs.free_terms(active, n, poses, dt);
+      // The last step's friction (classify_contacts carries it over while the contacts stay the
+      // same), in the tangent bases, starts the rounds.
+      work_.ft_start.resize(static_cast<Eigen::Index>(2 * n));
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < 2; ++j)
+          work_.ft_start[static_cast<Eigen::Index>(2 * i + j)] = cs.tangents[i][j].dot(active[i].friction);
+    }
+    // (before solving: no failed solve leaves it applied)
+    for (std::size_t i = island.begin; i < island.end; ++i) resting[i].friction.setZero();
+    if (!friction) continue;
+    FrictionResult r = friction_.solve(lcp_, cs.A, cs.b, cs.bt, cs.mu, cs.vt, work_.ft_start);
+    if (!r.ok) r = friction_.solve(lcp_, cs.A, cs.b_free, cs.bt, cs.mu, cs.vt);
+    report_.friction_rounds += r.iterations;
+    if (!r.ok) continue;  // frictionless this step; the normal LCP of the right-hand side reports it
+    if (!r.converged) ++report_.friction_unconverged;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      active[i].friction = r.ft[2 * k] * cs.tangents[i][0] + r.ft[2 * k + 1] * cs.tangents[i][1];
+    }
+    any = true;
   }
-  state_.restart = true;  // a new friction load: a discontinuity of the right-hand side, like a new wrench
+  // A new friction load: a discontinuity of the right-hand side, like a new wrench.
+  if (any) state_.restart = true;
 }
 
 void World::rhs(const double* y, double* ydot) {
@@ -91,30 +109,32 @@ void World::rhs(const double* y, double* ydot) {
   state_.poses_of(model_, states, poses);
   // Resting contacts at this very state.
   const std::size_t live = evaluate_resting(poses);
-  for (std::size_t i = live; i < resting.size(); ++i) resting[i].force = 0;  // (the live ones get theirs below)
-  // Gravity, the user's wrench and the friction held for this step, then the normal forces of
-  // eqs. (9)-(10) that keep the contacts from closing under them.
+  // Gravity, the user's wrench and the friction held for this step, then, island by island, the
+  // normal forces of eqs. (9)-(10) that keep the contacts from closing under them.
   cs.applied_loads(state_, poses, true);
   std::vector<Vec3>& force = cs.force;
   std::vector<Vec3>& torque = cs.torque;
-  if (live > 0) {
-    const ActiveContact* active = resting.data();
-    cs.build(active, live, poses);
-    cs.free_terms(active, live, states, poses, 0);
+  if (live > 0) cs.accelerations(states, poses);
+  for (ContactIsland& island : state_.islands) {
+    ActiveContact* active = resting.data() + island.begin;
+    for (std::size_t i = island.live; i < island.end - island.begin; ++i) active[i].force = 0;
+    if (island.live == 0) continue;
+    cs.build(active, island.live, poses);
+    cs.free_terms(active, island.live, poses, 0);
     // Warm-started from the last right-hand side's clamped set: the contacts rarely change
     // between evaluations, and then one small solve replaces the pivoting.
-    LcpResult r = lcp_.solve(cs.A, cs.b, state_.rhs_clamped);
+    LcpResult r = lcp_.solve(cs.A, cs.b, island.clamped);
     // The gap feedback is not a physical acceleration: with redundant contacts whose gaps disagree
     // (a cube in the corner of a table and a wall) it can ask for the impossible. The physical
     // problem is always solvable (frictionless, b in the range of J): fall back to it.
     if (!r.ok) r = lcp_.solve(cs.A, cs.b_free);
     if (r.ok)
-      state_.rhs_clamped = r.clamped;
+      island.clamped = r.clamped;
     else
       ++report_.lcp_failures;
-    for (std::size_t i = 0; i < live; ++i) {
+    for (std::size_t i = 0; i < island.live; ++i) {
       const double f = r.f[static_cast<Eigen::Index>(i)];
-      resting[i].force = f;
+      active[i].force = f;
       const auto& c = active[i].point;
       apply_at_contact(active[i].feature, c.p, Vec3(f * c.n), model_.slot, poses,
                        [&](int, int body, const Vec3& fn, const Vec3& moment) {
@@ -142,13 +162,29 @@ void World::roots(const double* y, double* g) {
 
 bool World::collide(std::vector<ActiveContact>& contacts) {
   if (contacts.empty()) return true;
-  std::vector<Pose> poses;
+  work_.grouping.group(contacts, model_.slot, work_.impact_islands);
+  std::vector<Pose>& poses = work_.impact_poses;
   state_.poses_of(model_, state_.bodies, poses);
   for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses);
+  bool ok = true;
+  for (const ContactIsland& island : work_.impact_islands)
+    ok = collide_island(contacts.data() + island.begin, island.end - island.begin, poses) && ok;
+  return ok;
+}
+
+bool World::collide_island(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses) {
+  // An island where nothing approaches takes no impulse (the LCP's answer is zero): not solved.
+  bool approaching = false;
+  for (std::size_t i = 0; i < count && !approaching; ++i) {
+    const ActiveContact& contact = contacts[i];
+    approaching =
+        contact.point.n.dot(relative_velocity(poses[contact.feature.a], poses[contact.feature.b], contact.point.p)) < 0;
+  }
+  if (!approaching) return true;
   ContactSystem& cs = contact_system_;
-  const bool friction = cs.friction_coefficients(contacts.data(), contacts.size());
-  cs.build(contacts.data(), contacts.size(), poses, friction);
-  const auto m = static_cast<Eigen::Index>(contacts.size());
+  const bool friction = cs.friction_coefficients(contacts, count);
+  cs.build(contacts, count, poses, friction);
+  const auto m = static_cast<Eigen::Index>(count);
   Eigen::VectorXd c(m), ct(friction ? 2 * m : 0);
   for (Eigen::Index i = 0; i < m; ++i) {
     const auto& contact = contacts[static_cast<std::size_t>(i)];
@@ -163,7 +199,7 @@ bool World::collide(std::vector<ActiveContact>& contacts) {
   }
   Eigen::VectorXd jn, jt;
   if (friction) {
-    const FrictionResult r = friction_.solve(lcp_, cs.A, c, ct, cs.mu, ct);
+    const FrictionResult r = impact_friction_.solve(lcp_, cs.A, c, ct, cs.mu, ct);
     if (!r.ok) return false;
     if (!r.converged) ++report_.friction_unconverged;
     jn = r.fn, jt = r.ft;
@@ -211,6 +247,7 @@ void World::classify_contacts() {
     touching.push_back(ActiveContact{f, c, 0});
     if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.resting_speed) colliding = true;
   }
+  work_.grouping.group(touching, model_.slot, state_.islands);
   if (colliding) {  // approaching faster than resting: an impact at the start of the step
     if (!collide(touching)) ++report_.lcp_failures;
     ++report_.collisions;
@@ -278,6 +315,7 @@ StepReport World::step(double dt) {
     if (!collide(contacts)) ++report_.lcp_failures;
     ++report_.collisions;
     state_.resting = std::move(contacts);
+    work_.grouping.group(state_.resting, model_.slot, state_.islands);
     state_.watched = std::move(still_watched);
     if (report_.collisions >= model_.params.max_collisions_per_step)
       state_.watched.clear();  // no more events this step

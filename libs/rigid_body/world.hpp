@@ -77,10 +77,12 @@ class World {
   void rhs(const double* y, double* ydot);
   void roots(const double* y, double* g);
   void classify_contacts();
-  // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to the bodies; returns false if it failed.
+  // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to the bodies, island by island
+  // (grouping them so); returns false if one failed.
   bool collide(std::vector<ActiveContact>& contacts);
-  // Evaluates the resting contacts at `poses` and moves those still facing to the front; returns
-  // how many they are.
+  bool collide_island(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses);
+  // Evaluates the resting contacts at `poses` and moves those still facing to the front of their
+  // island; returns how many they are.
   std::size_t evaluate_resting(const std::vector<Pose>& poses);
   // The resting contacts' friction for the next step of dt (held through it).
   void update_friction(double dt);
@@ -90,8 +92,9 @@ class World {
   WorldWorkspace work_;
   std::unique_ptr<CvodeIntegrator> integrator_;
   LcpSolver lcp_;
-  FrictionSolver friction_;
-  ContactSystem contact_system_;  // rebuilt at each right-hand side and impact
+  FrictionSolver friction_;         // the resting contacts' friction for a step
+  FrictionSolver impact_friction_;  // at impacts
+  ContactSystem contact_system_;    // rebuilt at each right-hand side and impact
   StepReport report_;
 };
 

@@ -18,6 +18,18 @@ struct ActiveContact {
   Vec3 friction = Vec3::Zero();  // N, tangential force on body a (world frame)
 };
 
+// The contacts of one island, a set of dynamic bodies that touch one another (a static body
+// joins none: a table under two separate cubes leaves them apart), as a range of the resting
+// contacts. Each island's contacts are solved alone: an LCP of n contacts costs up to n^3, and
+// no force of one island reaches another.
+struct ContactIsland {
+  std::size_t begin = 0, end = 0;  // its contacts: resting[begin, end)
+  std::size_t live = 0;            // of those, the first `live` still face each other (last evaluated)
+  // The last right-hand side's clamped contacts (indices from begin): the next one's warm start.
+  // It picks the LCP's solution path, so it belongs with the state that repeats a run.
+  LcpIndices clamped;
+};
+
 struct WorldState {
   // At t = 0 in `initial` (orientations normalised), with no wrench and no contact yet.
   WorldState(const WorldModel& model, std::vector<BodyState> initial);
@@ -35,12 +47,10 @@ struct WorldState {
   std::vector<Pose> static_poses;           // every body's pose at its last set state; static ones stay so
   std::vector<Vec3> ext_force, ext_torque;  // the user's wrenches, held until changed
   std::vector<ActiveContact> resting;       // their last normal forces and the friction held for the step
+  std::vector<ContactIsland> islands;       // the resting contacts, grouped (contiguous) by island
   std::vector<ContactFeature> watched;      // root functions
   bool restart = true;                      // CVODE must be (re)initialised before integrating
   bool roots_changed = true;                // CVodeRootInit must be called again
-  // The last right-hand side's clamped contacts (indices into resting): the next one's warm
-  // start. It picks the LCP's solution path, so it belongs with the state that repeats a run.
-  LcpIndices rhs_clamped;
 };
 
 }  // namespace wysiwyf::haptics

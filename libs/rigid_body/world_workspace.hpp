@@ -8,6 +8,7 @@
 
 #include "scene/body.hpp"
 #include "rigid_body/contact.hpp"
+#include "rigid_body/contact_islands.hpp"
 #include "rigid_body/world_state.hpp"
 
 namespace wysiwyf::haptics {
@@ -21,6 +22,9 @@ struct WorldWorkspace {
   std::vector<ActiveContact> touching;
   std::vector<ContactFeature> watched_next;
   Eigen::VectorXd ft_start;  // update_friction: the last step's friction, in the tangent bases
+  IslandGrouping grouping;
+  std::vector<ContactIsland> impact_islands;  // collide: the impact's contacts by island
+  std::vector<Pose> impact_poses;             // collide: the bodies' poses at the impact
 };
 
 }  // namespace wysiwyf::haptics

@@ -148,6 +148,22 @@ TEST(Friction, AnObliqueLandingKeepsNoTangentialVelocityWhenFrictionSuffices) {
   EXPECT_NEAR(w.state(0).x.z(), 0.1, 1e-4);
 }
 
+TEST(Friction, ASpinningCubeStopsAndStaysStopped) {
+  // A 0.5 kg, 10 cm cube spinning at 1 rad/s about the vertical and sliding at 2.3 mm/s on a
+  // mu = 0.4 floor: its corners' friction stops it within 10 ms. Held at mu f_n against the
+  // corners' velocity for a whole step, it used to reverse the spin every step and never stop it
+  // (0.09 rad/s forever).
+  BodyModel small = cube(0.5, 0.4);
+  small.half_extents = Vec3::Constant(0.05);
+  small.inertia_body = BodyModel::box_inertia(0.5, small.half_extents);
+  BodyState spinning = at(Vec3(0, 0, 0.05), Vec3(0.0023, 0, 0), 0.5);
+  spinning.L = small.inertia_body * Vec3(0, 0, 1.0);
+  World w({small, floor_box(0.4)}, {spinning, at(Vec3(0, 0, -0.05))});
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  EXPECT_LT(w.kinematics(0).omega.norm(), 1e-9);
+  EXPECT_LT(w.kinematics(0).v.norm(), 1e-9);
+}
+
 TEST(FrictionSolver, TheNormalForcesStayExactAndTheFrictionStaysOnItsDisc) {
   // One contact of a unit point mass on a plane: normal row and two tangent rows decoupled.
   Eigen::MatrixXd A = Eigen::MatrixXd::Identity(3, 3);

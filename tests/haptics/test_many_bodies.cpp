@@ -1,0 +1,173 @@
+// Many bodies against physical truths (issue 16): the scenes of config/scenes/ with a stack, a
+// pile and a row of boxes, on simulated time. Penetration is measured independently of the
+// simulation's own contacts: the separating-axis overlap of every pair of boxes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "rigid_body/world.hpp"
+#include "scene/scene.hpp"
+
+namespace wysiwyf::haptics {
+
+namespace {
+
+Scene scene(const std::string& name) { return load_scene(std::string(WYSIWYF_CONFIG_DIR) + "/scenes/" + name); }
+
+WorldParams haptic_params(const Scene& s) {
+  WorldParams p;
+  p.gravity = s.gravity;
+  p.rtol = kHapticRtol;  // as admittance_sim
+  p.atol = kHapticRtol * 1e-2;
+  return p;
+}
+
+// How deep two boxes overlap: the smallest overlap of their projections over the 15 separating
+// axes (0 or less: apart). For boxes this is the depth a contact would have to push them apart.
+double overlap(const World& w, int i, int j) {
+  const BodyKinematics a = w.kinematics(i), b = w.kinematics(j);
+  const Vec3 ha = w.model(i).half_extents, hb = w.model(j).half_extents;
+  const Vec3 d = w.state(j).x - w.state(i).x;
+  std::array<Vec3, 15> axes;
+  int n = 0;
+  for (int k = 0; k < 3; ++k) axes[n++] = a.R.col(k), axes[n++] = b.R.col(k);
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      const Vec3 c = a.R.col(k).cross(b.R.col(l));
+      if (c.norm() > 1e-6) axes[n++] = c.normalized();
+    }
+  double least = 1e300;
+  for (int k = 0; k < n; ++k) {
+    const Vec3& u = axes[k];
+    double ra = 0, rb = 0;
+    for (int l = 0; l < 3; ++l) ra += ha[l] * std::abs(u.dot(a.R.col(l))), rb += hb[l] * std::abs(u.dot(b.R.col(l)));
+    least = std::min(least, ra + rb - std::abs(u.dot(d)));
+  }
+  return least;
+}
+
+double deepest_overlap(const World& w) {
+  double deepest = 0;
+  for (int i = 0; i < w.body_count(); ++i)
+    for (int j = i + 1; j < w.body_count(); ++j)
+      if (w.model(i).dynamic || w.model(j).dynamic) deepest = std::max(deepest, overlap(w, i, j));
+  return deepest;
+}
+
+double kinetic_energy(const World& w) {
+  double e = 0;
+  for (int i = 0; i < w.body_count(); ++i) {
+    if (!w.model(i).dynamic) continue;
+    const BodyKinematics k = w.kinematics(i);
+    e += 0.5 * w.model(i).mass * k.v.squaredNorm() + 0.5 * k.omega.dot(w.state(i).L);
+  }
+  return e;
+}
+
+}  // namespace
+
+TEST(ManyBodies, AStackOfFiveCubesStandsForAMinuteWithoutDriftOrPenetration) {
+  const Scene s = scene("stack_5.yaml");
+  World w(s.models, s.initial, haptic_params(s));
+  const int table = s.body_index("table");
+  double drift = 0, deepest = 0;
+  int failures = 0;
+  double weight_error = 0;
+  const double weight = 5 * 0.5 * 9.81;
+  for (int step = 1; step <= 60000; ++step) {
+    const StepReport r = w.step(1e-3);
+    failures += r.lcp_failures;
+    if (step % 100 == 0) {
+      deepest = std::max(deepest, deepest_overlap(w));
+      for (int i = 0; i < w.body_count(); ++i)
+        drift = std::max(drift, (w.state(i).x - s.initial[i].x).norm());
+      // The total normal force under the stack (the table's contacts) is its weight.
+      double under = 0;
+      for (const auto& c : w.resting_contacts())
+        if (c.feature.a == table || c.feature.b == table) under += c.force;
+      weight_error = std::max(weight_error, std::abs(under - weight));
+    }
+  }
+  RecordProperty("drift_um", std::to_string(drift * 1e6));
+  RecordProperty("deepest_um", std::to_string(deepest * 1e6));
+  std::printf("stack: drift %.3g um, deepest overlap %.3g um, weight error %.3g N, %d LCP failures\n", drift * 1e6,
+              deepest * 1e6, weight_error, failures);
+  EXPECT_LE(drift, 1e-4);
+  EXPECT_LE(deepest, 1e-6);
+  EXPECT_LE(weight_error, 1e-6 * weight);
+  EXPECT_EQ(failures, 0);
+}
+
+TEST(ManyBodies, APileOfSixteenBoxesComesToRestWithoutPenetration) {
+  const Scene s = scene("pile_16.yaml");
+  World w(s.models, s.initial, haptic_params(s));
+  double transient = 0;
+  int failures = 0;
+  for (int step = 1; step <= 3000; ++step) {
+    const StepReport r = w.step(1e-3);
+    failures += r.lcp_failures;
+    transient = std::max(transient, deepest_overlap(w));
+  }
+  const double resting = deepest_overlap(w);
+  std::printf("pile: at rest %.3g um deep, %.3g um at most while landing, kinetic energy %.3g J\n", resting * 1e6,
+              transient * 1e6, kinetic_energy(w));
+  EXPECT_LE(resting, 1e-5) << "at rest: no penetration beyond the contact tolerance";
+  // A corner that slides over a face's rim while already below its plane is caught one step
+  // late (its contact was not watched): measured 123 um once, corrected at once by the gap feedback.
+  EXPECT_LE(transient, 2e-4);
+  EXPECT_LE(kinetic_energy(w), 1e-9) << "at rest";
+  EXPECT_EQ(failures, 0);
+  for (int i = 0; i < w.body_count(); ++i)
+    if (w.model(i).dynamic) {
+      EXPECT_GT(w.state(i).x.z(), 0) << w.model(i).name << " fell off the table";
+    }
+}
+
+// Newton's cradle in a row: box 1 slides at 0.5 m/s into box 2 (frictionless table, e = 0.9 between
+// the boxes), which hits box 3, and so on. No horizontal force acts but between boxes: the row's
+// momentum stays; each impact between equal masses leaves the pair (1 -/+ e) / 2 of the closing
+// speed; kinetic energy only falls.
+TEST(ManyBodies, PushingARowOfThirtyTwoBoxesConservesMomentumThroughItsImpacts) {
+  const Scene s = scene("row_32.yaml");
+  World w(s.models, s.initial, haptic_params(s));
+  const double v0 = 0.5, m = 0.05, e = 0.9;
+  BodyState first = w.state(1);
+  first.P = Vec3(m * v0, 0, 0);
+  w.set_state(1, first);
+  auto momentum = [&] {
+    double p = 0;
+    for (int i = 1; i < w.body_count(); ++i) p += w.state(i).P.x();
+    return p;
+  };
+  double worst = 0, energy = kinetic_energy(w), rise = 0;
+  bool first_impact_checked = false;
+  int failures = 0;
+  for (int step = 1; step <= 2500; ++step) {
+    const StepReport r = w.step(1e-3);
+    failures += r.lcp_failures;
+    worst = std::max(worst, std::abs(momentum() - m * v0));
+    const double now = kinetic_energy(w);
+    rise = std::max(rise, now - energy);
+    energy = now;
+    if (!first_impact_checked && w.kinematics(2).v.x() > 0) {
+      // box 1 had 1 cm to travel at 0.5 m/s: the first impact is inside the 20th step
+      EXPECT_NEAR(w.kinematics(1).v.x(), (1 - e) / 2 * v0, 1e-6);
+      EXPECT_NEAR(w.kinematics(2).v.x(), (1 + e) / 2 * v0, 1e-6);
+      first_impact_checked = true;
+    }
+  }
+  std::printf("row: momentum off by %.3g of %.3g, kinetic energy rose by %.3g J at most, last box at %.3g m/s\n",
+              worst, m * v0, rise, w.kinematics(32).v.x());
+  EXPECT_TRUE(first_impact_checked);
+  EXPECT_LE(worst, 1e-9 * m * v0);
+  EXPECT_LE(rise, 1e-12);
+  // Each impact of the row is a pair's alone (the boxes behind fall back): the last box leaves
+  // with ((1 + e) / 2)^31 of the first one's speed.
+  EXPECT_NEAR(w.kinematics(32).v.x(), v0 * std::pow((1 + e) / 2, 31), 1e-6) << "the impacts reach the end of the row";
+  EXPECT_EQ(failures, 0);
+}
+
+}  // namespace wysiwyf::haptics
