@@ -21,7 +21,7 @@ class IslandGrouping {
  private:
   int root(int body);
 
-  std::vector<int> parent_;                          // union-find over body indices
+  std::vector<int> parent_;                         // union-find over body indices
   std::vector<std::pair<int, std::size_t>> order_;  // (island root, position) per contact
   std::vector<ActiveContact> sorted_;
   std::vector<ContactIsland> previous_;

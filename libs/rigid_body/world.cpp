@@ -224,14 +224,28 @@ bool World::collide_island(const ActiveContact* contacts, std::size_t count, con
   return true;
 }
 
+// Two equal boxes face on face meet corner on corner: a corner of each on the other's face, at the
+// same point along the same line. The second is the same constraint again (a row of A twice
+// over): it only makes the LCP larger.
+bool World::twin_of_touching(const ContactFeature& f, const ContactPoint& c) const {
+  if (f.kind != ContactKind::kVertexFace) return false;
+  const double near = 1e-9 * model_.bodies[f.a].half_extents.maxCoeff();
+  for (const ActiveContact& t : work_.touching) {
+    if (t.feature.kind != ContactKind::kVertexFace) continue;
+    const bool same = t.feature.a == f.a && t.feature.b == f.b, swapped = t.feature.a == f.b && t.feature.b == f.a;
+    if (!same && !swapped) continue;
+    if ((t.point.p - c.p).norm() <= near && t.point.n.dot(c.n) * (same ? 1 : -1) > 1 - 1e-12) return true;
+  }
+  return false;
+}
+
 void World::classify_contacts() {
   std::vector<Pose>& poses = work_.poses;
   state_.poses_of(model_, state_.bodies, poses);
   work_.candidates.clear();
-  for (int a : model_.dynamic)
-    for (int b = 0; b < model_.body_count(); ++b)
-      if (b != a && (!model_.bodies[b].dynamic || a < b))
-        find_candidates(a, b, model_.bodies, poses, model_.params.margin, work_.candidates);
+  work_.broad_phase.pairs(model_, poses, model_.params.margin, work_.pairs);
+  for (const auto& [a, b] : work_.pairs)
+    find_candidates(a, b, model_.bodies, poses, model_.params.margin, work_.candidates);
   std::vector<ActiveContact>& touching = work_.touching;
   std::vector<ContactFeature>& watched = work_.watched_next;
   touching.clear();
@@ -244,6 +258,7 @@ void World::classify_contacts() {
       watched.push_back(f);
       continue;
     }
+    if (twin_of_touching(f, c)) continue;
     touching.push_back(ActiveContact{f, c, 0});
     if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.resting_speed) colliding = true;
   }

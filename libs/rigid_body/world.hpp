@@ -77,6 +77,8 @@ class World {
   void rhs(const double* y, double* ydot);
   void roots(const double* y, double* g);
   void classify_contacts();
+  // Whether a touching contact already listed is the same constraint as f at c.
+  bool twin_of_touching(const ContactFeature& f, const ContactPoint& c) const;
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to the bodies, island by island
   // (grouping them so); returns false if one failed.
   bool collide(std::vector<ActiveContact>& contacts);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/body.hpp"
+#include "rigid_body/broad_phase.hpp"
 #include "rigid_body/contact.hpp"
 #include "rigid_body/contact_islands.hpp"
 #include "rigid_body/world_state.hpp"
@@ -18,6 +19,8 @@ struct WorldWorkspace {
   std::vector<Pose> poses;        // the bodies' poses at it (or at the current state)
   // classify_contacts: the features near enough to look at, and the next resting contacts and
   // root functions (swapped with the state's, so both keep their capacity).
+  SweepAndPrune broad_phase;    // (its sort order only speeds the next sort)
+  std::vector<BodyPair> pairs;  // the broad phase's
   std::vector<ContactFeature> candidates;
   std::vector<ActiveContact> touching;
   std::vector<ContactFeature> watched_next;
