@@ -3,9 +3,6 @@
 // loop, and the peer: MuJoCo stepping the same 1 kg, 20 cm cube on a frictionless plane at 1 ms
 // with the same push, in the same run.
 #include <benchmark/benchmark.h>
-#ifdef WYSIWYF_HAVE_MUJOCO
-#include <mujoco/mujoco.h>
-#endif
 #include <sys/prctl.h>
 
 #include <algorithm>
@@ -21,6 +18,7 @@
 #include <vector>
 
 #include "rigid_body/world.hpp"
+#include "mujoco_peer.hpp"
 #include "wysiwyf/tick_deadline.hpp"
 #include "../common/smoke.hpp"
 
@@ -193,10 +191,10 @@ BENCHMARK(BM_RealTimeLoop_1kHz_10s)
 
 #ifdef WYSIWYF_HAVE_MUJOCO
 // The peer: MuJoCo, the same 1 kg, 20 cm cube on a frictionless plane, 1 ms steps.
-class MujocoCube {
+class MujocoCube : public MujocoScene {
  public:
-  MujocoCube() {
-    static const char* xml = R"(
+  MujocoCube()
+      : MujocoScene(R"(
 <mujoco>
   <option timestep="0.001"/>
   <worldbody>
@@ -206,37 +204,9 @@ class MujocoCube {
       <geom type="box" size="0.1 0.1 0.1" mass="1" condim="1"/>
     </body>
   </worldbody>
-</mujoco>)";
-    vfs_ = std::make_unique<mjVFS>();  // large: not on the stack
-    mj_defaultVFS(vfs_.get());
-    mj_makeEmptyFileVFS(vfs_.get(), "cube.xml", static_cast<int>(std::strlen(xml)));
-    std::memcpy(vfs_->filedata[vfs_->nfile - 1], xml, std::strlen(xml));
-    char error[1000] = "";
-    m_ = mj_loadXML("cube.xml", vfs_.get(), error, sizeof error);
-    if (!m_) {
-      error_ = error;
-      return;
-    }
-    d_ = mj_makeData(m_);
-    for (int i = 0; i < 500; ++i) mj_step(m_, d_);  // settle on the plane
-  }
-  ~MujocoCube() {
-    if (d_) mj_deleteData(d_);
-    if (m_) mj_deleteModel(m_);
-    if (vfs_) mj_deleteVFS(vfs_.get());
-  }
-  const std::string& error() const { return error_; }
-  void push(const Vec3& f) {
-    for (int k = 0; k < 3; ++k) d_->xfrc_applied[6 * 1 + k] = f[k];  // body 1, force
-  }
-  void step() { mj_step(m_, d_); }
-  double sink() const { return 0.1 - d_->qpos[2]; }
-
- private:
-  std::unique_ptr<mjVFS> vfs_;
-  mjModel* m_ = nullptr;
-  mjData* d_ = nullptr;
-  std::string error_;
+</mujoco>)") {}
+  void push(const Vec3& f) { MujocoScene::push(0, f); }
+  double sink() const { return MujocoScene::sink(0, 0.1); }
 };
 
 // MuJoCo alone, the push held at 2 N.
