@@ -230,11 +230,12 @@ bool World::collide_island(const ActiveContact* contacts, std::size_t count, con
 bool World::twin_of_touching(const ContactFeature& f, const ContactPoint& c) const {
   if (f.kind != ContactKind::kVertexFace) return false;
   const double near = 1e-9 * model_.bodies[f.a].half_extents.maxCoeff();
-  for (const ActiveContact& t : work_.touching) {
-    if (t.feature.kind != ContactKind::kVertexFace) continue;
-    const bool same = t.feature.a == f.a && t.feature.b == f.b, swapped = t.feature.a == f.b && t.feature.b == f.a;
-    if (!same && !swapped) continue;
-    if ((t.point.p - c.p).norm() <= near && t.point.n.dot(c.n) * (same ? 1 : -1) > 1 - 1e-12) return true;
+  // (the candidates come pair by pair: only the last contacts listed can be of f's pair)
+  for (auto t = work_.touching.rbegin(); t != work_.touching.rend(); ++t) {
+    const bool same = t->feature.a == f.a && t->feature.b == f.b, swapped = t->feature.a == f.b && t->feature.b == f.a;
+    if (!same && !swapped) break;
+    if (t->feature.kind != ContactKind::kVertexFace) continue;
+    if ((t->point.p - c.p).norm() <= near && t->point.n.dot(c.n) * (same ? 1 : -1) > 1 - 1e-12) return true;
   }
   return false;
 }
