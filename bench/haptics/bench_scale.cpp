@@ -94,7 +94,8 @@ std::string mujoco_xml(const Layout& l) {
 
 double deepest_sink(const World& w, const Layout& l) {
   double sink = 0;
-  for (std::size_t i = 0; i < l.centres.size(); ++i) sink = std::max(sink, l.centres[i].z() - w.state(static_cast<int>(i)).x.z());
+  for (std::size_t i = 0; i < l.centres.size(); ++i)
+    sink = std::max(sink, l.centres[i].z() - w.state(static_cast<int>(i)).x.z());
   return sink;
 }
 
