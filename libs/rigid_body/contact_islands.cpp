@@ -33,7 +33,7 @@ void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vect
   for (const auto& [island, i] : order_) sorted_.push_back(contacts[i]);
   contacts.swap(sorted_);
 
-  // The islands, keeping an island's warm start where its contacts are what they were.
+  // The islands, each with the warm start of the island in its place if that had as many contacts.
   previous_.swap(islands);
   islands.clear();
   for (std::size_t i = 0; i < contacts.size();) {

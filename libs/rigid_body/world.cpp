@@ -160,14 +160,13 @@ void World::roots(const double* y, double* g) {
   }
 }
 
-bool World::collide(std::vector<ActiveContact>& contacts) {
+bool World::collide(std::vector<ActiveContact>& contacts, const std::vector<ContactIsland>& islands) {
   if (contacts.empty()) return true;
-  work_.grouping.group(contacts, model_.slot, work_.impact_islands);
   std::vector<Pose>& poses = work_.impact_poses;
   state_.poses_of(model_, state_.bodies, poses);
   for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses);
   bool ok = true;
-  for (const ContactIsland& island : work_.impact_islands)
+  for (const ContactIsland& island : islands)
     ok = collide_island(contacts.data() + island.begin, island.end - island.begin, poses) && ok;
   return ok;
 }
@@ -265,7 +264,7 @@ void World::classify_contacts() {
   }
   work_.grouping.group(touching, model_.slot, state_.islands);
   if (colliding) {  // approaching faster than resting: an impact at the start of the step
-    if (!collide(touching)) ++report_.lcp_failures;
+    if (!collide(touching, state_.islands)) ++report_.lcp_failures;
     ++report_.collisions;
     state_.restart = true;
   }
@@ -328,10 +327,10 @@ StepReport World::step(double dt) {
       else
         still_watched.push_back(state_.watched[k]);
     }
-    if (!collide(contacts)) ++report_.lcp_failures;
+    work_.grouping.group(contacts, model_.slot, state_.islands);  // (they rest from here on)
+    if (!collide(contacts, state_.islands)) ++report_.lcp_failures;
     ++report_.collisions;
     state_.resting = std::move(contacts);
-    work_.grouping.group(state_.resting, model_.slot, state_.islands);
     state_.watched = std::move(still_watched);
     if (report_.collisions >= model_.params.max_collisions_per_step)
       state_.watched.clear();  // no more events this step

@@ -79,9 +79,9 @@ class World {
   void classify_contacts();
   // Whether a touching contact already listed is the same constraint as f at c.
   bool twin_of_touching(const ContactFeature& f, const ContactPoint& c) const;
-  // Applies the LCP impulses of eqs. (15)-(16) over `contacts` to the bodies, island by island
-  // (grouping them so); returns false if one failed.
-  bool collide(std::vector<ActiveContact>& contacts);
+  // Applies the LCP impulses of eqs. (15)-(16) over `contacts` (grouped into `islands`) to the
+  // bodies, island by island; returns false if one failed.
+  bool collide(std::vector<ActiveContact>& contacts, const std::vector<ContactIsland>& islands);
   bool collide_island(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses);
   // Evaluates the resting contacts at `poses` and moves those still facing to the front of their
   // island; returns how many they are.

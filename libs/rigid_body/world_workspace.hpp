@@ -26,8 +26,7 @@ struct WorldWorkspace {
   std::vector<ContactFeature> watched_next;
   Eigen::VectorXd ft_start;  // update_friction: the last step's friction, in the tangent bases
   IslandGrouping grouping;
-  std::vector<ContactIsland> impact_islands;  // collide: the impact's contacts by island
-  std::vector<Pose> impact_poses;             // collide: the bodies' poses at the impact
+  std::vector<Pose> impact_poses;  // collide: the bodies' poses at the impact
 };
 
 }  // namespace wysiwyf::haptics
