@@ -65,6 +65,17 @@ ContactPoint edge_edge(const ContactFeature& f, const BodyModel& ma, const Pose&
   return c;
 }
 
+// Whether direction d (world) lies in the quadrant of the outward normals of the two faces that
+// meet at `edge` of a box with rotation R: the edge is then the box's support (extreme point)
+// along d, within tol.
+bool edge_supports(const Mat3& R, const std::array<int, 2>& edge, const Vec3& d, double tol) {
+  const Vec3& s0 = BoxTopology::corner_signs()[edge[0]];
+  const Vec3& s1 = BoxTopology::corner_signs()[edge[1]];
+  for (int axis = 0; axis < 3; ++axis)
+    if (s0[axis] == s1[axis] && s0[axis] * R.col(axis).dot(d) < -tol) return false;
+  return true;
+}
+
 }  // namespace
 
 ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
@@ -76,7 +87,7 @@ ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& mod
 }
 
 void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses, double margin,
-                     std::vector<ContactFeature>& out) {
+                     double rim, std::vector<ContactFeature>& out) {
   const auto& ma = models[a];
   const auto& mb = models[b];
   const double reach = ma.half_extents.norm() + mb.half_extents.norm() + margin;
@@ -88,9 +99,10 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   auto vertex_faces = [&](int va, int vb, const std::array<Vec3, 8>& corners) {
     const Vec3& h = models[vb].half_extents;
     const Pose& pose = poses[vb];
-    // Round-off puts a corner that lies on an edge or a corner of the other box (equal boxes
-    // stacked face on face) a hair outside one of the faces that meet there: within this, on them.
-    const double tie = 1e-9 * h.maxCoeff();
+    // Round-off and integration error put a corner that lies on an edge or a corner of the other
+    // box (equal boxes stacked face on face, or side by side on one table) a hair outside one of
+    // the faces that meet there: within the rim, on them.
+    const double tie = rim;
     const Vec3 toward = pose.R.transpose() * (poses[va].x - pose.x);  // this box's centre, other's frame
     for (int v = 0; v < 8; ++v) {
       const Vec3 local = pose.R.transpose() * (corners[v] - pose.x);
@@ -147,7 +159,15 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       // Strictly inside both edges: a contact at an edge's end is a vertex-face contact.
       ContactPoint c = evaluate(f, models, poses, -1e-6);
       if (!c.valid || std::abs(c.gap) > margin) continue;
-      if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.gap = -c.gap;  // point the normal out of b
+      if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.n = -c.n, c.gap = -c.gap;  // point the normal out of b
+      // A true edge-edge contact separates the boxes along its normal: each edge is its box's
+      // extreme point along it. Nearly parallel edges that lie on each other (equal boxes side by
+      // side, their top edges together) have a normal of round-off, sideways or up, which would
+      // press the boxes together along it; their contact is the faces', held by vertex-face ones.
+      constexpr double kConeTolerance = 1e-6;
+      if (!edge_supports(poses[b].R, edges[eb], c.n, kConeTolerance) ||
+          !edge_supports(poses[a].R, edges[ea], -c.n, kConeTolerance))
+        continue;
       if (c.gap > -depth) out.push_back(f);
     }
   }

@@ -42,8 +42,9 @@ struct Pose {
 ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
                       double slack = 1e-9);
 
-// Every feature pair between body a (dynamic) and body b closer than `margin`.
+// Every feature pair between body a (dynamic) and body b closer than `margin`. A corner within
+// `rim` of a face's edge counts as over the face (evaluate's slack: the same rim).
 void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses, double margin,
-                     std::vector<ContactFeature>& out);
+                     double rim, std::vector<ContactFeature>& out);
 
 }  // namespace wysiwyf::haptics

@@ -16,6 +16,11 @@ CvodeIntegrator::CvodeIntegrator(int size, const CvodeOptions& options, void* sy
   y_ = N_VNew_Serial(size, ctx_);
   mem_ = CVodeCreate(CV_ADAMS, ctx_);  // non-stiff rigid-body dynamics: Adams-Moulton
   if (!y_ || !mem_) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
+  check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::keep_message, this), "CVodeSetErrHandlerFn");
+}
+
+void CvodeIntegrator::keep_message(int, const char*, const char* function, char* msg, void* self) {
+  static_cast<CvodeIntegrator*>(self)->message_ = std::string(function) + ": " + msg;
 }
 
 CvodeIntegrator::~CvodeIntegrator() {
@@ -57,7 +62,12 @@ void CvodeIntegrator::watch_roots(int count) {
 }
 
 void CvodeIntegrator::fail(int flag, const char* call) {
-  throw std::runtime_error(std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag));
+  std::string what = std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag);
+  if (!message_.empty()) what += " (" + message_ + ")";
+  if (!callback_error_.empty()) what += "; the right-hand side or a root function threw: " + callback_error_;
+  message_.clear();
+  callback_error_.clear();
+  throw std::runtime_error(what);
 }
 
 }  // namespace wysiwyf::haptics

@@ -5,7 +5,17 @@
 // (The calls made at every step are inline: a haptic step restarts and counts every 1 ms.)
 #include <cvode/cvode.h>
 
+#include <exception>
+#include <stdexcept>
+#include <string>
+
 namespace wysiwyf::haptics {
+
+// Thrown by a right-hand side that cannot be evaluated at this state but might be at a nearer
+// one: CVODE is told so (a recoverable failure) and tries a smaller step.
+struct RetryWithSmallerStep : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct CvodeOptions {
   double rtol = 0, atol = 0;           // scalar tolerances of the local error test
@@ -64,23 +74,41 @@ class CvodeIntegrator {
 
  private:
   CvodeIntegrator(int size, const CvodeOptions& options, void* system, CVRhsFn rhs, CVRootFn roots);
+  // (An exception must not cross CVODE's C frames: it is kept, CVODE is told the call failed,
+  // and the CVODE call that made it throws it again with its own failure.)
   template <class System>
   static int call_rhs(sunrealtype, N_Vector y, N_Vector ydot, void* self) {
-    static_cast<System*>(static_cast<CvodeIntegrator*>(self)->system_)
-        ->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    auto* me = static_cast<CvodeIntegrator*>(self);
+    try {
+      static_cast<System*>(me->system_)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    } catch (const RetryWithSmallerStep& e) {
+      me->callback_error_ = e.what();
+      return 1;
+    } catch (const std::exception& e) {
+      me->callback_error_ = e.what();
+      return -1;
+    }
     return 0;
   }
   template <class System>
   static int call_roots(sunrealtype, N_Vector y, sunrealtype* g, void* self) {
-    static_cast<System*>(static_cast<CvodeIntegrator*>(self)->system_)->roots(N_VGetArrayPointer(y), g);
+    auto* me = static_cast<CvodeIntegrator*>(self);
+    try {
+      static_cast<System*>(me->system_)->roots(N_VGetArrayPointer(y), g);
+    } catch (const std::exception& e) {
+      me->callback_error_ = e.what();
+      return -1;
+    }
     return 0;
   }
   static int error_weights(N_Vector y, N_Vector ewt, void* self);
+  // CVODE's own account of a failure, kept for the exception instead of printed.
+  static void keep_message(int code, const char* module, const char* function, char* msg, void* self);
   void initialise(double t);
-  static void check(int flag, const char* call) {
+  void check(int flag, const char* call) {
     if (flag < 0) fail(flag, call);
   }
-  [[noreturn]] static void fail(int flag, const char* call);
+  [[noreturn]] void fail(int flag, const char* call);
 
   CvodeOptions options_;
   void* system_;
@@ -92,6 +120,8 @@ class CvodeIntegrator {
   SUNNonlinearSolver nls_ = nullptr;
   bool initialised_ = false;
   long steps_seen_ = 0, failures_seen_ = 0;  // CVODE's counters at the last count (reset by CVodeReInit)
+  std::string message_;                      // CVODE's last error message
+  std::string callback_error_;               // what the system's callback threw
 };
 
 }  // namespace wysiwyf::haptics

@@ -9,7 +9,8 @@
 namespace wysiwyf::haptics {
 
 namespace {
-constexpr char kUnset = 0, kClamped = 1, kNotClamped = 2;
+// kDependent: not clamped, and kept out of the clamped set while it stays as it is (see solve_small).
+constexpr char kUnset = 0, kClamped = 1, kNotClamped = 2, kDependent = 3;
 
 // The largest |entry| of A or b, for judging round-off against (never 0 for A: it divides).
 double scale_of(const LcpMatrix& A) { return std::max(A.size() ? A.cwiseAbs().maxCoeff() : 0.0, 1e-300); }
@@ -82,6 +83,14 @@ LcpVector LcpSolver::direction(const LcpMatrix& A, int d) {
   LcpVector df = on_clamped_set(A, -A.col(d));
   df[d] = 1;
   return df;
+}
+
+// Whether contact i's row depends on the clamped ones': the Schur complement of A_CC in
+// A_{C+i, C+i} (the acceleration i would get from a unit force of its own with the clamped
+// contacts held) below round-off of A's scale.
+bool LcpSolver::dependent(const LcpMatrix& A, int i, double scale_A) const {
+  const LcpVector x = on_clamped_set(A, A.col(i));
+  return A(i, i) - A.col(i).dot(x) <= 1e-10 * scale_A;
 }
 
 // With redundant contacts the forces are not unique, and the pivoting path can leave large
@@ -208,6 +217,15 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
         }
         return r;  // unbounded: A is not PSD on this set, or b is infeasible
       }
+      // A contact about to be clamped whose row is (within round-off of the factorisation) a
+      // combination of the clamped ones' would make A_CC singular: the next directions would be
+      // noise, and with them the pivoting cycles (a face pressed from both sides, the normals of
+      // its contacts a few 1e-7 rad apart, released and clamped again for ever). Its acceleration
+      // follows the clamped ones' (to those 1e-7): it is left out while the clamped set stands.
+      if (blocking != d && state_[blocking] == kNotClamped && dependent(A, static_cast<int>(blocking), scale_A)) {
+        state_[blocking] = kDependent;
+        continue;
+      }
       step = std::max(step, 0.0);
       r.f += step * df;
       r.a += step * da;
@@ -221,13 +239,15 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
         r.f[blocking] = 0;
         state_[blocking] = kNotClamped;
         clamped_.erase(std::find(clamped_.begin(), clamped_.end(), static_cast<int>(blocking)));
-      } else {  // its acceleration reached zero: clamp it
+        std::replace(state_.begin(), state_.end(), kDependent, kNotClamped);  // (a smaller set: look again)
+      } else {                                                                // its acceleration reached zero: clamp it
         r.a[blocking] = 0;
         state_[blocking] = kClamped;
         clamped_.push_back(static_cast<int>(blocking));
       }
     }
   }
+  std::replace(state_.begin(), state_.end(), kDependent, kNotClamped);
   polish(A, b, r);
   // Clean round-off: forces never negative, accelerations consistent with them.
   for (Eigen::Index i = 0; i < n; ++i) r.f[i] = std::max(r.f[i], 0.0);

@@ -48,6 +48,7 @@ class LcpSolver {
   // The solution with clamped set C (clamped_), if there is one.
   bool solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
   LcpVector on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const;
+  bool dependent(const LcpMatrix& A, int i, double scale_A) const;
   // How negative an acceleration may be and still count as satisfied: round-off in a = A f + b
   // grows with the forces.
   double accel_tolerance(double scale_A, double scale_b, const LcpVector& f) const {

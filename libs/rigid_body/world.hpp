@@ -20,6 +20,7 @@
 // tangential velocity zero within mu times its normal impulse. Without friction the frictionless
 // LCP runs alone, as before.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "scene/body.hpp"
@@ -47,6 +48,10 @@ struct StepReport {
   int lcp_failures = 0;
   int friction_unconverged = 0;  // friction rounds that did not settle (forces still bounded)
   int friction_rounds = 0;       // staggered rounds of the step's friction solve
+  // The step could not be integrated (CVODE gave up, or an island outgrew the LCP): the bodies
+  // were put back where the step began, at rest (World::last_failure says why).
+  int integration_failures = 0;
+  int frictionless_retries = 0;  // the step failed with friction and was taken again without
 };
 
 class CvodeIntegrator;
@@ -60,7 +65,9 @@ class World {
 
   // A wrench on body i's centre of mass (world frame), held until changed (zero-order hold).
   void set_external_wrench(int body, const Vec3& force, const Vec3& torque);
+  // Never throws: a step that cannot be integrated holds (StepReport::integration_failures).
   StepReport step(double dt);
+  const std::string& last_failure() const { return last_failure_; }
 
   double time() const { return state_.t; }
   int body_count() const { return model_.body_count(); }
@@ -76,6 +83,12 @@ class World {
   friend class CvodeIntegrator;  // calls rhs() and roots()
   void rhs(const double* y, double* ydot);
   void roots(const double* y, double* g);
+  // step's work (the resting contacts' friction held through it or none); throws where it
+  // cannot go on.
+  void integrate(double dt, bool friction);
+  // The bodies set to `bodies` at t, the contacts to be found again and CVODE started over.
+  void restart_from(double t, const std::vector<BodyState>& bodies);
+  void hold(double t, const std::string& why);
   void classify_contacts();
   // Whether a touching contact already listed is the same constraint as f at c.
   bool twin_of_touching(const ContactFeature& f, const ContactPoint& c) const;
@@ -83,6 +96,9 @@ class World {
   // bodies, island by island; returns false if one failed.
   bool collide(std::vector<ActiveContact>& contacts, const std::vector<ContactIsland>& islands);
   bool collide_island(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses);
+  // After a frictional impact: a frictionless, inelastic one on the contacts still approaching.
+  bool stop_approach(const ActiveContact* contacts, std::size_t count);
+  static constexpr double kStillApproaching = 1e-9;  // m/s
   // Evaluates the resting contacts at `poses` and moves those still facing to the front of their
   // island; returns how many they are.
   std::size_t evaluate_resting(const std::vector<Pose>& poses);
@@ -98,6 +114,7 @@ class World {
   FrictionSolver impact_friction_;  // at impacts
   ContactSystem contact_system_;    // rebuilt at each right-hand side and impact
   StepReport report_;
+  std::string last_failure_;
 };
 
 }  // namespace wysiwyf::haptics

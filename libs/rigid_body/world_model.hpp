@@ -15,9 +15,16 @@ struct WorldParams {
   double atol = 1e-11;
   double contact_tolerance = 1e-5;  // gap below this: touching (above the scale of integration error)
   double margin = 0.01;             // features closer than this are watched (resting or root)
-  double resting_speed = 0.01;      // approach slower than this: inelastic (ends bounce sequences)
-  double stabilisation_hz = 20.0;   // Baumgarte feedback on resting gaps (0: off)
-  double initial_step = 1e-6;       // s, CVODE's first step after a restart (0: CVODE estimates it)
+  // A corner within this of a face's rim counts as over the face, and a resting contact keeps its
+  // force until its point leaves its face or edge by more. Equal boxes side by side put corners on
+  // the rims of each other's faces, where integration error would switch a contact on and off at
+  // every trial step (a discontinuity each time, until CVODE's step collapses), or put it on the
+  // face beside (a corner at the side of a box taken as under it: a normal across the true one).
+  // As the contact tolerance: a corner that near a face touches it.
+  double rim_slack = 1e-5;
+  double resting_speed = 0.01;     // approach slower than this: inelastic (ends bounce sequences)
+  double stabilisation_hz = 20.0;  // Baumgarte feedback on resting gaps (0: off)
+  double initial_step = 1e-6;      // s, CVODE's first step after a restart (0: CVODE estimates it)
   // After a restart (every new sensor sample) CVODE lets each of its first steps grow 10x; the
   // first order-2 step then fails its error test (measured: 4 of 10 right-hand sides a noisy
   // haptic step were spent so). 4x passes.
@@ -27,6 +34,9 @@ struct WorldParams {
   // error of the noisy push was unchanged to three digits.
   double nonlinear_convergence = 0.2;
   int max_collisions_per_step = 32;
+  // CVODE's internal steps towards one stop (the step's end or an impact): a 1 ms haptic step
+  // takes 5 to 50. Beyond this the step fails and the world holds (World::step).
+  long max_integrator_steps = 5000;
 };
 
 struct WorldModel {

@@ -26,7 +26,9 @@ struct WorldWorkspace {
   std::vector<ContactFeature> watched_next;
   Eigen::VectorXd ft_start;  // update_friction: the last step's friction, in the tangent bases
   IslandGrouping grouping;
-  std::vector<Pose> impact_poses;  // collide: the bodies' poses at the impact
+  std::vector<Pose> impact_poses;        // collide: the bodies' poses at the impact
+  std::vector<Pose> after_impact_poses;  // stop_approach: and after its impulses
+  std::vector<BodyState> step_start;     // step: where the bodies were, to hold at if it fails
 };
 
 }  // namespace wysiwyf::haptics

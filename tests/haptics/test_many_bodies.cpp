@@ -106,19 +106,24 @@ TEST(ManyBodies, APileOfSixteenBoxesComesToRestWithoutPenetration) {
   const Scene s = scene("pile_16.yaml");
   World w(s.models, s.initial, haptic_params(s));
   double transient = 0;
-  int failures = 0;
+  int failures = 0, holds = 0;
   for (int step = 1; step <= 3000; ++step) {
     const StepReport r = w.step(1e-3);
     failures += r.lcp_failures;
+    holds += r.integration_failures;
     transient = std::max(transient, deepest_overlap(w));
   }
   const double resting = deepest_overlap(w);
   std::printf("pile: at rest %.3g um deep, %.3g um at most while landing, kinetic energy %.3g J\n", resting * 1e6,
               transient * 1e6, kinetic_energy(w));
   EXPECT_LE(resting, 1e-5) << "at rest: no penetration beyond the contact tolerance";
-  // A corner that slides over a face's rim while already below its plane is caught one step
-  // late (its contact was not watched): measured 123 um once, corrected at once by the gap feedback.
-  EXPECT_LE(transient, 2e-4);
+  // Features that do not face each other at a step's start (an edge crossing beyond the other's
+  // end, a corner beside a face's rim) are not watched, so they can meet and pass inside within the
+  // step: caught one step late, then pushed out by the gap feedback. At most the speed of the
+  // fall (3.3 m/s from 55 cm) times one step; measured 0.98 mm (an edge-edge crossing, boxes 8
+  // and 13 at 0.301 s), 0.12 mm before the corner fixes of 2026-11-25 changed the trajectory.
+  EXPECT_LE(transient, 2e-3);
+  EXPECT_EQ(holds, 0);
   EXPECT_LE(kinetic_energy(w), 1e-9) << "at rest";
   EXPECT_EQ(failures, 0);
   for (int i = 0; i < w.body_count(); ++i)
@@ -198,6 +203,113 @@ TEST(BroadPhase, SweepAndPruneFindsThePairsThatTestingEveryPairFinds) {
     total += found.size();
   }
   EXPECT_GT(total, 500u) << "the rounds test overlapping pairs";
+}
+
+namespace {
+
+// n 10 cm, 1 kg cubes in a row along x on a table, `gap` apart, all with friction mu.
+World cube_row(int n, double gap, double mu) {
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states;
+  for (int i = 0; i < n; ++i) {
+    BodyModel cube;
+    cube.name = "cube" + std::to_string(i);
+    cube.half_extents = Vec3::Constant(0.05);
+    cube.mass = 1;
+    cube.inertia_body = BodyModel::box_inertia(1, cube.half_extents);
+    cube.friction = mu;
+    models.push_back(cube);
+    BodyState s;
+    s.x = Vec3((0.1 + gap) * i, 0, 0.05);
+    states.push_back(s);
+  }
+  BodyModel table;
+  table.name = "table";
+  table.dynamic = false;
+  table.half_extents = Vec3(50, 50, 0.05);
+  table.friction = mu;
+  models.push_back(table);
+  BodyState t;
+  t.x = Vec3(0, 0, -0.05);
+  states.push_back(t);
+  WorldParams p;
+  p.rtol = kHapticRtol;
+  p.atol = kHapticRtol * 1e-2;
+  return World(models, states, p);
+}
+
+}  // namespace
+
+// The hand drives the first cube of a frictionless row back and forth (a stiff velocity servo,
+// up to 20 N, as the admittance display's user at up to 0.75 m/s, with sensor noise) into the
+// others. Equal boxes side by side put corners on the rims of each other's faces and make the
+// contact LCP degenerate; before this held, the row stopped the integrator within a second
+// (CV_TOO_MUCH_WORK at t = 0.99 s, the pivoting cycling on a face pressed from both sides).
+TEST(ManyBodies, AFrictionlessRowPushedBackAndForthStaysApartWithoutFailures) {
+  World w = cube_row(5, 0.05, 0);
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0, 0.05);
+  double deepest = 0, lowest = 1;
+  int lcp_failures = 0, integration_failures = 0, collisions = 0;
+  for (int k = 0; k < 10000; ++k) {  // 10 s
+    const double t = k * 1e-3;
+    const double v = 0.5 * std::sin(M_PI * t) + 0.25;  // the hand's speed
+    const Vec3 push(std::clamp(50 * (v - w.kinematics(0).v.x()), -20.0, 20.0), 0, 0);
+    w.set_external_wrench(0, push + Vec3(noise(rng), noise(rng), noise(rng)), Vec3::Zero());
+    const StepReport r = w.step(1e-3);
+    lcp_failures += r.lcp_failures;
+    integration_failures += r.integration_failures;
+    collisions += r.collisions;
+    deepest = std::max(deepest, deepest_overlap(w));
+    for (int i = 0; i < 5; ++i) lowest = std::min(lowest, w.state(i).x.z());
+  }
+  EXPECT_EQ(integration_failures, 0) << w.last_failure();
+  EXPECT_EQ(lcp_failures, 0);
+  EXPECT_GT(collisions, 4) << "the pushed cube reaches the others";
+  EXPECT_GT(w.state(4).x.x(), 0.5) << "the last cube was pushed along";
+  EXPECT_LT(deepest, 1e-6) << "m, the deepest overlap of two boxes";
+  EXPECT_GT(lowest, 0.05 - 1e-6) << "m, the lowest centre (the table is at 0)";
+}
+
+// A step that cannot be integrated neither throws nor moves anything: 25 cubes stacked are one
+// island of 196 contacts, beyond the LCP's 96, so the contact forces cannot be found.
+TEST(ManyBodies, AStepThatCannotBeIntegratedHoldsTheBodiesWhereTheyWere) {
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states;
+  const int n = 25;
+  for (int i = 0; i < n; ++i) {
+    BodyModel cube;
+    cube.name = "cube" + std::to_string(i);
+    cube.half_extents = Vec3::Constant(0.05);
+    cube.mass = 1;
+    cube.inertia_body = BodyModel::box_inertia(1, cube.half_extents);
+    models.push_back(cube);
+    BodyState s;
+    s.x = Vec3(0, 0, 0.05 + 0.1 * i);
+    states.push_back(s);
+  }
+  BodyModel table;
+  table.name = "table";
+  table.dynamic = false;
+  table.half_extents = Vec3(1, 1, 0.05);
+  models.push_back(table);
+  BodyState t;
+  t.x = Vec3(0, 0, -0.05);
+  states.push_back(t);
+  World w(models, states);
+  w.set_external_wrench(n - 1, Vec3(3, 0, 0), Vec3::Zero());
+  for (int k = 0; k < 3; ++k) {
+    StepReport r;
+    ASSERT_NO_THROW(r = w.step(1e-3));
+    EXPECT_EQ(r.integration_failures, 1);
+    EXPECT_EQ(r.frictionless_retries, 1);
+    EXPECT_NEAR(w.time(), (k + 1) * 1e-3, 1e-15);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(w.state(i).x, states[i].x) << "cube " << i;
+      EXPECT_EQ(w.state(i).P, Vec3::Zero()) << "cube " << i;
+    }
+  }
+  EXPECT_NE(w.last_failure().find("96"), std::string::npos) << w.last_failure();
 }
 
 }  // namespace wysiwyf::haptics

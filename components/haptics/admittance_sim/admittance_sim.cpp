@@ -103,6 +103,8 @@ class AdmittanceSim final : public Component {
     world_->set_external_wrench(body, user.force, user.torque);
     // STEP 2-6.
     const StepReport report = world_->step(dt_);
+    if (report.integration_failures > 0)
+      log("the step could not be integrated; the objects hold: " + world_->last_failure());
     if (report.lcp_failures > 0)
       log("contact LCP found no solution in this step (" + std::to_string(report.lcp_failures) + " time(s))");
     // STEP 7: the motion command.
