@@ -207,11 +207,11 @@ TEST(BroadPhase, SweepAndPruneFindsThePairsThatTestingEveryPairFinds) {
 
 namespace {
 
-// n 10 cm, 1 kg cubes in a row along x on a table, `gap` apart, all with friction mu.
-World cube_row(int n, double gap, double mu) {
+// 10 cm, 1 kg cubes at `centres` on a large table, all with friction mu.
+World cubes_on_table(const std::vector<Vec3>& centres, double mu, const WorldParams& p) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states;
-  for (int i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < centres.size(); ++i) {
     BodyModel cube;
     cube.name = "cube" + std::to_string(i);
     cube.half_extents = Vec3::Constant(0.05);
@@ -220,7 +220,7 @@ World cube_row(int n, double gap, double mu) {
     cube.friction = mu;
     models.push_back(cube);
     BodyState s;
-    s.x = Vec3((0.1 + gap) * i, 0, 0.05);
+    s.x = centres[i];
     states.push_back(s);
   }
   BodyModel table;
@@ -232,10 +232,17 @@ World cube_row(int n, double gap, double mu) {
   BodyState t;
   t.x = Vec3(0, 0, -0.05);
   states.push_back(t);
+  return World(models, states, p);
+}
+
+// n cubes in a row along x, `gap` apart, at the haptic tolerances.
+World cube_row(int n, double gap, double mu) {
+  std::vector<Vec3> centres;
+  for (int i = 0; i < n; ++i) centres.emplace_back((0.1 + gap) * i, 0, 0.05);
   WorldParams p;
   p.rtol = kHapticRtol;
   p.atol = kHapticRtol * 1e-2;
-  return World(models, states, p);
+  return cubes_on_table(centres, mu, p);
 }
 
 }  // namespace
@@ -274,29 +281,10 @@ TEST(ManyBodies, AFrictionlessRowPushedBackAndForthStaysApartWithoutFailures) {
 // A step that cannot be integrated neither throws nor moves anything: 25 cubes stacked are one
 // island of 196 contacts, beyond the LCP's 96, so the contact forces cannot be found.
 TEST(ManyBodies, AStepThatCannotBeIntegratedHoldsTheBodiesWhereTheyWere) {
-  std::vector<BodyModel> models;
-  std::vector<BodyState> states;
   const int n = 25;
-  for (int i = 0; i < n; ++i) {
-    BodyModel cube;
-    cube.name = "cube" + std::to_string(i);
-    cube.half_extents = Vec3::Constant(0.05);
-    cube.mass = 1;
-    cube.inertia_body = BodyModel::box_inertia(1, cube.half_extents);
-    models.push_back(cube);
-    BodyState s;
-    s.x = Vec3(0, 0, 0.05 + 0.1 * i);
-    states.push_back(s);
-  }
-  BodyModel table;
-  table.name = "table";
-  table.dynamic = false;
-  table.half_extents = Vec3(1, 1, 0.05);
-  models.push_back(table);
-  BodyState t;
-  t.x = Vec3(0, 0, -0.05);
-  states.push_back(t);
-  World w(models, states);
+  std::vector<Vec3> centres;
+  for (int i = 0; i < n; ++i) centres.emplace_back(0, 0, 0.05 + 0.1 * i);
+  World w = cubes_on_table(centres, 0, WorldParams{});
   w.set_external_wrench(n - 1, Vec3(3, 0, 0), Vec3::Zero());
   for (int k = 0; k < 3; ++k) {
     StepReport r;
@@ -305,7 +293,7 @@ TEST(ManyBodies, AStepThatCannotBeIntegratedHoldsTheBodiesWhereTheyWere) {
     EXPECT_EQ(r.frictionless_retries, 1);
     EXPECT_NEAR(w.time(), (k + 1) * 1e-3, 1e-15);
     for (int i = 0; i < n; ++i) {
-      EXPECT_EQ(w.state(i).x, states[i].x) << "cube " << i;
+      EXPECT_EQ(w.state(i).x, centres[i]) << "cube " << i;
       EXPECT_EQ(w.state(i).P, Vec3::Zero()) << "cube " << i;
     }
   }
