@@ -99,27 +99,25 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
   auto vertex_faces = [&](int va, int vb, const std::array<Vec3, 8>& corners) {
     const Vec3& h = models[vb].half_extents;
     const Pose& pose = poses[vb];
-    // Round-off and integration error put a corner that lies on an edge or a corner of the other
-    // box (equal boxes stacked face on face, or side by side on one table) a hair outside one of
-    // the faces that meet there: within the rim, on them.
-    const double tie = rim;
     const Vec3 toward = pose.R.transpose() * (poses[va].x - pose.x);  // this box's centre, other's frame
     for (int v = 0; v < 8; ++v) {
       const Vec3 local = pose.R.transpose() * (corners[v] - pose.x);
       // Inside the other box (or on it): only its nearest face is a contact (the others would
       // push the corner out through the far side, against the true one). Outside: the face the
-      // corner is over, if within the margin. Of faces as near within round-off (a corner on an
-      // edge), the one that looks toward this box's centre: the one the boxes meet at.
-      const bool inside = (local.cwiseAbs().array() <= h.array() + tie).all();
+      // corner is over, if within the margin. Round-off and integration error put a corner that
+      // lies on an edge of the other box (equal boxes stacked, or side by side on one table) a
+      // hair outside one of the faces that meet there: within the rim, on them; of faces as near
+      // within it, the one that looks toward this box's centre: the one the boxes meet at.
+      const bool inside = (local.cwiseAbs().array() <= h.array() + rim).all();
       int best = -1;
       double best_gap = -1e300, best_facing = -1e300;
       for (int face = 0; face < 6; ++face) {
         const int axis = face / 2, j = (axis + 1) % 3, k = (axis + 2) % 3;
-        if (!inside && (std::abs(local[j]) > h[j] + tie || std::abs(local[k]) > h[k] + tie)) continue;
+        if (!inside && (std::abs(local[j]) > h[j] + rim || std::abs(local[k]) > h[k] + rim)) continue;
         const double side = (face % 2) ? 1.0 : -1.0;
         const double gap = side * local[axis] - h[axis];
         const double facing = side * toward[axis] / h[axis];
-        if (gap > best_gap + tie || (gap > best_gap - tie && facing > best_facing))
+        if (gap > best_gap + rim || (gap > best_gap - rim && facing > best_facing))
           best = face, best_gap = std::max(gap, best_gap), best_facing = facing;
       }
       if (best >= 0 && best_gap < margin && best_gap > -depth)

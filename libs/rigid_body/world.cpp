@@ -37,6 +37,18 @@ World::~World() = default;
 void World::set_external_wrench(int body, const Vec3& force, const Vec3& torque) {
   state_.set_wrench(body, force, torque);
 }
+ContactPoint World::point_of(const ContactFeature& f, const std::vector<Pose>& poses) const {
+  return evaluate(f, model_.bodies, poses, model_.params.rim_slack);
+}
+
+void World::apply_impulse(const ActiveContact& contact, const Vec3& j, const std::vector<Pose>& poses) {
+  apply_at_contact(contact.feature, contact.point.p, j, model_.slot, poses,
+                   [&](int, int body, const Vec3& on_body, const Vec3& moment) {
+                     state_.bodies[body].P += on_body;
+                     state_.bodies[body].L += moment;
+                   });
+}
+
 void World::set_state(int i, const BodyState& s) { state_.set_body(model_, i, s); }
 double World::energy() const { return state_.energy(model_); }
 
@@ -46,7 +58,7 @@ std::size_t World::evaluate_resting(const std::vector<Pose>& poses) {
   for (ContactIsland& island : state_.islands) {
     std::size_t live = island.begin;
     for (std::size_t i = island.begin; i < island.end; ++i) {
-      resting[i].point = evaluate(resting[i].feature, model_.bodies, poses, model_.params.rim_slack);
+      resting[i].point = point_of(resting[i].feature, poses);
       if (resting[i].point.valid) std::swap(resting[i], resting[live++]);
     }
     island.live = live - island.begin;
@@ -159,7 +171,7 @@ void World::roots(const double* y, double* g) {
   unpack_state(y, model_.dynamic, work_.states);
   state_.poses_of(model_, work_.states, work_.poses);
   for (std::size_t k = 0; k < state_.watched.size(); ++k) {
-    const ContactPoint c = evaluate(state_.watched[k], model_.bodies, work_.poses, model_.params.rim_slack);
+    const ContactPoint c = point_of(state_.watched[k], work_.poses);
     g[k] = c.valid ? c.gap : model_.params.margin;  // a feature that no longer faces the other cannot hit it
   }
 }
@@ -168,7 +180,7 @@ bool World::collide(std::vector<ActiveContact>& contacts, const std::vector<Cont
   if (contacts.empty()) return true;
   std::vector<Pose>& poses = work_.impact_poses;
   state_.poses_of(model_, state_.bodies, poses);
-  for (auto& c : contacts) c.point = evaluate(c.feature, model_.bodies, poses, model_.params.rim_slack);
+  for (auto& c : contacts) c.point = point_of(c.feature, poses);
   bool ok = true;
   for (const ContactIsland& island : islands)
     ok = collide_island(contacts.data() + island.begin, island.end - island.begin, poses) && ok;
@@ -218,11 +230,7 @@ bool World::collide_island(const ActiveContact* contacts, std::size_t count, con
       const auto& t = cs.tangents[static_cast<std::size_t>(i)];
       j += jt[2 * i] * t[0] + jt[2 * i + 1] * t[1];
     }
-    apply_at_contact(contact.feature, contact.point.p, j, model_.slot, poses,
-                     [&](int, int body, const Vec3& on_body, const Vec3& moment) {
-                       state_.bodies[body].P += on_body;
-                       state_.bodies[body].L += moment;
-                     });
+    apply_impulse(contact, j, poses);
   }
   return !friction || stop_approach(contacts, count);
 }
@@ -250,11 +258,7 @@ bool World::stop_approach(const ActiveContact* contacts, std::size_t count) {
   if (!r.ok) return false;
   for (Eigen::Index i = 0; i < m; ++i) {
     const auto& contact = contacts[static_cast<std::size_t>(i)];
-    apply_at_contact(contact.feature, contact.point.p, Vec3(r.f[i] * contact.point.n), model_.slot, poses,
-                     [&](int, int body, const Vec3& on_body, const Vec3& moment) {
-                       state_.bodies[body].P += on_body;
-                       state_.bodies[body].L += moment;
-                     });
+    apply_impulse(contact, Vec3(r.f[i] * contact.point.n), poses);
   }
   return true;
 }
@@ -288,7 +292,7 @@ void World::classify_contacts() {
   watched.clear();
   bool colliding = false;
   for (const auto& f : work_.candidates) {
-    const ContactPoint c = evaluate(f, model_.bodies, poses, model_.params.rim_slack);
+    const ContactPoint c = point_of(f, poses);
     if (!c.valid) continue;
     if (c.gap > model_.params.contact_tolerance) {
       watched.push_back(f);
@@ -397,7 +401,7 @@ void World::integrate(double dt, bool friction) {
     std::vector<Pose> poses;
     state_.poses_of(model_, state_.bodies, poses);
     for (std::size_t k = 0; k < state_.watched.size(); ++k) {
-      const ContactPoint c = evaluate(state_.watched[k], model_.bodies, poses, model_.params.rim_slack);
+      const ContactPoint c = point_of(state_.watched[k], poses);
       if (found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance))
         contacts.push_back(ActiveContact{state_.watched[k], c, 0});
       else

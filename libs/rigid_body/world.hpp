@@ -90,6 +90,11 @@ class World {
   void restart_from(double t, const std::vector<BodyState>& bodies);
   void hold(double t, const std::string& why);
   void classify_contacts();
+  // Feature f at `poses`, a point within the rim of its face or edge still on it (every
+  // evaluation of the world's contacts: search, right-hand sides, roots and impacts).
+  ContactPoint point_of(const ContactFeature& f, const std::vector<Pose>& poses) const;
+  // Impulse j (world frame, on body a) at the contact's point, added to both bodies' momenta.
+  void apply_impulse(const ActiveContact& contact, const Vec3& j, const std::vector<Pose>& poses);
   // Whether a touching contact already listed is the same constraint as f at c.
   bool twin_of_touching(const ContactFeature& f, const ContactPoint& c) const;
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` (grouped into `islands`) to the
