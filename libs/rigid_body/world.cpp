@@ -300,10 +300,10 @@ void World::classify_contacts() {
     }
     if (twin_of_touching(f, c)) continue;
     touching.push_back(ActiveContact{f, c, 0});
-    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.resting_speed) colliding = true;
+    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.settle_speed) colliding = true;
   }
   work_.grouping.group(touching, model_.slot, state_.islands);
-  if (colliding) {  // approaching faster than resting: an impact at the start of the step
+  if (colliding) {  // still approaching: an impact at the start of the step
     if (!collide(touching, state_.islands)) ++report_.lcp_failures;
     ++report_.collisions;
     state_.restart = true;

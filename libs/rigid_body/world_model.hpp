@@ -22,7 +22,12 @@ struct WorldParams {
   // face beside (a corner at the side of a box taken as under it: a normal across the true one).
   // As the contact tolerance: a corner that near a face touches it.
   double rim_slack = 1e-5;
-  double resting_speed = 0.01;     // approach slower than this: inelastic (ends bounce sequences)
+  double resting_speed = 0.01;  // approach slower than this: inelastic (ends bounce sequences)
+  // A touching contact approaching faster than this takes an (inelastic) impulse at the step's
+  // start. Left to the gap feedback, an approach at v overshoots by v / (e ws) (ws the
+  // stabilisation's 2 pi 20 Hz): 26 um for a box that caught up at 8.8 mm/s, past the rim, where
+  // its corners went over to the faces beside. 0.1 mm/s overshoots by 0.3 um.
+  double settle_speed = 1e-4;
   double stabilisation_hz = 20.0;  // Baumgarte feedback on resting gaps (0: off)
   double initial_step = 1e-6;      // s, CVODE's first step after a restart (0: CVODE estimates it)
   // After a restart (every new sensor sample) CVODE lets each of its first steps grow 10x; the
