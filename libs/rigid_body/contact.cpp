@@ -78,6 +78,13 @@ bool edge_supports(const Mat3& R, const std::array<int, 2>& edge, const Vec3& d,
 
 }  // namespace
 
+bool separates(const ContactFeature& f, const ContactPoint& c, const std::vector<Pose>& poses, double cone) {
+  if (f.kind != ContactKind::kEdgeEdge) return true;
+  const auto& edges = BoxTopology::edges();
+  return edge_supports(poses[f.b].R, edges[f.feature_b], c.n, cone) &&
+         edge_supports(poses[f.a].R, edges[f.feature_a], -c.n, cone);
+}
+
 ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& models, const std::vector<Pose>& poses,
                       double slack) {
   const auto& ma = models[f.a];
@@ -158,14 +165,8 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       ContactPoint c = evaluate(f, models, poses, -1e-6);
       if (!c.valid || std::abs(c.gap) > margin) continue;
       if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.n = -c.n, c.gap = -c.gap;  // point the normal out of b
-      // A true edge-edge contact separates the boxes along its normal: each edge is its box's
-      // extreme point along it. Nearly parallel edges that lie on each other (equal boxes side by
-      // side, their top edges together) have a normal of round-off, sideways or up, which would
-      // press the boxes together along it; their contact is the faces', held by vertex-face ones.
-      constexpr double kConeTolerance = 1e-6;
-      if (!edge_supports(poses[b].R, edges[eb], c.n, kConeTolerance) ||
-          !edge_supports(poses[a].R, edges[ea], -c.n, kConeTolerance))
-        continue;
+      // (the watched cone: whether it may become a contact is World's call, in kContactCone)
+      if (!separates(f, c, poses, kWatchedCone)) continue;
       if (c.gap > -depth) out.push_back(f);
     }
   }

@@ -298,6 +298,7 @@ void World::classify_contacts() {
       watched.push_back(f);
       continue;
     }
+    if (!separates(f, c, poses, kContactCone)) continue;  // (watched in a wider cone; touching only within)
     if (twin_of_touching(f, c)) continue;
     touching.push_back(ActiveContact{f, c, 0});
     if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.settle_speed) colliding = true;
@@ -402,7 +403,8 @@ void World::integrate(double dt, bool friction) {
     state_.poses_of(model_, state_.bodies, poses);
     for (std::size_t k = 0; k < state_.watched.size(); ++k) {
       const ContactPoint c = point_of(state_.watched[k], poses);
-      if (found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance))
+      const bool meets = found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance);
+      if (meets && separates(state_.watched[k], c, poses, kContactCone))
         contacts.push_back(ActiveContact{state_.watched[k], c, 0});
       else
         still_watched.push_back(state_.watched[k]);
