@@ -62,35 +62,111 @@ double LcpResult::residual() const {
   return r;
 }
 
+// Clamped sets up to this size are factorised afresh for each solve, unrolled (solve_clamped);
+// beyond it the factor is kept up to date pivot by pivot.
+constexpr std::size_t kSmallSet = 4;
+// The floor of a pivot of the kept factor, relative to A's scale: as the fresh factorisation's
+// test of its smallest pivot against its largest.
+constexpr double kPivotFloor = 1e-12;
+
+bool LcpSolver::factored() const {
+  return !factor_failed_ && clamped_.size() > kSmallSet && factor_.size() == static_cast<int>(clamped_.size());
+}
+
 // x with A_CC x_C = rhs_C on the clamped set C, zero elsewhere.
 LcpVector LcpSolver::on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const {
   LcpVector x = LcpVector::Zero(A.rows());
   const auto nc = static_cast<Eigen::Index>(clamped_.size());
   if (nc == 0) return x;
-  LcpMatrix Acc(nc, nc);
   LcpVector rhs_c(nc);
-  for (Eigen::Index i = 0; i < nc; ++i) {
-    rhs_c[i] = rhs[clamped_[i]];
-    for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
+  for (Eigen::Index i = 0; i < nc; ++i) rhs_c[i] = rhs[clamped_[i]];
+  LcpVector x_c;
+  if (factored()) {
+    factor_.solve(rhs_c);
+    x_c = rhs_c;
+  } else {
+    LcpMatrix Acc(nc, nc);
+    for (Eigen::Index i = 0; i < nc; ++i)
+      for (Eigen::Index j = 0; j < nc; ++j) Acc(i, j) = A(clamped_[i], clamped_[j]);
+    x_c = solve_clamped(Acc, rhs_c);
   }
-  const LcpVector x_c = solve_clamped(Acc, rhs_c);
   for (Eigen::Index i = 0; i < nc; ++i) x[clamped_[i]] = x_c[i];
   return x;
 }
 
+const LcpVector& LcpSolver::forward_column(const LcpMatrix& A, int i) {
+  if (column_of_ != i) {
+    const auto nc = static_cast<Eigen::Index>(clamped_.size());
+    column_.resize(nc);
+    for (Eigen::Index k = 0; k < nc; ++k) column_[k] = A(clamped_[k], i);
+    factor_.forward(column_);
+    column_of_ = i;
+  }
+  return column_;
+}
+
 // The force direction that keeps every clamped contact's acceleration at zero while f_d grows by 1.
 LcpVector LcpSolver::direction(const LcpMatrix& A, int d) {
-  LcpVector df = on_clamped_set(A, -A.col(d));
+  if (!factored()) {
+    LcpVector df = on_clamped_set(A, -A.col(d));
+    df[d] = 1;
+    return df;
+  }
+  LcpVector x_c = forward_column(A, d);  // (kept: d is often clamped next, C unchanged)
+  factor_.back(x_c);
+  LcpVector df = LcpVector::Zero(A.rows());
+  for (std::size_t k = 0; k < clamped_.size(); ++k) df[clamped_[k]] = -x_c[static_cast<Eigen::Index>(k)];
   df[d] = 1;
   return df;
 }
 
 // Whether contact i's row depends on the clamped ones': the Schur complement of A_CC in
 // A_{C+i, C+i} (the acceleration i would get from a unit force of its own with the clamped
-// contacts held) below round-off of A's scale.
-bool LcpSolver::dependent(const LcpMatrix& A, int i, double scale_A) const {
+// contacts held) below round-off of A's scale. With the factor that is A_ii - |L^-1 A(C, i)|^2.
+bool LcpSolver::dependent(const LcpMatrix& A, int i, double scale_A) {
+  if (factored()) return A(i, i) - forward_column(A, i).squaredNorm() <= 1e-10 * scale_A;
   const LcpVector x = on_clamped_set(A, A.col(i));
   return A(i, i) - A.col(i).dot(x) <= 1e-10 * scale_A;
+}
+
+void LcpSolver::clamp(const LcpMatrix& A, int i, double scale_A) {
+  if (!factor_failed_ && clamped_.size() >= kSmallSet) {  // C grows beyond the small sets
+    const bool kept = factor_.size() == static_cast<int>(clamped_.size());
+    if (kept && !factor_.append(forward_column(A, i), A(i, i), kPivotFloor * scale_A)) factor_failed_ = true;
+    clamped_.push_back(i);
+    column_of_ = -1;
+    if (!kept) factorise(A, scale_A);  // it has just outgrown them: its factor, once
+    return;
+  }
+  clamped_.push_back(i);
+  column_of_ = -1;
+  if (!factor_failed_) factor_.clear();  // (a small set is factorised afresh for each solve: no stale rows)
+}
+
+void LcpSolver::release(int i) {
+  const auto at = std::find(clamped_.begin(), clamped_.end(), i);
+  const bool kept = !factor_failed_ && factor_.size() == static_cast<int>(clamped_.size());
+  if (kept) factor_.remove(static_cast<int>(at - clamped_.begin()));
+  clamped_.erase(at);
+  column_of_ = -1;
+}
+
+void LcpSolver::factorise(const LcpMatrix& A, double scale_A) {
+  factor_.clear();
+  column_of_ = -1;
+  const auto nc = static_cast<Eigen::Index>(clamped_.size());
+  if (factor_failed_ || static_cast<std::size_t>(nc) <= kSmallSet) return;
+  LcpVector l;
+  for (Eigen::Index t = 0; t < nc; ++t) {
+    const int i = clamped_[static_cast<std::size_t>(t)];
+    l.resize(t);
+    for (Eigen::Index k = 0; k < t; ++k) l[k] = A(clamped_[static_cast<std::size_t>(k)], i);
+    factor_.forward(l);
+    if (!factor_.append(l, A(i, i), kPivotFloor * scale_A)) {
+      factor_failed_ = true;
+      return;
+    }
+  }
 }
 
 // With redundant contacts the forces are not unique, and the pivoting path can leave large
@@ -135,7 +211,11 @@ LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, c
     clamped_.push_back(i);
   }
   LcpResult r;
-  if (!clamped_.empty() && solve_on_clamped_set(As, bs, r)) return r;
+  if (!clamped_.empty()) {
+    factor_failed_ = false;
+    factorise(As, scale_of(As));  // (or, where it cannot, A_CC factorised afresh for the solve)
+    if (solve_on_clamped_set(As, bs, r)) return r;
+  }
   return solve_small(As, bs);
 }
 
@@ -168,6 +248,9 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
   r.f = LcpVector::Zero(n);
   r.a = b;
   clamped_.clear();
+  factor_.clear();
+  factor_failed_ = false;
+  column_of_ = -1;
   state_.assign(static_cast<std::size_t>(n), kUnset);
   const double scale_A = scale_of(A);
   const double scale_b = scale_of(b);
@@ -232,18 +315,18 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
       if (blocking == d) {
         r.a[d] = 0;
         state_[d] = kClamped;
-        clamped_.push_back(static_cast<int>(d));
+        clamp(A, static_cast<int>(d), scale_A);
         break;
       }
       if (state_[blocking] == kClamped) {  // its force reached zero: release it
         r.f[blocking] = 0;
         state_[blocking] = kNotClamped;
-        clamped_.erase(std::find(clamped_.begin(), clamped_.end(), static_cast<int>(blocking)));
+        release(static_cast<int>(blocking));
         std::replace(state_.begin(), state_.end(), kDependent, kNotClamped);  // (a smaller set: look again)
       } else {                                                                // its acceleration reached zero: clamp it
         r.a[blocking] = 0;
         state_[blocking] = kClamped;
-        clamped_.push_back(static_cast<int>(blocking));
+        clamp(A, static_cast<int>(blocking), scale_A);
       }
     }
   }

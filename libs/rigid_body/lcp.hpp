@@ -5,20 +5,19 @@
 // pivoting method ("Fast contact force computation for nonpenetrating rigid bodies", SIGGRAPH
 // 1994, section 5): contacts are driven to complementarity one at a time, keeping the clamped
 // set C (f > 0, a = 0) and the not-clamped set NC (f = 0, a > 0) consistent. Redundant contacts
-// (four coplanar corners of a resting cube) make A_CC singular; the direction solve uses a
-// rank-revealing decomposition, which Baraff shows always has a solution in the frictionless case.
+// (four coplanar corners of a resting cube) would make A_CC singular: a contact whose row depends
+// on the clamped ones' is kept out of C, so A_CC stays positive definite and its Cholesky factor
+// is kept up to date pivot by pivot (clamped_factor.hpp); where round-off defeats that, A_CC is
+// factorised afresh for each solve, with a rank-revealing decomposition as the last resort.
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <vector>
 
-namespace wysiwyf::haptics {
+#include "rigid_body/clamped_factor.hpp"
+#include "rigid_body/lcp_types.hpp"
 
-// Up to this many contacts the solver works on the stack: no heap allocation per solve.
-constexpr int kMaxLcpSize = 96;
-using LcpVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
-using LcpMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLcpSize, kMaxLcpSize>;
-using LcpIndices = Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
+namespace wysiwyf::haptics {
 
 struct LcpResult {
   LcpVector f;         // the forces (or impulses), >= 0
@@ -48,7 +47,17 @@ class LcpSolver {
   // The solution with clamped set C (clamped_), if there is one.
   bool solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
   LcpVector on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const;
-  bool dependent(const LcpMatrix& A, int i, double scale_A) const;
+  bool dependent(const LcpMatrix& A, int i, double scale_A);
+  // L^-1 A(C, i) from the factor, remembered for clamping i while C stays as it is.
+  const LcpVector& forward_column(const LcpMatrix& A, int i);
+  // Adds i to C (and to the factor, or gives the factor up where it cannot take i).
+  void clamp(const LcpMatrix& A, int i, double scale_A);
+  // Takes i out of C (and out of the factor).
+  void release(int i);
+  // The factor of the whole clamped set (a warm start's, or one grown out of the small sets).
+  void factorise(const LcpMatrix& A, double scale_A);
+  // Whether the kept factor is A_CC's (else A_CC is factorised afresh for each solve).
+  bool factored() const;
   // How negative an acceleration may be and still count as satisfied: round-off in a = A f + b
   // grows with the forces.
   double accel_tolerance(double scale_A, double scale_b, const LcpVector& f) const {
@@ -58,8 +67,12 @@ class LcpSolver {
   void polish(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
 
   double tol_;
-  std::vector<int> clamped_;  // C, in insertion order
-  std::vector<char> state_;   // per contact: 0 unset, 1 clamped, 2 not clamped
+  std::vector<int> clamped_;    // C, in insertion order
+  std::vector<char> state_;     // per contact: 0 unset, 1 clamped, 2 not clamped
+  ClampedFactor factor_;        // of A_CC, in C's order, while factored()
+  bool factor_failed_ = false;  // round-off defeated it in this solve
+  int column_of_ = -1;          // the contact whose L^-1 A(C, i) column_ holds (-1: none, or C changed since)
+  LcpVector column_;
 };
 
 }  // namespace wysiwyf::haptics
