@@ -129,6 +129,19 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       }
       if (best >= 0 && best_gap < margin && best_gap > -depth)
         out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, best, 1});
+      if (best >= 0 || inside) continue;
+      // Over no face: beside an edge or corner of the other box, above the planes of the faces
+      // that meet there. Within a step it can come over one of them and into it, so those within
+      // the margin are watched too (World: a root function that counts only once the corner is
+      // over the face); a corner moving in from here went up to 0.5 mm deep unseen.
+      for (int face = 0; face < 6; ++face) {
+        const int axis = face / 2, j = (axis + 1) % 3, k = (axis + 2) % 3;
+        const double side = (face % 2) ? 1.0 : -1.0;
+        const double gap = side * local[axis] - h[axis];
+        const double beside = std::max(std::abs(local[j]) - h[j], std::abs(local[k]) - h[k]);
+        if (gap > 0 && gap < margin && beside < margin)
+          out.push_back(ContactFeature{ContactKind::kVertexFace, va, vb, v, face, 1});
+      }
     }
   };
   vertex_faces(a, b, ca);
@@ -161,9 +174,15 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       const double r = 0.5 * (da.norm() + db.norm()) + margin;
       if (((a0 + 0.5 * da) - (b0 + 0.5 * db)).squaredNorm() > r * r) continue;
       ContactFeature f{ContactKind::kEdgeEdge, a, b, ea, eb, 1};
-      // Strictly inside both edges: a contact at an edge's end is a vertex-face contact.
+      // Strictly inside both edges: a contact at an edge's end is a vertex-face contact. Apart,
+      // the lines' closest points may still be beyond an end by up to the margin and come inside
+      // within the step (measured: 1.7 mm deep unseen): watched, a root only once inside (World).
       ContactPoint c = evaluate(f, models, poses, -1e-6);
-      if (!c.valid || std::abs(c.gap) > margin) continue;
+      if (!c.valid) {
+        c = evaluate(f, models, poses, margin);
+        if (!c.valid || std::abs(c.gap) <= rim) continue;
+      }
+      if (std::abs(c.gap) > margin) continue;
       if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.n = -c.n, c.gap = -c.gap;  // point the normal out of b
       // (the watched cone: whether it may become a contact is World's call, in kContactCone)
       if (!separates(f, c, poses, kWatchedCone)) continue;

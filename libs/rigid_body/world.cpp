@@ -293,8 +293,7 @@ void World::classify_contacts() {
   bool colliding = false;
   for (const auto& f : work_.candidates) {
     const ContactPoint c = point_of(f, poses);
-    if (!c.valid) continue;
-    if (c.gap > model_.params.contact_tolerance) {
+    if (!c.valid || c.gap > model_.params.contact_tolerance) {  // apart, or not yet over its face: watched
       watched.push_back(f);
       continue;
     }
