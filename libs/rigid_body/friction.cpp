@@ -74,6 +74,11 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // its rim becomes a slider and the stickers are solved again.
     sliding = moving;
     direction = against;
+    // A contact without normal force can hold no friction: it is free, not asked to stick (its
+    // rows would otherwise ask the others' friction to stop its slip, in least squares where they
+    // cannot: a corner lifting off).
+    for (Eigen::Index i = 0; i < m; ++i)
+      if (!(r.fn[i] > 0)) sliding[static_cast<std::size_t>(i)] = true;
     for (;;) {
       for (Eigen::Index i = 0; i < m; ++i)
         if (sliding[static_cast<std::size_t>(i)])
