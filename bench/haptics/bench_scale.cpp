@@ -10,14 +10,22 @@
 // Frictionless for the grid (the single-cube peer row's condim 1), friction for the stack (MuJoCo
 // condim 3, the same mu). Reported: our and MuJoCo's p50 / p99, their ratio, and each one's
 // deepest sink. The growth exponent is the slope of log p50 against log N (README).
+// Instructions per step: run under callgrind by bench/haptics/instructions.py (scripts/bench
+// haptics), with WYSIWYF_BENCH_COUNT=ours or mujoco, only that one's steps are collected and each
+// benchmark's count is dumped under its name (this VM has no hardware counters).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define WYSIWYF_CALLGRIND 1
+#endif
 
 #include "rigid_body/broad_phase.hpp"
 #include "rigid_body/world.hpp"
@@ -29,6 +37,29 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kHalf = 0.05, kMass = 1.0;
+
+// Which of the two steps callgrind counts (WYSIWYF_BENCH_COUNT); natively the requests are no-ops.
+enum class Counted { kNone, kOurs, kMujoco };
+Counted counted() {
+  static const Counted c = [] {
+    const std::string v = std::getenv("WYSIWYF_BENCH_COUNT") ? std::getenv("WYSIWYF_BENCH_COUNT") : "";
+    return v == "ours" ? Counted::kOurs : v == "mujoco" ? Counted::kMujoco : Counted::kNone;
+  }();
+  return c;
+}
+void toggle_count([[maybe_unused]] Counted who) {
+#ifdef WYSIWYF_CALLGRIND
+  if (counted() == who) CALLGRIND_TOGGLE_COLLECT;
+#endif
+}
+// The instructions counted so far go out under this benchmark's name and step count.
+void dump_count([[maybe_unused]] const std::string& name, [[maybe_unused]] const benchmark::State& state) {
+#ifdef WYSIWYF_CALLGRIND
+  if (counted() == Counted::kNone) return;
+  const std::string label = name + " steps=" + std::to_string(state.iterations());  // (alive through the request)
+  CALLGRIND_DUMP_STATS_AT(label.c_str());
+#endif
+}
 
 struct Layout {
   std::vector<Vec3> centres;  // of the cubes, resting
@@ -99,7 +130,8 @@ double deepest_sink(const World& w, const Layout& l) {
   return sink;
 }
 
-void interleaved(benchmark::State& state, const Layout& l, int pushed, double amplitude, const Vec3& along) {
+void interleaved(benchmark::State& state, const std::string& name, const Layout& l, int pushed, double amplitude,
+                 const Vec3& along) {
   World w = our_world(l);
   for (int i = 0; i < 100; ++i) w.step(1e-3);
 #ifdef WYSIWYF_HAVE_MUJOCO
@@ -114,22 +146,28 @@ void interleaved(benchmark::State& state, const Layout& l, int pushed, double am
     const Vec3 f = amplitude * std::cos(2 * M_PI * t) * along + Vec3(noise(rng), noise(rng), noise(rng));
     t += 1e-3;
     w.set_external_wrench(pushed, f, Vec3::Zero());
+    toggle_count(Counted::kOurs);
     const auto t0 = Clock::now();
     w.step(1e-3);
     const auto t1 = Clock::now();
+    toggle_count(Counted::kOurs);
     const double dt = std::chrono::duration<double>(t1 - t0).count();
     state.SetIterationTime(dt);
     ours.push_back(dt * 1e6);
     our_sink = std::max(our_sink, deepest_sink(w, l));
 #ifdef WYSIWYF_HAVE_MUJOCO
     mj.push(pushed, f);
+    toggle_count(Counted::kMujoco);
     const auto t2 = Clock::now();
     mj.step();
-    theirs.push_back(std::chrono::duration<double>(Clock::now() - t2).count() * 1e6);
+    const auto t3 = Clock::now();
+    toggle_count(Counted::kMujoco);
+    theirs.push_back(std::chrono::duration<double>(t3 - t2).count() * 1e6);
     for (std::size_t i = 0; i < l.centres.size(); ++i)
       their_sink = std::max(their_sink, mj.sink(static_cast<int>(i), l.centres[i].z()));
 #endif
   }
+  dump_count(name, state);
   const auto p = [](std::vector<double>& v, int percent) {
     std::sort(v.begin(), v.end());
     return v[v.size() * static_cast<std::size_t>(percent) / 100];
@@ -151,7 +189,8 @@ void interleaved(benchmark::State& state, const Layout& l, int pushed, double am
 }
 
 void BM_Scale_Grid(benchmark::State& state) {
-  interleaved(state, grid(static_cast<int>(state.range(0))), 0, 0.5, Vec3::UnitX());
+  const int n = static_cast<int>(state.range(0));
+  interleaved(state, "Grid/" + std::to_string(n), grid(n), 0, 0.5, Vec3::UnitX());
 }
 BENCHMARK(BM_Scale_Grid)
     ->RangeMultiplier(2)
@@ -162,7 +201,7 @@ BENCHMARK(BM_Scale_Grid)
 
 void BM_Scale_Stack(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  interleaved(state, stack(n), n - 1, 0.5, Vec3::UnitX());
+  interleaved(state, "Stack/" + std::to_string(n), stack(n), n - 1, 0.5, Vec3::UnitX());
 }
 BENCHMARK(BM_Scale_Stack)
     ->DenseRange(1, 5)
