@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "wysiwyf/dds.hpp"
+#include "wysiwyf/stale_shared_memory.hpp"
 
 namespace wysiwyf::detail {
 
@@ -104,10 +105,13 @@ DdsBridge::DdsBridge(int domain, const std::string& transport, const std::string
   auto* factory = DomainParticipantFactory::get_instance();
   if (!profiles_file.empty() && factory->load_XML_profiles_file(profiles_file) != ReturnCode_t::RETCODE_OK)
     throw std::runtime_error("cannot load Fast DDS XML profiles from '" + profiles_file + "'");
-  if (!participant_profile.empty())
+  if (!participant_profile.empty()) {
     participant_ = factory->create_participant_with_profile(domain, participant_profile);
-  else
-    participant_ = factory->create_participant(domain, dds::participant_qos(transport, participant_name));
+  } else {
+    const DomainParticipantQos qos = dds::participant_qos(transport, participant_name);
+    if (transport != "udp") dds::remove_stale_shared_memory_once([this](const std::string& s) { say(s); });
+    participant_ = factory->create_participant(domain, qos);
+  }
   if (!participant_)
     throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain) +
                              (participant_profile.empty() ? "" : " with profile '" + participant_profile + "'"));
