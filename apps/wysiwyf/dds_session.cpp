@@ -62,8 +62,8 @@ void open(Args& args, Session& s) {
   }
   s.domain = domain;
   s.transport = transport;
-  if (transport != "udp")
-    dds::remove_stale_shared_memory_once([](const std::string& line) { std::cerr << "[dds] " << line << "\n"; });
+  dds::remove_stale_shared_memory_once(transport,
+                                       [](const std::string& line) { std::cerr << "[dds] " << line << "\n"; });
   // Discovery only: with the default mask the listener would also take DATA_ON_READERS, which
   // DDS then calls instead of the readers' own on_data_available.
   s.participant =

@@ -109,7 +109,7 @@ DdsBridge::DdsBridge(int domain, const std::string& transport, const std::string
     participant_ = factory->create_participant_with_profile(domain, participant_profile);
   } else {
     const DomainParticipantQos qos = dds::participant_qos(transport, participant_name);
-    if (transport != "udp") dds::remove_stale_shared_memory_once([this](const std::string& s) { say(s); });
+    dds::remove_stale_shared_memory_once(transport, [this](const std::string& s) { say(s); });
     participant_ = factory->create_participant(domain, qos);
   }
   if (!participant_)

@@ -18,6 +18,8 @@ const std::vector<std::string>& transport_names() {
   return names;
 }
 
+bool uses_shared_memory(const std::string& transport) { return transport != "udp"; }
+
 DomainParticipantQos participant_qos(const std::string& transport, const std::string& name) {
   DomainParticipantQos qos = PARTICIPANT_QOS_DEFAULT;
   qos.name(name);
@@ -27,7 +29,7 @@ DomainParticipantQos participant_qos(const std::string& transport, const std::st
   // segment a 640x480 frame does not fit, goes over UDP, and a frame burst overflowed the
   // socket buffers: a recorder lost 10 % of every topic of the demo. Configured here instead.
   qos.transport().use_builtin_transports = false;
-  if (transport != "udp") {
+  if (uses_shared_memory(transport)) {
     auto shm = std::make_shared<SharedMemTransportDescriptor>();
     // Room for a demo frame's burst of images (a dozen 640x480 RGB frames, 11 MB) twice over, so
     // the 1 kHz samples between them still find space while a slow reader (a recorder) copies them.

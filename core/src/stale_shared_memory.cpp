@@ -1,5 +1,7 @@
 #include "wysiwyf/stale_shared_memory.hpp"
 
+#include "wysiwyf/dds.hpp"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -122,7 +124,8 @@ StaleSharedMemory remove_stale_shared_memory(const std::string& directory, std::
   return r.result;
 }
 
-void remove_stale_shared_memory_once(const std::function<void(const std::string&)>& say) {
+void remove_stale_shared_memory_once(const std::string& transport, const std::function<void(const std::string&)>& say) {
+  if (!uses_shared_memory(transport)) return;
   static std::once_flag once;
   std::call_once(once, [&] {
     const StaleSharedMemory stale = remove_stale_shared_memory();

@@ -20,6 +20,8 @@ const std::vector<std::string>& transport_names();
 // "shm": shared memory only. "udp": UDPv4 only.
 // Throws std::invalid_argument for any other name.
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
+// Whether participant_qos gives that transport shared memory (all but "udp").
+bool uses_shared_memory(const std::string& transport);
 
 // `instances`: how many instances (key values) a keyed topic may have, each with its own history
 // of qos.depth samples. (Fast DDS's default is 10: the diagnostics of an 11th component were

@@ -21,7 +21,8 @@ struct StaleSharedMemory {
 // belong to a process still starting) whose owners are dead. Never throws.
 StaleSharedMemory remove_stale_shared_memory(const std::string& directory = "/dev/shm",
                                              std::chrono::seconds min_age = std::chrono::seconds(10));
-// The same in /dev/shm, once per process (before its first participant), saying what it removed.
-void remove_stale_shared_memory_once(const std::function<void(const std::string&)>& say);
+// The same in /dev/shm, once per process, before its first participant on a transport with shared
+// memory (dds::uses_shared_memory), saying what it removed.
+void remove_stale_shared_memory_once(const std::string& transport, const std::function<void(const std::string&)>& say);
 
 }  // namespace wysiwyf::dds
