@@ -23,12 +23,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A file of `bytes`, last changed `age` ago.
-void make(const fs::path& path, std::size_t bytes, std::chrono::seconds age) {
-  std::ofstream(path) << std::string(bytes, 'x');
-  const std::time_t when = std::time(nullptr) - age.count();
+// Sets the file's last change `by` ago.
+bool age(const fs::path& path, std::chrono::seconds by) {
+  const std::time_t when = std::time(nullptr) - by.count();
   const utimbuf times{when, when};
-  ASSERT_EQ(utime(path.c_str(), &times), 0) << path;
+  return utime(path.c_str(), &times) == 0;
+}
+
+// A file of `bytes`, last changed `ago`.
+void make(const fs::path& path, std::size_t bytes, std::chrono::seconds ago) {
+  std::ofstream(path) << std::string(bytes, 'x');
+  ASSERT_TRUE(age(path, ago)) << path;
 }
 
 // The files of /dev/shm that process `pid` maps or holds open.
@@ -44,12 +49,6 @@ std::set<std::string> shm_files_of(pid_t pid) {
     if (!ec && target.parent_path() == "/dev/shm") files.insert(target.filename());
   }
   return files;
-}
-
-void age(const fs::path& path, std::chrono::seconds by) {
-  const std::time_t when = std::time(nullptr) - by.count();
-  const utimbuf times{when, when};
-  utime(path.c_str(), &times);
 }
 
 }  // namespace
@@ -115,8 +114,8 @@ TEST(StaleSharedMemory, AKilledPipelinesFilesGoAndALiveOnesStay) {
                            "  src: {type: test_probe, rate: 100, topics: {out: crossing}}\n";
     return file;
   };
-  const pid_t killed = spawn_cli({"run", pipeline(51).string(), "--no-progress"}, dir / "killed.log");
-  const pid_t live = spawn_cli({"run", pipeline(52).string(), "--no-progress"}, dir / "live.log");
+  const pid_t killed = spawn_cli({"run", pipeline(83).string(), "--no-progress"}, dir / "killed.log");
+  const pid_t live = spawn_cli({"run", pipeline(84).string(), "--no-progress"}, dir / "live.log");
   // Both running, each with its segment mapped (a bounded wait, not a timing check).
   std::set<std::string> killed_files, live_files;
   for (int i = 0; i < 300 && (killed_files.empty() || live_files.empty()); ++i) {
@@ -141,9 +140,10 @@ TEST(StaleSharedMemory, AKilledPipelinesFilesGoAndALiveOnesStay) {
 
   for (const auto& f : segments) EXPECT_FALSE(fs::exists(fs::path("/dev/shm") / f)) << f << " was the killed one's";
   for (const auto& f : live_files) EXPECT_TRUE(fs::exists(fs::path("/dev/shm") / f)) << f << " is the live one's";
-  EXPECT_GE(removed.files, static_cast<int>(segments.size()));
-  std::printf("[measured] a killed pipeline left %zu files in /dev/shm; %d files (%ju MB) removed\n", segments.size(),
-              removed.files, removed.bytes >> 20);
+  // (Its count is not compared with segments.size(): a process of a test running beside this one
+  // may start between the ageing and this call, and remove them first.)
+  std::printf("[measured] a killed pipeline left %zu files in /dev/shm; this call removed %d files (%ju MB)\n",
+              segments.size(), removed.files, removed.bytes >> 20);
   kill(live, SIGINT);
   EXPECT_EQ(wait_exit(live, std::chrono::seconds(30)), 0) << read_file(dir / "live.log");
 }
