@@ -8,6 +8,7 @@
 
 #include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
+#include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/stale_shared_memory.hpp"
 
@@ -37,11 +38,13 @@ DataReader* open_raw_reader(Session& s, Subscriber* subscriber, const std::strin
 void open(Args& args, Session& s) {
   int domain = 0;
   std::string transport = "default";
+  std::string keys;
   if (auto file = args.value("--pipeline")) {
     try {
       const PipelineSpec spec = load_pipeline(*file);
       domain = spec.domain_id();
       transport = spec.transport();
+      keys = spec.security.keys.value;
     } catch (const ConfigError& e) {
       throw UsageError(std::string("cannot read --pipeline: ") + e.what());
     }
@@ -60,6 +63,21 @@ void open(Args& args, Session& s) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  // On a secured domain a tool authenticates too: as the monitor identity unless told otherwise.
+  if (auto k = args.value("--keys")) keys = *k;
+  const std::optional<std::string> identity = args.value("--identity");
+  if (identity && keys.empty())
+    throw UsageError("--identity " + *identity +
+                     ": expected --keys DIR (the folder scripts/security made) or a "
+                     "--pipeline whose security.keys names it");
+  if (!keys.empty()) {
+    try {
+      dds::enable_security(qos, {keys, identity.value_or("monitor")});
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    s.identity = identity.value_or("monitor");
+  }
   s.domain = domain;
   s.transport = transport;
   dds::remove_stale_shared_memory_once(transport,
@@ -68,7 +86,9 @@ void open(Args& args, Session& s) {
   // DDS then calls instead of the readers' own on_data_available.
   s.participant =
       DomainParticipantFactory::get_instance()->create_participant(domain, qos, &s.discovery, StatusMask::none());
-  if (!s.participant) throw std::runtime_error("cannot join DDS domain " + std::to_string(domain));
+  if (!s.participant)
+    throw std::runtime_error("cannot join DDS domain " + std::to_string(domain) +
+                             (s.identity.empty() ? "" : " as DDS-Security identity '" + s.identity + "' of " + keys));
 }
 
 }  // namespace wysiwyf::cli

@@ -95,6 +95,7 @@ class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
 struct Session {
   int domain = 0;
   std::string transport = "default";
+  std::string identity;  // DDS-Security identity, "" on a plain domain
   eprosima::fastdds::dds::DomainParticipant* participant = nullptr;
   Discovery discovery;
   ~Session() {

@@ -98,12 +98,14 @@ const CommandHelp kCommands[] = {
         Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
         or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes. hz gives
         the wall-clock rate and, for stamped types, the rate on the pipeline's own clock.
+        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
 )"},
     {"monitor",
      R"(  monitor [--domain N | --pipeline FILE] [--transport T] [--interval SECONDS] [--duration SECONDS] [--once]
         The component table of every process on the domain (state, achieved rate, tick p50/p99,
         overruns, dropped and rejected samples, warnings, the last problem) and the display mode,
         redrawn in place every --interval (0.5 s). --once prints one table and exits.
+        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
 )"},
     {"bridge", R"(  bridge [TOPIC...] [--domain N | --pipeline FILE] [--transport T] [--port P] [--address A]
          [--video TOPIC] [--plot TOPIC:FIELD]... [--duration SECONDS] [--web-root DIR]
@@ -112,12 +114,14 @@ const CommandHelp kCommands[] = {
         dashboard at http://A:P/ (component table, display mode, live plots, the --video topic,
         default display/view). A topic is read only while someone subscribes to it.
         --address 0.0.0.0 serves other machines too (anyone who can reach the port can watch).
+        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
 )"},
     {"record",
      R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
+        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
 )"},
     {"play",
      R"(  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]
@@ -125,6 +129,7 @@ const CommandHelp kCommands[] = {
         step of their stamps (a recorded run replays bit for bit; --rate is the pace, 0 flat out).
   play FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--topics A,B] [--rate R] [--loop]
         Publish the recorded samples onto a DDS domain on the real clock, spaced as recorded.
+        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
 )"},
     {"new", R"(  new component NAME [--dir DIR]
         Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
@@ -193,5 +198,8 @@ int main(int argc, char** argv) {
   } catch (const wysiwyf::cli::UsageError& e) {
     std::cerr << "wysiwyf " << command << ": " << e.what() << "\n(see wysiwyf " << command << " --help)\n";
     return 2;
+  } catch (const std::exception& e) {  // DDS refused (a domain, an identity): said, not a crash
+    std::cerr << "wysiwyf " << command << ": " << e.what() << "\n";
+    return 1;
   }
 }

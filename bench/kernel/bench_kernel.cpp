@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
@@ -48,11 +49,18 @@ void fill(msg::Image& s) {
 
 Qos qos_for(bool image) { return image ? Qos::sensor(1) : Qos::reliable(4); }
 
+// The topics of a ping-pong. Under bench/kernel/security-policy.yaml "ping" and "pong" are
+// encrypted; the "authenticated" rows' "clear/..." topics are access-controlled but in clear, as
+// the shipped policy leaves the camera images.
+std::string topic_of(const std::string& impl, const char* name) {
+  return (impl == "authenticated" ? "clear/" : "") + std::string(name);
+}
+
 // The child: returns every sample from "ping" on "pong" until the end marker, then reports its
 // steady-state allocations in the end marker's stamp.
 template <class Endpoint, class T>
-int echo(int domain, bool image) {
-  Endpoint ep(domain, "pong", "ping", qos_for(image));
+int echo(int domain, bool image, const std::string& impl) {
+  Endpoint ep(domain, topic_of(impl, "pong"), topic_of(impl, "ping"), qos_for(image));
   T sample;
   std::uint64_t echoed = 0, allocs_at_warm = 0;
   while (true) {
@@ -134,7 +142,7 @@ template <class Endpoint, class T>
 void two_process(benchmark::State& state, const std::string& impl, int domain) {
   const bool image = std::is_same_v<T, msg::Image>;
   Child child(impl, image ? "image" : "joint", domain);
-  Endpoint ep(domain, "ping", "pong", qos_for(image));
+  Endpoint ep(domain, topic_of(impl, "ping"), topic_of(impl, "pong"), qos_for(image));
   T out, in;
   fill(out);
   // Until the child answers (discovery), then a warm-up.
@@ -217,6 +225,22 @@ void BM_Image640x480_TwoProcess_Kernel(benchmark::State& s) {
 void BM_Image640x480_TwoProcess_RawDds(benchmark::State& s) {
   two_process<RawEndpoint<msg::Image>, msg::Image>(s, "raw", 107);
 }
+// The same hops with DDS-Security on (keys made in main()).
+// "secured": encrypted; "authenticated": authenticated and access-controlled, in clear.
+template <class T>
+void two_process_secured(benchmark::State& s, const std::string& impl, int domain) {
+  if (!std::getenv("WYSIWYF_BENCH_KEYS")) return s.SkipWithError("no keys: scripts/security failed (see above)");
+  two_process<SecuredKernelEndpoint<T>, T>(s, impl, domain);
+}
+void BM_JointState_TwoProcess_KernelSecured(benchmark::State& s) {
+  two_process_secured<msg::JointState>(s, "secured", 108);
+}
+void BM_Image640x480_TwoProcess_KernelSecured(benchmark::State& s) {
+  two_process_secured<msg::Image>(s, "secured", 109);
+}
+void BM_Image640x480_TwoProcess_KernelAuthenticated(benchmark::State& s) {
+  two_process_secured<msg::Image>(s, "authenticated", 110);
+}
 
 BENCHMARK(BM_JointState_InProcess_Kernel)
     ->UseManualTime()
@@ -242,6 +266,10 @@ BENCHMARK(BM_JointState_TwoProcess_RawDds)
     ->UseManualTime()
     ->Iterations(wysiwyf::bench::iterations(20000))
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_KernelSecured)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Image640x480_TwoProcess_Kernel)
     ->UseManualTime()
     ->Iterations(wysiwyf::bench::iterations(2000))
@@ -250,6 +278,23 @@ BENCHMARK(BM_Image640x480_TwoProcess_RawDds)
     ->UseManualTime()
     ->Iterations(wysiwyf::bench::iterations(2000))
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_TwoProcess_KernelSecured)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(2000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Image640x480_TwoProcess_KernelAuthenticated)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(2000))
+    ->Unit(benchmark::kMicrosecond);
+
+// Keys for the secured rows, once per run, inherited by the echoing children.
+void make_keys() {
+  if (std::getenv("WYSIWYF_BENCH_KEYS")) return;
+  const std::string dir = "/tmp/wysiwyf-bench-keys-" + std::to_string(getpid());
+  const std::string command = std::string(WYSIWYF_SOURCE_DIR) + "/scripts/security " + WYSIWYF_SOURCE_DIR +
+                              "/bench/kernel/security-policy.yaml " + dir + " >/dev/null";
+  if (std::system(command.c_str()) == 0) setenv("WYSIWYF_BENCH_KEYS", dir.c_str(), 1);
+}
 
 }  // namespace wysiwyf::bench
 
@@ -260,14 +305,21 @@ int main(int argc, char** argv) {
     const bool image = std::strcmp(argv[3], "image") == 0;
     const int domain = std::atoi(argv[4]);
     const bool kernel = std::strcmp(argv[2], "kernel") == 0;
+    const std::string impl = argv[2];
+    if (impl == "secured" || impl == "authenticated")
+      return image ? bench::echo<bench::SecuredKernelEndpoint<msg::Image>, msg::Image>(domain, true, impl)
+                   : bench::echo<bench::SecuredKernelEndpoint<msg::JointState>, msg::JointState>(domain, false, impl);
     if (image)
-      return kernel ? bench::echo<bench::KernelEndpoint<msg::Image>, msg::Image>(domain, true)
-                    : bench::echo<bench::RawEndpoint<msg::Image>, msg::Image>(domain, true);
-    return kernel ? bench::echo<bench::KernelEndpoint<msg::JointState>, msg::JointState>(domain, false)
-                  : bench::echo<bench::RawEndpoint<msg::JointState>, msg::JointState>(domain, false);
+      return kernel ? bench::echo<bench::KernelEndpoint<msg::Image>, msg::Image>(domain, true, impl)
+                    : bench::echo<bench::RawEndpoint<msg::Image>, msg::Image>(domain, true, impl);
+    return kernel ? bench::echo<bench::KernelEndpoint<msg::JointState>, msg::JointState>(domain, false, impl)
+                  : bench::echo<bench::RawEndpoint<msg::JointState>, msg::JointState>(domain, false, impl);
   }
   benchmark::Initialize(&argc, argv);
+  bench::make_keys();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  if (const char* keys = std::getenv("WYSIWYF_BENCH_KEYS"); keys && std::strstr(keys, "/tmp/wysiwyf-bench-keys-"))
+    std::filesystem::remove_all(keys);
   return 0;
 }

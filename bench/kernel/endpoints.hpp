@@ -11,7 +11,9 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "../../core/src/dds_bridge.hpp"
@@ -57,8 +59,9 @@ class RawEndpoint {
 template <class T>
 class KernelEndpoint {
  public:
-  KernelEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos)
-      : bridge_(domain, "local", "", "", "bench-kernel") {
+  KernelEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos,
+                 std::optional<dds::SecurityIdentity> security = std::nullopt)
+      : bridge_(detail::DdsParticipantOptions{domain, "local", "", "", "bench-kernel", std::move(security)}) {
     auto* out = bus_.channel<T>(out_topic, "bench.out");
     out->add_writer(qos);
     out_ = Output<T>(out);
@@ -76,6 +79,16 @@ class KernelEndpoint {
   detail::DdsBridge bridge_;
   Output<T> out_;
   Input<T> in_;
+};
+
+// The kernel's ports with DDS-Security on: authenticated, access-controlled, AES-GCM on the
+// topics (bench/kernel/security-policy.yaml, made into keys once per run in $WYSIWYF_BENCH_KEYS).
+template <class T>
+class SecuredKernelEndpoint : public KernelEndpoint<T> {
+ public:
+  SecuredKernelEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos)
+      : KernelEndpoint<T>(domain, out_topic, in_topic, qos,
+                          dds::SecurityIdentity{std::getenv("WYSIWYF_BENCH_KEYS"), "bench"}) {}
 };
 
 }  // namespace wysiwyf::bench

@@ -34,10 +34,13 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
         channel(c),
         always(c.writer_qos().durability == Durability::kTransientLocal),
         buffer(c.create_sample()) {
-    writer =
-        b.publisher_->create_datawriter(topic, dds::writer_qos(c.writer_qos(), instances), this,
-                                        StatusMask::publication_matched() << StatusMask::offered_incompatible_qos());
-    if (!writer) throw std::runtime_error("cannot create a DDS writer for topic '" + topic->get_name() + "'");
+    DataWriterQos qos = dds::writer_qos(c.writer_qos(), instances);
+    if (!b.data_sharing_) qos.data_sharing().off();
+    writer = b.publisher_->create_datawriter(
+        topic, qos, this, StatusMask::publication_matched() << StatusMask::offered_incompatible_qos());
+    if (!writer)
+      throw std::runtime_error("cannot create a DDS writer for topic '" + topic->get_name() + "'" +
+                               b.refused_by_permissions("publish"));
   }
   ~WriterLink() override { channel.delete_sample(buffer); }
 
@@ -98,25 +101,39 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   Counters counters;
 };
 
-DdsBridge::DdsBridge(int domain, const std::string& transport, const std::string& profiles_file,
-                     const std::string& participant_profile, const std::string& participant_name,
-                     std::function<void(const std::string&)> report)
-    : report_(std::move(report)) {
+DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const std::string&)> report)
+    : report_(std::move(report)), data_sharing_(dds::uses_data_sharing(o.transport)) {
   auto* factory = DomainParticipantFactory::get_instance();
-  if (!profiles_file.empty() && factory->load_XML_profiles_file(profiles_file) != ReturnCode_t::RETCODE_OK)
-    throw std::runtime_error("cannot load Fast DDS XML profiles from '" + profiles_file + "'");
-  if (!participant_profile.empty()) {
-    participant_ = factory->create_participant_with_profile(domain, participant_profile);
+  if (!o.profiles_file.empty() && factory->load_XML_profiles_file(o.profiles_file) != ReturnCode_t::RETCODE_OK)
+    throw std::runtime_error("cannot load Fast DDS XML profiles from '" + o.profiles_file + "'");
+  DomainParticipantQos qos;
+  if (!o.participant_profile.empty()) {
+    if (factory->get_participant_qos_from_profile(o.participant_profile, qos) != ReturnCode_t::RETCODE_OK)
+      throw std::runtime_error("no participant profile '" + o.participant_profile + "' in '" + o.profiles_file + "'");
   } else {
-    const DomainParticipantQos qos = dds::participant_qos(transport, participant_name);
-    dds::remove_stale_shared_memory_once(transport, [this](const std::string& s) { say(s); });
-    participant_ = factory->create_participant(domain, qos);
+    qos = dds::participant_qos(o.transport, o.name);
+    dds::remove_stale_shared_memory_once(o.transport, [this](const std::string& s) { say(s); });
   }
+  if (o.security) {
+    dds::enable_security(qos, *o.security);
+    identity_ = o.security->identity;
+  }
+  participant_ = factory->create_participant(o.domain, qos);
   if (!participant_)
-    throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain) +
-                             (participant_profile.empty() ? "" : " with profile '" + participant_profile + "'"));
+    throw std::runtime_error(
+        "cannot create a DDS participant on domain " + std::to_string(o.domain) +
+        (o.participant_profile.empty() ? "" : " with profile '" + o.participant_profile + "'") +
+        (o.security ? " as DDS-Security identity '" + o.security->identity + "' of '" + o.security->keys_dir +
+                          "' (Fast DDS refused its certificate, key or signed documents: see its log above)"
+                    : ""));
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+}
+
+std::string DdsBridge::refused_by_permissions(const std::string& action) const {
+  if (identity_.empty()) return "";
+  return ": DDS-Security identity '" + identity_ + "' may not " + action +
+         " it (its permissions document, made by scripts/security from the policy)";
 }
 
 DdsBridge::~DdsBridge() {
@@ -169,10 +186,13 @@ void DdsBridge::connect(TopicChannelBase& channel) {
     if (!publisher_thread_.joinable()) publisher_thread_ = std::thread([this] { publish_loop(); });
   } else if (channel.local_readers() > 0) {
     auto link = std::make_unique<ReaderLink>(*this, channel);
-    if (!subscriber_->create_datareader(topic, dds::reader_qos(channel.reader_qos(), instances), link.get(),
+    DataReaderQos qos = dds::reader_qos(channel.reader_qos(), instances);
+    if (!data_sharing_) qos.data_sharing().off();
+    if (!subscriber_->create_datareader(topic, qos, link.get(),
                                         StatusMask::data_available()
                                             << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()))
-      throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'");
+      throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'" +
+                               refused_by_permissions("subscribe to"));
     readers_.push_back(std::move(link));
   }
 }

@@ -16,10 +16,12 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/detail/doorbell.hpp"
 #include "wysiwyf/detail/topic_channel.hpp"
 
@@ -35,13 +37,22 @@ struct DdsTopicHealth {
   std::uint64_t outbox_dropped = 0;    // writer: samples the publisher thread had no time to send
 };
 
+// The process's participant: where, over what, and as whom.
+struct DdsParticipantOptions {
+  int domain = 0;
+  std::string transport = "default";
+  std::string profiles_file;        // Fast DDS XML profiles ("" none)
+  std::string participant_profile;  // a participant profile in it ("" the transport's QoS)
+  std::string name;                 // announced in discovery
+  std::optional<dds::SecurityIdentity> security;
+};
+
 class DdsBridge {
  public:
-  // `report` gets one line for each problem DDS reports (QoS mismatch, lost samples), from DDS's
-  // threads; it must be thread-safe. Null: they are only counted.
-  DdsBridge(int domain, const std::string& transport, const std::string& profiles_file,
-            const std::string& participant_profile, const std::string& participant_name,
-            std::function<void(const std::string&)> report = nullptr);
+  // `report` gets one line for each problem DDS reports (QoS mismatch, lost samples, a writer or
+  // reader the security permissions refuse), from DDS's threads; it must be thread-safe. Null:
+  // they are only counted.
+  explicit DdsBridge(const DdsParticipantOptions& options, std::function<void(const std::string&)> report = nullptr);
   ~DdsBridge();
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;
@@ -61,6 +72,8 @@ class DdsBridge {
   struct WriterLink;
   struct ReaderLink;
   void publish_loop();
+  // Why DDS may have refused an endpoint: "" without security.
+  std::string refused_by_permissions(const std::string& action) const;
   void say(const std::string& line) const {
     if (report_) report_(line);
   }
@@ -69,6 +82,8 @@ class DdsBridge {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::function<void(const std::string&)> report_;
+  std::string identity_;              // the DDS-Security identity, "" without
+  bool data_sharing_;                 // dds::uses_data_sharing of the transport
   mutable std::mutex writers_mutex_;  // connect() adds while the publisher thread sends
   std::vector<std::unique_ptr<WriterLink>> writers_;
   std::vector<std::unique_ptr<ReaderLink>> readers_;

@@ -14,17 +14,20 @@ using eprosima::fastdds::rtps::SharedMemTransportDescriptor;
 using eprosima::fastdds::rtps::UDPv4TransportDescriptor;
 
 const std::vector<std::string>& transport_names() {
-  static const std::vector<std::string> names{"default", "local", "shm", "udp"};
+  static const std::vector<std::string> names{"default", "local", "shm", "udp", "loopback"};
   return names;
 }
 
-bool uses_shared_memory(const std::string& transport) { return transport != "udp"; }
+bool uses_shared_memory(const std::string& transport) { return transport != "udp" && transport != "loopback"; }
+
+bool uses_data_sharing(const std::string& transport) { return transport != "loopback"; }
 
 DomainParticipantQos participant_qos(const std::string& transport, const std::string& name) {
   DomainParticipantQos qos = PARTICIPANT_QOS_DEFAULT;
   qos.name(name);
   if (std::find(transport_names().begin(), transport_names().end(), transport) == transport_names().end())
-    throw std::invalid_argument("unknown DDS transport '" + transport + "'; expected default, local, shm or udp");
+    throw std::invalid_argument("unknown DDS transport '" + transport +
+                                "'; expected default, local, shm, udp or loopback");
   // Fast DDS's built-in transports would do for "default", but with a 512 KB shared-memory
   // segment a 640x480 frame does not fit, goes over UDP, and a frame burst overflowed the
   // socket buffers: a recorder lost 10 % of every topic of the demo. Configured here instead.
@@ -41,7 +44,7 @@ DomainParticipantQos participant_qos(const std::string& transport, const std::st
   }
   if (transport != "shm") {
     auto udp = std::make_shared<UDPv4TransportDescriptor>();
-    if (transport == "local") udp->interfaceWhiteList.emplace_back("127.0.0.1");
+    if (transport == "local" || transport == "loopback") udp->interfaceWhiteList.emplace_back("127.0.0.1");
     // Socket buffers for a burst of image fragments (the kernel caps them at net.core.rmem_max
     // and wmem_max).
     udp->receiveBufferSize = 4 * 1024 * 1024;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/dds.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/search_paths.hpp"
 #include "wysiwyf/validator.hpp"
@@ -47,6 +48,12 @@ std::vector<std::string> PipelineSpec::processes() const {
   return out;
 }
 
+std::string PipelineSpec::process_label(const std::string& process) const {
+  if (!process.empty()) return process;
+  const auto groups = processes();
+  return groups.size() == 1 ? groups.front() : "all";
+}
+
 std::optional<std::int64_t> parse_duration(const std::string& text) {
   static const std::regex re(R"(^\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(ns|us|ms|s|min|h)\s*$)");
   std::smatch m;
@@ -67,13 +74,14 @@ std::optional<std::int64_t> parse_duration(const std::string& text) {
 
 namespace {
 
-const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include", "domain", "clock", "dds", "components"};
+const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include",  "domain",
+                                           "clock",   "dds",  "security", "components"};
+const std::vector<std::string> kSecurityKeys = {"keys", "identities"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
 const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
 const std::vector<std::string> kComponentKeys = {"type", "rate",    "process",         "enabled", "spin",   "priority",
                                                  "cpus", "trigger", "trigger_timeout", "params",  "topics", "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
-const std::vector<std::string> kTransports = {"default", "local", "shm", "udp"};
 
 std::string join(const std::vector<std::string>& items) {
   std::string s;
@@ -277,6 +285,14 @@ class Parser {
     out.assign(n.Scalar(), at(n, file));
     return true;
   }
+  // A file or folder named in `file`: relative to that file's folder (--set values: as given).
+  bool get_path(const YAML::Node& n, const std::string& file, const std::string& what, Sourced<std::string>& out) {
+    if (!get_string(n, file, what, out)) return false;
+    fs::path p = out.value;
+    if (p.is_relative() && !set_location_) p = fs::path(file).parent_path() / p;
+    out.value = p.string();
+    return true;
+  }
   void get_duration(const YAML::Node& n, const std::string& file, const std::string& what, bool allow_zero,
                     Sourced<std::int64_t>& out) {
     const auto ns = n.IsScalar() ? parse_duration(n.Scalar()) : std::nullopt;
@@ -300,6 +316,8 @@ class Parser {
     }
     if (const YAML::Node n = root["clock"]; n && expect_map(n, file, "clock")) apply_clock(n, file, into.clock);
     if (const YAML::Node n = root["dds"]; n && expect_map(n, file, "dds")) apply_dds(n, file, into.dds);
+    if (const YAML::Node n = root["security"]; n && expect_map(n, file, "security"))
+      apply_security(n, file, into.security);
     if (const YAML::Node n = root["components"]; n && expect_map(n, file, "components")) {
       for (auto it = n.begin(); it != n.end(); ++it) {
         const std::string name = it->first.Scalar();
@@ -367,24 +385,35 @@ class Parser {
     if (const YAML::Node m = n["transport"]) {
       Sourced<std::string> t;
       if (get_string(m, file, "dds transport", t)) {
-        if (std::find(kTransports.begin(), kTransports.end(), t.value) == kTransports.end())
-          error(t.where, "dds transport: found '" + t.value + "'; expected one of " + join(kTransports));
+        if (std::find(dds::transport_names().begin(), dds::transport_names().end(), t.value) ==
+            dds::transport_names().end())
+          error(t.where, "dds transport: found '" + t.value + "'; expected one of " + join(dds::transport_names()));
         else
           dds.transport = t;
       }
     }
     if (const YAML::Node m = n["profiles"]) {
-      if (get_string(m, file, "dds profiles", dds.profiles_file)) {
-        fs::path p = dds.profiles_file.value;
-        if (p.is_relative() && !set_location_) p = fs::path(file).parent_path() / p;
-        dds.profiles_file.value = p.string();
-        if (!fs::exists(p))
-          error(dds.profiles_file.where, "dds profiles: found '" + p.string() +
-                                             "', which does not exist; expected a Fast DDS XML profiles file");
-      }
+      if (get_path(m, file, "dds profiles", dds.profiles_file) && !fs::exists(dds.profiles_file.value))
+        error(dds.profiles_file.where, "dds profiles: found '" + dds.profiles_file.value +
+                                           "', which does not exist; expected a Fast DDS XML profiles file");
     }
     if (const YAML::Node m = n["participant_profile"])
       get_string(m, file, "dds participant_profile", dds.participant_profile);
+  }
+
+  void apply_security(const YAML::Node& n, const std::string& file, SecuritySpec& security) {
+    check_keys(n, file, kSecurityKeys, "security key");
+    security.where = at(n, file);
+    if (const YAML::Node m = n["keys"];
+        m && get_path(m, file, "security keys", security.keys) && !fs::is_directory(security.keys.value))
+      error(security.keys.where, "security keys: found '" + security.keys.value +
+                                     "', which is not a folder; expected the folder scripts/security made");
+    if (const YAML::Node m = n["identities"]; m && expect_map(m, file, "security identities")) {
+      check_duplicates(m, file);
+      for (auto it = m.begin(); it != m.end(); ++it)
+        get_string(it->second, file, "security identity of process group '" + it->first.Scalar() + "'",
+                   security.identities[it->first.Scalar()]);
+    }
   }
 
   void apply_component(const YAML::Node& n, const std::string& file, ComponentSpec& c) {

@@ -1,9 +1,11 @@
 // Checks a parsed pipeline against the component libraries: runs each component's configure()
 // in validate mode (parameters read and checked, nothing connected), then checks names, topics
 // and types across the whole pipeline.
+#include <filesystem>
 #include <map>
 #include <set>
 
+#include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/validator.hpp"
 
@@ -50,6 +52,27 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     if (std::find(groups.begin(), groups.end(), process) == groups.end())
       error(Location{spec.file, 0, 0}, "process '" + process + "' is not in the pipeline; expected one of " +
                                            join(groups) + did_you_mean(process, groups));
+  }
+
+  if (spec.security.enabled()) {
+    // The process this validation is for authenticates as its group's identity.
+    const std::string label = spec.process_label(process);
+    const auto it = spec.security.identities.find(label);
+    if (it == spec.security.identities.end()) {
+      std::vector<std::string> named;
+      for (const auto& [group, identity] : spec.security.identities) named.push_back(group);
+      error(spec.security.where, "security: process '" + label + "' has no identity; expected `" + label +
+                                     ": <identity>` under security.identities (it names " +
+                                     (named.empty() ? "none" : join(named)) +
+                                     (label == "all" ? "; `all` is every process group run in one process" : "") + ")");
+    } else {
+      for (const auto& f : dds::security_files({spec.security.keys.value, it->second.value}))
+        if (!std::filesystem::exists(f)) {
+          error(it->second.where, "security identity '" + it->second.value + "' of process '" + label + "': missing " +
+                                      f + "; expected the files scripts/security makes");
+          break;
+        }
+    }
   }
 
   std::map<std::string, std::vector<PortUse>> topics;

@@ -360,11 +360,17 @@ bool Runtime::Impl::setup(RunResult& result) {
     return false;
   }
   try {
+    // (Announced in clear even with security: the process id only on a plain domain.)
     const std::string name = (spec.name.set ? spec.name.value : "pipeline") + "/" +
-                             (options.process.empty() ? "all" : options.process) + "/" + std::to_string(getpid());
-    bridge = std::make_unique<detail::DdsBridge>(spec.domain_id(), spec.transport(), spec.dds.profiles_file.value,
-                                                 spec.dds.participant_profile.value, name,
-                                                 [this](const std::string& line) { log("dds", line); });
+                             (options.process.empty() ? "all" : options.process) +
+                             (spec.security.enabled() ? "" : "/" + std::to_string(getpid()));
+    detail::DdsParticipantOptions participant{
+        spec.domain_id(), spec.transport(), spec.dds.profiles_file.value, spec.dds.participant_profile.value, name,
+        std::nullopt};
+    if (spec.security.enabled())  // (validation made sure the process has an identity)
+      participant.security = dds::SecurityIdentity{
+          spec.security.keys.value, spec.security.identities.at(spec.process_label(options.process)).value};
+    bridge = std::make_unique<detail::DdsBridge>(participant, [this](const std::string& line) { log("dds", line); });
   } catch (const std::exception& e) {
     result.ok = false;
     result.error = std::string("DDS: ") + e.what();

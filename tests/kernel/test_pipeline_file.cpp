@@ -113,6 +113,30 @@ TEST(PipelineFile, AllErrorsAreReportedNotJustTheFirst) {
   }
 }
 
+// security: names a folder of keys (beside the file) and an identity per process group.
+TEST(PipelineFile, SecurityNamesAKeysFolderAndAnIdentityPerProcessGroup) {
+  const auto dir = scratch_dir();
+  std::filesystem::create_directories(dir / "keys");
+  const std::string file = (dir / "p.yaml").string();
+  const PipelineSpec spec = load_pipeline_from_string(
+      "wysiwyf: 1\nsecurity: {keys: keys, identities: {display: display, robot: arm}}\ncomponents:\n"
+      "  a: {type: t, rate: 10, process: display}\n  b: {type: t, rate: 10, process: robot}\n",
+      file);
+  ASSERT_TRUE(spec.security.enabled());
+  EXPECT_EQ(spec.security.keys.value, (dir / "keys").string());
+  EXPECT_EQ(spec.security.identities.at("robot").value, "arm");
+  EXPECT_EQ(spec.process_label("robot"), "robot");
+  EXPECT_EQ(spec.process_label(""), "all");  // both groups in one process
+  try {
+    load_pipeline_from_string("wysiwyf: 1\nsecurity: {keys: nowhere, identity: {a: b}}\n", file);
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("p.yaml:2:18: error: security keys: found '"), std::string::npos) << what;
+    EXPECT_NE(what.find("unknown security key 'identity'"), std::string::npos) << what;
+  }
+}
+
 TEST(PipelineFile, ClosestNameCatchesTyposOnly) {
   EXPECT_EQ(closest_name("threshhold", {"threshold", "rate"}), "threshold");
   EXPECT_EQ(closest_name("componets", {"components", "clock"}), "components");

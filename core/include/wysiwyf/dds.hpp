@@ -17,11 +17,15 @@ const std::vector<std::string>& transport_names();
 
 // "default": Fast DDS's built-in UDPv4 and shared memory, discoverable from other machines.
 // "local": shared memory and UDPv4 on 127.0.0.1 only (tests: nothing leaves the machine).
-// "shm": shared memory only. "udp": UDPv4 only.
+// "shm": shared memory only. "udp": UDPv4 only. "loopback": UDPv4 on 127.0.0.1 only (one host's
+// processes over the network path: what a capture on `lo` sees).
 // Throws std::invalid_argument for any other name.
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
-// Whether participant_qos gives that transport shared memory (all but "udp").
+// Whether participant_qos gives that transport shared memory (all but "udp" and "loopback").
 bool uses_shared_memory(const std::string& transport);
+// Whether endpoints may use Fast DDS data sharing between processes of one host: all transports
+// but "loopback", whose point is that samples take the network path.
+bool uses_data_sharing(const std::string& transport);
 
 // `instances`: how many instances (key values) a keyed topic may have, each with its own history
 // of qos.depth samples. (Fast DDS's default is 10: the diagnostics of an 11th component were

@@ -77,9 +77,18 @@ struct ClockSpec {
 };
 
 struct DdsSpec {
-  Sourced<std::string> transport;            // "default", "local" (shm + loopback), "shm", "udp"
+  Sourced<std::string> transport;            // dds::transport_names(): "default", "local", ...
   Sourced<std::string> profiles_file;        // Fast DDS XML profiles, relative to the pipeline file
   Sourced<std::string> participant_profile;  // profile name in that file
+};
+
+// DDS-Security (scripts/security makes the folder): each process group authenticates as the
+// identity named for it.
+struct SecuritySpec {
+  Sourced<std::string> keys;                               // the folder, relative to the pipeline file
+  std::map<std::string, Sourced<std::string>> identities;  // process group -> identity
+  Location where;                                          // of the `security:` key
+  bool enabled() const { return keys.set; }
 };
 
 struct PipelineSpec {
@@ -89,6 +98,7 @@ struct PipelineSpec {
   Sourced<int> domain;
   ClockSpec clock;
   DdsSpec dds;
+  SecuritySpec security;
   std::vector<ComponentSpec> components;  // in file order (included files first)
 
   const ComponentSpec* find(const std::string& instance) const;
@@ -99,6 +109,9 @@ struct PipelineSpec {
   std::int64_t duration_ns() const { return clock.duration_ns.set ? clock.duration_ns.value : 0; }
   double pace() const { return clock.pace.set ? clock.pace.value : 0.0; }
   std::string transport() const { return dds.transport.set ? dds.transport.value : "default"; }
+  // The process that runs `process` ("" = every group in one process): the group's own name,
+  // "main" for a pipeline without groups, "all" for several groups run together.
+  std::string process_label(const std::string& process) const;
 };
 
 constexpr int kPipelineFormatVersion = 1;

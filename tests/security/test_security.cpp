@@ -1,0 +1,358 @@
+// DDS-Security on a pipeline split into two process groups, the display's (the setpoint's one
+// writer) and the robot's (puma_sim), with the shipped policy (config/security/policy.yaml) made
+// into keys by scripts/security. Outsiders are a plain Fast DDS participant (an intruder) and
+// participants with the policy's own identities. A control run without security shows that each
+// check can fail: there the intruder sees the topics, its NaN setpoint faults the arm, and the
+// pose crosses the wire in clear.
+//
+// The two groups run on the real clock: the arm refuses setpoints whose stamps are not on its
+// own clock, and separate sim clocks are not one clock. Nothing here asserts a duration; waits are
+// hang guards, and each check retries a bounded number of times while discovery settles.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <linux/if_packet.h>
+#include <net/ethernet.h>
+#include <net/if.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <optional>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../kernel/cli_process.hpp"
+#include "wysiwyf/dds.hpp"
+#include "wysiwyf/dds_security.hpp"
+#include "wysiwyf/message_traits.hpp"
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::test {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace eprosima::fastdds::dds;
+using Clock = std::chrono::steady_clock;
+
+// The pose the display's script holds the plate at (puma-setpoints.yaml's first waypoint: near
+// the arm's ready pose, so the arm follows it without a jump). Its x, y, z doubles, as CDR puts
+// them on the wire one after another, are what the capture looks for.
+constexpr double kPose[3] = {0.70, 0.0, 0.20};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::int64_t wall_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Runs a command line to its end; its exit status (a hang guard kills it after `limit`).
+int run_cli(const std::vector<std::string>& args, const fs::path& log, std::chrono::seconds limit) {
+  return wait_exit(spawn_cli(args, log), limit);
+}
+
+// A DDS participant of the test's own: plain (an intruder) or with one of the policy's identities.
+class Participant {
+ public:
+  Participant(int domain, const std::optional<dds::SecurityIdentity>& identity) {
+    DomainParticipantQos qos = dds::participant_qos("loopback", "security-test");
+    if (identity) dds::enable_security(qos, *identity);
+    participant_ = DomainParticipantFactory::get_instance()->create_participant(domain, qos);
+    if (!participant_) return;
+    publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
+  }
+  ~Participant() {
+    if (!participant_) return;
+    participant_->delete_contained_entities();
+    DomainParticipantFactory::get_instance()->delete_participant(participant_);
+  }
+  bool ok() const { return participant_ != nullptr; }
+
+  template <class T>
+  DataWriter* writer(const std::string& topic) {
+    DataWriterQos qos = dds::writer_qos(Qos::reliable(8));
+    qos.data_sharing().off();  // over the network path, as the pipeline's loopback transport
+    return publisher_->create_datawriter(this->topic<T>(topic), qos);
+  }
+
+ private:
+  template <class T>
+  Topic* topic(const std::string& name) {
+    TypeSupport type(MessageTraits<T>::make_type());
+    type->auto_fill_type_object(false);
+    type->auto_fill_type_information(false);
+    if (!participant_->find_type(type.get_type_name())) type.register_type(participant_);
+    if (auto* t = participant_->find_topic(name, eprosima::fastrtps::Duration_t(0, 0))) return t;
+    return participant_->create_topic(name, type.get_type_name(), TOPIC_QOS_DEFAULT);
+  }
+  DomainParticipant* participant_ = nullptr;
+  Publisher* publisher_ = nullptr;
+};
+
+// Every frame on the loopback interface while it runs (needs CAP_NET_RAW).
+class LoopbackCapture {
+ public:
+  LoopbackCapture() {
+    fd_ = socket(AF_PACKET, SOCK_RAW, htons(ETH_P_ALL));
+    if (fd_ < 0) return;
+    sockaddr_ll at{};
+    at.sll_family = AF_PACKET;
+    at.sll_protocol = htons(ETH_P_ALL);
+    at.sll_ifindex = static_cast<int>(if_nametoindex("lo"));
+    timeval timeout{0, 100'000};
+    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    if (bind(fd_, reinterpret_cast<sockaddr*>(&at), sizeof at) != 0) {
+      close(fd_);
+      fd_ = -1;
+      return;
+    }
+    thread_ = std::thread([this] {
+      std::vector<unsigned char> frame(65536);
+      while (!stop_) {
+        const ssize_t n = recv(fd_, frame.data(), frame.size(), 0);
+        if (n <= 0) continue;
+        std::lock_guard<std::mutex> lock(mutex_);
+        frames_.emplace_back(frame.begin(), frame.begin() + n);
+      }
+    });
+  }
+  ~LoopbackCapture() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+    if (fd_ >= 0) close(fd_);
+  }
+  bool ok() const { return fd_ >= 0; }
+  // UDP datagrams to `domain`'s RTPS ports (7400 + 250 domain and the 250 above: other tests'
+  // domains share lo), and how many of them hold `bytes`.
+  std::pair<int, int> count(int domain, const std::string& bytes) {
+    const int first_port = 7400 + 250 * domain;
+    std::lock_guard<std::mutex> lock(mutex_);
+    int rtps = 0, holding = 0;
+    for (const auto& f : frames_) {
+      // lo's frames: a 14-byte Ethernet header, then IPv4 (header length in its first byte), then UDP.
+      if (f.size() < 14 + 20 + 8 || f[12] != 0x08 || f[13] != 0x00 || f[14 + 9] != IPPROTO_UDP) continue;
+      const std::size_t udp = 14 + 4 * (f[14] & 0x0f);
+      if (f.size() < udp + 8) continue;
+      const int port = f[udp + 2] << 8 | f[udp + 3];
+      if (port < first_port || port >= first_port + 250) continue;
+      const std::string payload(f.begin() + static_cast<std::ptrdiff_t>(udp + 8), f.end());
+      if (payload.rfind("RTPS", 0) != 0) continue;
+      ++rtps;
+      holding += payload.find(bytes) != std::string::npos;
+    }
+    return {rtps, holding};
+  }
+
+ private:
+  int fd_ = -1;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  std::mutex mutex_;
+  std::vector<std::vector<unsigned char>> frames_;
+};
+
+class Security : public ::testing::Test {
+ protected:
+  // Keys of each test's own (ctest runs the tests as parallel processes).
+  void SetUp() override {
+    dir_ = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    keys_ = dir_ / "keys";
+    const std::string command = std::string(WYSIWYF_SOURCE_DIR) + "/scripts/security " + WYSIWYF_SOURCE_DIR +
+                                "/config/security/policy.yaml " + keys_.string() + " > " +
+                                (dir_ / "security.log").string() + " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << "scripts/security failed: " << read_text(dir_ / "security.log");
+  }
+  void TearDown() override {
+    for (pid_t pid : pids_) kill(pid, SIGTERM);
+    for (pid_t pid : pids_) wait_exit(pid, std::chrono::seconds(30));
+  }
+
+  // The display's group (a setpoint script holding kPose at 1 kHz) and the robot's (puma_sim).
+  void start(int domain, bool secured) {
+    domain_ = domain;
+    pipeline_ = dir_ / "pipeline.yaml";
+    std::ofstream out(pipeline_);
+    out << "wysiwyf: 1\nname: secured\ndomain: " << domain << "\ndds: {transport: loopback}\n";
+    if (secured) out << "security: {keys: " << keys_.string() << ", identities: {display: display, robot: robot}}\n";
+    out << "clock: {mode: real, duration: 120s}\n"
+           "components:\n"
+           "  setpoints:\n"
+           "    type: setpoint_script\n    rate: 1000\n    process: display\n"
+           "    params: {loop: true, waypoints: [0, "
+        << kPose[0] << ", " << kPose[1] << ", " << kPose[2] << ", 0, 1.57079633, 0, 1, " << kPose[0] << ", " << kPose[1]
+        << ", " << kPose[2]
+        << ", 0, 1.57079633, 0]}\n"
+           "    topics: {setpoint: robot/setpoint}\n"
+           "  arm:\n"
+           "    type: puma_sim\n    rate: 1000\n    process: robot\n"
+           "    params: {setpoint_source: script}\n"
+           "    topics: {setpoint: robot/setpoint, joint_state: robot/joint_state, status: robot/status,\n"
+           "             wrench: robot/wrench, device_pose: robot/device_pose}\n";
+    out.close();
+    for (const char* group : {"robot", "display"})
+      pids_.push_back(spawn_cli({"run", pipeline_.string(), "--process", group, "--no-progress"},
+                                dir_ / (std::string(group) + ".log")));
+  }
+
+  // One robot/status sample as the monitor identity reads it (plain when the pipeline is), "" if none came.
+  std::string arm_status() {
+    for (int attempt = 0; attempt < 5; ++attempt) {
+      const fs::path log = dir_ / "status.log";
+      if (run_cli(
+              {"topic", "echo", "robot/status", "--pipeline", pipeline_.string(), "--count", "1", "--timeout", "10"},
+              log, std::chrono::seconds(60)) == 0)
+        return read_text(log);
+    }
+    return "";
+  }
+  // Waits until the arm follows the script (the display's setpoints reach it).
+  void expect_arm_following() {
+    std::string status;
+    for (int attempt = 0; attempt < 10; ++attempt) {
+      status = arm_status();
+      if (status.find("state: ARM_OK") != std::string::npos) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    }
+    ASSERT_NE(status.find("state: ARM_OK"), std::string::npos)
+        << status << read_text(dir_ / "robot.log") << read_text(dir_ / "display.log");
+    EXPECT_NE(status.find("source: \"script\""), std::string::npos) << status;
+  }
+
+  // The intruder: a plain participant writes a far pose and NaN poses, freshly stamped, as the
+  // script's source, at 1 kHz for a second, once its writer has matched a reader (it waits up to
+  // `match_wait` for one). Returns how many readers it matched.
+  int intrude(std::chrono::seconds match_wait) {
+    Participant intruder(domain_, std::nullopt);
+    EXPECT_TRUE(intruder.ok());
+    DataWriter* writer = intruder.writer<msg::CartesianSetpoint>("robot/setpoint");
+    EXPECT_NE(writer, nullptr);
+    if (!writer) return 0;
+    PublicationMatchedStatus matched;
+    for (const auto until = Clock::now() + match_wait; Clock::now() < until && matched.current_count == 0;) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      writer->get_publication_matched_status(matched);
+    }
+    msg::CartesianSetpoint sp;
+    sp.header().frame_id("base");
+    sp.child_frame_id("dev");
+    sp.source("script");
+    sp.pose().orientation().w(1.0);
+    const auto end = Clock::now() + std::chrono::seconds(1);
+    for (std::uint64_t i = 0; Clock::now() < end; ++i) {
+      sp.header().stamp_ns(wall_ns());
+      sp.header().seq(i);
+      const bool nan = i % 10 == 9;
+      sp.pose().position().x(nan ? std::nan("") : 0.45);
+      sp.pose().position().y(nan ? std::nan("") : 0.30);
+      sp.pose().position().z(0.35);
+      writer->write(&sp);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    writer->get_publication_matched_status(matched);
+    return std::max(matched.current_count, matched.total_count);
+  }
+
+  // What a participant without credentials finds on the domain (`wysiwyf topic list`).
+  std::string plain_topic_list() {
+    const fs::path log = dir_ / "plain-list.log";
+    run_cli({"topic", "list", "--domain", std::to_string(domain_), "--transport", "loopback", "--wait", "4"}, log,
+            std::chrono::seconds(60));
+    return read_text(log);
+  }
+
+  static std::string pose_bytes() { return std::string(reinterpret_cast<const char*>(kPose), sizeof kPose); }
+
+  fs::path dir_, keys_, pipeline_;
+  int domain_ = 0;
+  std::vector<pid_t> pids_;
+};
+
+TEST_F(Security, WithoutItAnIntruderIsSeenAndHeardAndThePoseCrossesInClear) {
+  start(110, /*secured=*/false);
+  expect_arm_following();
+  EXPECT_NE(plain_topic_list().find("robot/setpoint"), std::string::npos);
+  LoopbackCapture capture;
+  EXPECT_GT(intrude(std::chrono::seconds(20)), 0) << "the intruder's setpoint writer matched no reader";
+  const std::string status = arm_status();
+  EXPECT_NE(status.find("state: ARM_FAULT"), std::string::npos) << "the NaN did not reach the arm:\n" << status;
+  if (capture.ok()) {
+    const auto [rtps, holding] = capture.count(domain_, pose_bytes());
+    std::cout << rtps << " RTPS datagrams of domain " << domain_ << " captured, " << holding << " with the pose\n";
+    EXPECT_GT(rtps, 100);
+    EXPECT_GT(holding, 0) << "the script's pose was not found in clear on the wire (" << rtps << " RTPS frames)";
+    EXPECT_GT(capture.count(domain_, "fastdds.physical_data.").second, 0);  // a plain domain announces host and user
+  }
+}
+
+TEST_F(Security, AnUnauthenticatedParticipantDiscoversNothingAndItsSetpointsNeverReachTheArm) {
+  start(111, /*secured=*/true);
+  expect_arm_following();
+  const std::string topics = plain_topic_list();
+  EXPECT_EQ(topics.find("robot/"), std::string::npos) << topics;
+  EXPECT_EQ(intrude(std::chrono::seconds(5)), 0) << "the intruder's setpoint writer matched a reader";
+  const std::string status = arm_status();  // still following the script: no fault, no hold
+  EXPECT_NE(status.find("state: ARM_OK"), std::string::npos) << status;
+  EXPECT_NE(status.find("source: \"script\""), std::string::npos) << status;
+}
+
+TEST_F(Security, AMonitorReadsTheJointStateButMayWriteNoSetpoint) {
+  start(112, /*secured=*/true);
+  expect_arm_following();
+  // `wysiwyf topic echo` with the pipeline's keys authenticates as the monitor identity.
+  const fs::path log = dir_ / "joint-state.log";
+  ASSERT_EQ(run_cli({"topic", "echo", "robot/joint_state", "--pipeline", pipeline_.string(), "--count", "1"}, log,
+                    std::chrono::seconds(60)),
+            0)
+      << read_text(log);
+  EXPECT_NE(read_text(log).find("position: ["), std::string::npos) << read_text(log);
+  // The monitor's and the robot's own identities may not write the setpoint: DDS refuses the writer.
+  for (const char* identity : {"monitor", "robot"}) {
+    Participant p(domain_, dds::SecurityIdentity{keys_.string(), identity});
+    ASSERT_TRUE(p.ok()) << identity;
+    EXPECT_EQ(p.writer<msg::CartesianSetpoint>("robot/setpoint"), nullptr) << identity;
+  }
+  // The display's identity may (the positive case of the same check).
+  Participant display(domain_, dds::SecurityIdentity{keys_.string(), "display"});
+  ASSERT_TRUE(display.ok());
+  EXPECT_NE(display.writer<msg::CartesianSetpoint>("robot/setpoint"), nullptr);
+}
+
+TEST_F(Security, TheSetpointCrossesTheWireEncrypted) {
+  LoopbackCapture capture;
+  if (!capture.ok()) GTEST_SKIP() << "capturing on lo needs CAP_NET_RAW (root); skipped";
+  start(113, /*secured=*/true);
+  expect_arm_following();  // the setpoints have been crossing from the display's process for a while
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const auto [rtps, holding] = capture.count(domain_, pose_bytes());
+  std::cout << rtps << " RTPS datagrams of domain " << domain_ << " captured, " << holding << " with the pose\n";
+  EXPECT_GT(rtps, 500) << "too little traffic captured to say anything";
+  EXPECT_EQ(holding, 0) << holding << " of " << rtps << " RTPS frames hold the script's pose in clear";
+  // Announcements are in clear by the standard: they no longer name the host, user and process.
+  EXPECT_EQ(capture.count(domain_, "fastdds.physical_data.").second, 0);
+}
+
+}  // namespace
+}  // namespace wysiwyf::test
