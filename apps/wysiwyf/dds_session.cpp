@@ -26,6 +26,7 @@ DataReader* open_raw_reader(Session& s, Subscriber* subscriber, const std::strin
   Qos qos = Qos::reliable(depth);
   qos.reliability = info.reliability == RELIABLE_RELIABILITY_QOS ? Reliability::kReliable : Reliability::kBestEffort;
   qos.durability = info.durability == VOLATILE_DURABILITY_QOS ? Durability::kVolatile : Durability::kTransientLocal;
+  qos.single_writer = info.one_writer;
   DataReaderQos rq = dds::reader_qos(qos, info.keyed ? dds::kKeyedTopicInstances : 1);
   rq.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
   rq.data_sharing().off();  // samples of unknown size: no fixed-size shared buffers

@@ -29,7 +29,8 @@ struct TopicInfo {
   std::set<std::string> writers, readers;  // GUIDs
   eprosima::fastdds::dds::ReliabilityQosPolicyKind reliability = eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS;
   eprosima::fastdds::dds::DurabilityQosPolicyKind durability = eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
-  bool keyed = false;  // the type has @key members (instances)
+  bool keyed = false;       // the type has @key members (instances)
+  bool one_writer = false;  // exclusive ownership (a robot's setpoint): a reader must ask for it too
 };
 
 // Collects the topics that remote writers and readers announce.
@@ -50,6 +51,7 @@ class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
       t.reliability = info.info.m_qos.m_reliability.kind;
       t.durability = info.info.m_qos.m_durability.kind;
       t.keyed = info.info.topicKind() == eprosima::fastrtps::rtps::WITH_KEY;
+      t.one_writer = info.info.m_qos.m_ownership.kind == eprosima::fastdds::dds::EXCLUSIVE_OWNERSHIP_QOS;
     }
     cv_.notify_all();
   }

@@ -8,6 +8,12 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/rtps/common/InstanceHandle.h>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "wysiwyf/dds.hpp"
@@ -24,7 +30,14 @@ struct Counters {
   std::atomic<std::uint64_t> incompatible{0};
   std::atomic<int> last_policy{0};
   std::atomic<std::uint64_t> lost{0};
+  std::atomic<std::uint64_t> ignored{0};  // samples of a writer that does not own a one-writer topic
 };
+
+// The channel's QoS for its DDS endpoints: a one-writer topic is one for writers and readers alike.
+Qos endpoint_qos(Qos q, const TopicChannelBase& channel) {
+  q.single_writer = channel.one_writer();
+  return q;
+}
 
 }  // namespace
 
@@ -34,7 +47,7 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
         channel(c),
         always(c.writer_qos().durability == Durability::kTransientLocal),
         buffer(c.create_sample()) {
-    DataWriterQos qos = dds::writer_qos(c.writer_qos(), instances);
+    DataWriterQos qos = dds::writer_qos(endpoint_qos(c.writer_qos(), c), instances);
     if (!b.data_sharing_) qos.data_sharing().off();
     writer = b.publisher_->create_datawriter(
         topic, qos, this, StatusMask::publication_matched() << StatusMask::offered_incompatible_qos());
@@ -76,12 +89,39 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
 };
 
 struct DdsBridge::ReaderLink final : public DataReaderListener {
-  ReaderLink(DdsBridge& b, TopicChannelBase& c) : bridge(b), channel(c), sample(c.create_sample()) {}
+  ReaderLink(DdsBridge& b, TopicChannelBase& c)
+      : bridge(b), channel(c), sample(c.create_sample()), one_writer(c.one_writer()) {}
   ~ReaderLink() override { channel.delete_sample(sample); }
   void on_data_available(DataReader* reader) override {
     SampleInfo info;
     while (reader->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK)
-      if (info.valid_data) channel.deliver_from_dds(sample);
+      if (info.valid_data && (!one_writer || follows(info.publication_handle))) channel.deliver_from_dds(sample);
+  }
+  // A one-writer topic follows the first writer it hears until that writer leaves; DDS ownership
+  // already passes only its owner's samples, but it would hand the topic to a newcomer of equal
+  // strength and lower GUID. Another writer's samples are dropped, counted and it is named once.
+  bool follows(const InstanceHandle_t& writer) {
+    std::lock_guard<std::mutex> lock(owner_mutex);
+    if (!owner) owner = writer;
+    if (writer == *owner) return true;
+    counters.ignored.fetch_add(1);
+    if (named.insert(bridge.writer_name(writer)).second)
+      bridge.say("topic '" + channel.topic() + "': samples of a second writer, " + bridge.writer_name(writer) +
+                 ", are ignored: the topic takes one writer, and " + bridge.writer_name(*owner) + " is it");
+    return false;
+  }
+  void on_subscription_matched(DataReader*, const SubscriptionMatchedStatus& status) override {
+    if (!one_writer) return;
+    const std::string name = bridge.writer_name(status.last_publication_handle);
+    std::lock_guard<std::mutex> lock(owner_mutex);
+    if (status.current_count_change > 0 && status.current_count > 1)
+      bridge.say("topic '" + channel.topic() + "' takes one writer, and another one matched: " + name +
+                 " (writers now: " + std::to_string(status.current_count) + "); only the first heard is followed" +
+                 (owner ? ", " + bridge.writer_name(*owner) : ""));
+    if (status.current_count_change < 0 && owner && status.last_publication_handle == *owner) {
+      bridge.say("topic '" + channel.topic() + "': its writer " + name + " left; the next writer heard owns it");
+      owner.reset();
+    }
   }
   void on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) override {
     counters.incompatible.fetch_add(1);
@@ -98,8 +138,33 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   DdsBridge& bridge;
   TopicChannelBase& channel;
   void* sample;
+  const bool one_writer;
+  std::mutex owner_mutex;  // the receive thread and the discovery thread
+  std::optional<InstanceHandle_t> owner;
+  std::set<std::string> named;  // the writers said to be ignored
   Counters counters;
 };
+
+// Who is who on the domain: participants' names by their GUID prefix, for messages that name a writer.
+struct DdsBridge::ParticipantNames final : public DomainParticipantListener {
+  void on_participant_discovery(DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    std::lock_guard<std::mutex> lock(mutex);
+    names[info.info.m_guid.guidPrefix] = info.info.m_participantName.to_string();
+  }
+  std::mutex mutex;
+  std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> names;
+};
+
+std::string DdsBridge::writer_name(const InstanceHandle_t& handle) const {
+  eprosima::fastrtps::rtps::GUID_t guid;
+  eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
+  std::ostringstream id;
+  id << guid;
+  std::lock_guard<std::mutex> lock(names_->mutex);
+  const auto it = names_->names.find(guid.guidPrefix);
+  return it != names_->names.end() ? "'" + it->second + "' (writer " + id.str() + ")" : "writer " + id.str();
+}
 
 DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const std::string&)> report)
     : report_(std::move(report)), data_sharing_(dds::uses_data_sharing(o.transport)) {
@@ -118,7 +183,8 @@ DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const st
     dds::enable_security(qos, *o.security);
     identity_ = o.security->identity;
   }
-  participant_ = factory->create_participant(o.domain, qos);
+  names_ = std::make_unique<ParticipantNames>();
+  participant_ = factory->create_participant(o.domain, qos, names_.get(), StatusMask::none());
   if (!participant_)
     throw std::runtime_error(
         "cannot create a DDS participant on domain " + std::to_string(o.domain) +
@@ -186,11 +252,12 @@ void DdsBridge::connect(TopicChannelBase& channel) {
     if (!publisher_thread_.joinable()) publisher_thread_ = std::thread([this] { publish_loop(); });
   } else if (channel.local_readers() > 0) {
     auto link = std::make_unique<ReaderLink>(*this, channel);
-    DataReaderQos qos = dds::reader_qos(channel.reader_qos(), instances);
+    DataReaderQos qos = dds::reader_qos(endpoint_qos(channel.reader_qos(), channel), instances);
     if (!data_sharing_) qos.data_sharing().off();
     if (!subscriber_->create_datareader(topic, qos, link.get(),
                                         StatusMask::data_available()
-                                            << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()))
+                                            << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()
+                                            << StatusMask::subscription_matched()))
       throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'" +
                                refused_by_permissions("subscribe to"));
     readers_.push_back(std::move(link));
@@ -201,10 +268,10 @@ std::vector<DdsTopicHealth> DdsBridge::health() const {
   std::vector<DdsTopicHealth> out;
   auto add = [&](const TopicChannelBase& channel, const Counters& c, std::uint64_t outbox_dropped) {
     const std::uint64_t incompatible = c.incompatible.load();
-    if (incompatible == 0 && c.lost.load() == 0 && outbox_dropped == 0) return;
+    if (incompatible == 0 && c.lost.load() == 0 && outbox_dropped == 0 && c.ignored.load() == 0) return;
     out.push_back(DdsTopicHealth{channel.topic(), incompatible,
                                  incompatible ? dds::qos_policy_name(c.last_policy.load()) : "", c.lost.load(),
-                                 outbox_dropped});
+                                 outbox_dropped, c.ignored.load()});
   };
   {
     std::lock_guard<std::mutex> lock(writers_mutex_);

@@ -9,6 +9,7 @@
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/rtps/common/InstanceHandle.h>
 
 #include <atomic>
 #include <chrono>
@@ -35,6 +36,7 @@ struct DdsTopicHealth {
   std::string last_incompatible;       // the last refused policy, e.g. "RELIABILITY"
   std::uint64_t lost = 0;              // reader: samples DDS reports lost (best effort gaps, full history)
   std::uint64_t outbox_dropped = 0;    // writer: samples the publisher thread had no time to send
+  std::uint64_t ignored = 0;           // reader of a one-writer topic: samples of a writer not its owner
 };
 
 // The process's participant: where, over what, and as whom.
@@ -71,6 +73,9 @@ class DdsBridge {
  private:
   struct WriterLink;
   struct ReaderLink;
+  struct ParticipantNames;
+  // "'<participant name>' (writer <GUID>)", or the GUID alone before its participant is known.
+  std::string writer_name(const eprosima::fastdds::dds::InstanceHandle_t& writer) const;
   void publish_loop();
   // Why DDS may have refused an endpoint: "" without security.
   std::string refused_by_permissions(const std::string& action) const;
@@ -78,6 +83,7 @@ class DdsBridge {
     if (report_) report_(line);
   }
 
+  std::unique_ptr<ParticipantNames> names_;  // the participant's listener: outlives it
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

@@ -71,6 +71,9 @@ EndpointQos endpoint_qos(EndpointQos qos, const Qos& q, int instances) {
   qos.history().kind = KEEP_LAST_HISTORY_QOS;
   qos.history().depth = q.depth;
   if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);
+  // One writer: a reader follows only the owner among the matched writers, and a writer with
+  // shared ownership does not match at all (reported as an OWNERSHIP incompatibility).
+  if (q.single_writer) qos.ownership().kind = EXCLUSIVE_OWNERSHIP_QOS;
   if (instances > 1) {
     qos.resource_limits().max_instances = instances;
     qos.resource_limits().max_samples_per_instance = q.depth;
@@ -123,6 +126,9 @@ std::string incompatibility(int policy_id, const Qos& ours, bool writer) {
            (writer ? ": a reader wants a shorter deadline than this writer's "
                    : ": this reader's deadline is shorter than the writer's; this reader's is ") +
            (ours.deadline_ns > 0 ? std::to_string(ours.deadline_ns / 1000) + " us" : "none");
+  if (policy_id == OWNERSHIP_QOS_POLICY_ID)
+    return name + (ours.single_writer ? ": this topic takes one writer (exclusive ownership), the other side shares it"
+                                      : ": the other side takes one writer (exclusive ownership), this one shares it");
   return name + ": the two endpoints' settings cannot match";
 }
 

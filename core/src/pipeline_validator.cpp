@@ -39,6 +39,7 @@ struct PortUse {
   Location where;
   bool single_writer = false;
   bool unmapped_optional = false;  // an optional input the pipeline did not connect to a topic
+  std::string process;             // its component's process group
 };
 
 }  // namespace
@@ -130,7 +131,8 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
       auto t = c.topics.find(p.name);
       const Location where = t != c.topics.end() ? t->second.where : c.where;
       topics[c.topic_for(p.name)].push_back(PortUse{c.name + "." + p.name, p.type_name, p.direction, where,
-                                                    p.qos.single_writer, p.qos.optional && t == c.topics.end()});
+                                                    p.qos.single_writer, p.qos.optional && t == c.topics.end(),
+                                                    c.process_name()});
     }
     result.described[c.name] = ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path,
                                                     ctx.declared_params(), ctx.declared_ports()};
@@ -154,8 +156,18 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
                                                     "' (read by " + use.label +
                                                     "); it must come from another program"});
     // An input that takes one writer (a robot's setpoint): every writer after the first is an error.
-    const auto one_writer = std::find_if(uses.begin(), uses.end(), [](const PortUse& u) { return u.single_writer; });
+    const auto one_writer = std::find_if(uses.begin(), uses.end(), [](const PortUse& u) {
+      return u.single_writer && u.direction == PortDirection::kInput;
+    });
     if (one_writer == uses.end()) continue;
+    // Between processes the topic has DDS exclusive ownership, which a writer must declare too.
+    for (const auto& use : uses)
+      if (use.direction == PortDirection::kOutput && !use.single_writer && use.process != one_writer->process)
+        error(use.where, "topic '" + topic + "': port " + use.label + " (process '" + use.process + "') writes it to " +
+                             one_writer->label + " (process '" + one_writer->process +
+                             "'), which takes one writer only, but does not declare itself that writer: across "
+                             "processes DDS would refuse its samples (ownership); expected an output declared with "
+                             "Qos::one_writer(), or both in one process group");
     const PortUse* first_writer = nullptr;
     for (const auto& use : uses) {
       if (use.direction != PortDirection::kOutput) continue;

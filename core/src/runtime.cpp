@@ -574,6 +574,7 @@ void Runtime::Impl::teardown(RunResult& result) {
                 h.last_incompatible + ");";
       if (h.lost) line += " " + std::to_string(h.lost) + " samples lost on the way in;";
       if (h.outbox_dropped) line += " " + std::to_string(h.outbox_dropped) + " samples never sent (publisher behind);";
+      if (h.ignored) line += " " + std::to_string(h.ignored) + " samples of a second writer ignored (one writer);";
       line.pop_back();
       result.dds_problems.push_back(line);
     }

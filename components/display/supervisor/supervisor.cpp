@@ -99,7 +99,8 @@ class Supervisor final : public Component {
     robot_in_ = ctx.input<msg::RobotStatus>("robot_status", "the arm's safety state", Qos::reliable(8));
     planner_in_ = ctx.input<msg::PlannerStatus>("planner_status", "the surface planner's target", Qos::reliable(8));
     objects_in_ = ctx.input<msg::ObjectState>("objects", "the virtual objects (for the attachment)", Qos::reliable(64));
-    setpoint_out_ = ctx.output<msg::CartesianSetpoint>("setpoint", "the robot's setpoint: the one writer");
+    setpoint_out_ = ctx.output<msg::CartesianSetpoint>("setpoint", "the robot's setpoint: the one writer",
+                                                       Qos::reliable().one_writer());
     mode_out_ = ctx.output<msg::DisplayMode>("mode", "the display's mode and why",
                                              Qos{Reliability::kReliable, Durability::kTransientLocal, 8, 0});
     attach_out_ = ctx.output<msg::Attachment>("attach", "where the device holds the virtual object, or that it lets go",

@@ -21,7 +21,8 @@ class SetpointScript final : public Component {
     frame_id_ = ctx.param<std::string>("frame_id", "base", "parent frame of the setpoint pose");
     child_frame_id_ = ctx.param<std::string>("child_frame_id", "dev", "the frame being placed");
     source_ = ctx.param<std::string>("source", "script", "CartesianSetpoint.source");
-    setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist at each tick");
+    setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist at each tick (its one writer)",
+                                                   Qos::reliable().one_writer());
     pose_ = ctx.output<msg::PoseStamped>("pose", "the same pose as a PoseStamped (e.g. a scripted hand target)");
     try {
       table_ = std::make_unique<Keyframes>(waypoints, 6);

@@ -13,8 +13,9 @@ struct Qos {
   Durability durability = Durability::kVolatile;
   int depth = 4;                 // samples kept per reader (keep-last history)
   std::int64_t deadline_ns = 0;  // 0: none; else the longest expected gap between samples
-  // An input that takes one writer only (a robot's setpoint): a second output port on its topic
-  // is a validation error.
+  // A topic with one writer only (a robot's setpoint): on an input, a second output port on its
+  // topic is a validation error; on an output, it declares itself that one writer. Between
+  // processes such a topic has DDS exclusive ownership, and a reader follows one writer.
   bool single_writer = false;
   // An input the component works without (an alternative source, a cross-check): left
   // unconnected in a pipeline, it is not worth a warning (mapped to a topic nobody writes, it is).

@@ -45,6 +45,8 @@ class TopicChannelBase {
   // Strictest QoS among the local ports on this topic, used for the DDS endpoints.
   const Qos& writer_qos() const { return writer_qos_; }
   const Qos& reader_qos() const { return reader_qos_; }
+  // A topic with one writer (some local port says so): DDS exclusive ownership for its endpoints.
+  bool one_writer() const { return writer_qos_.single_writer || reader_qos_.single_writer; }
 
   // The bridge owns the link and unsets it before it goes (null: local only from then on).
   void set_dds_writer(DdsWriterLink* link) {
@@ -86,6 +88,7 @@ class TopicChannelBase {
     if (port.durability == Durability::kTransientLocal) into.durability = Durability::kTransientLocal;
     if (port.deadline_ns > 0 && (into.deadline_ns == 0 || port.deadline_ns < into.deadline_ns))
       into.deadline_ns = port.deadline_ns;
+    if (port.single_writer) into.single_writer = true;
   }
 
   virtual void open_outbox(int depth) = 0;
