@@ -38,5 +38,6 @@ int cmd_record(Args args);
 int cmd_play(Args args);
 int cmd_monitor(Args args);
 int cmd_bridge(Args args);
+int cmd_discovery_server(Args args);
 
 }  // namespace wysiwyf::cli

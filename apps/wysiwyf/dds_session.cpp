@@ -8,6 +8,7 @@
 
 #include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
+#include "wysiwyf/dds_discovery.hpp"
 #include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/stale_shared_memory.hpp"
@@ -40,12 +41,14 @@ void open(Args& args, Session& s) {
   int domain = 0;
   std::string transport = "default";
   std::string keys;
+  std::vector<std::string> servers;
   if (auto file = args.value("--pipeline")) {
     try {
       const PipelineSpec spec = load_pipeline(*file);
       domain = spec.domain_id();
       transport = spec.transport();
       keys = spec.security.keys.value;
+      servers = spec.dds.discovery_servers.value;
     } catch (const ConfigError& e) {
       throw UsageError(std::string("cannot read --pipeline: ") + e.what());
     }
@@ -63,6 +66,16 @@ void open(Args& args, Session& s) {
     qos = dds::participant_qos(transport, "wysiwyf-cli");
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
+  }
+  if (auto list = args.value("--discovery-server")) {
+    servers.clear();
+    std::stringstream items(*list);
+    for (std::string item; std::getline(items, item, ',');) servers.push_back(item);
+  }
+  try {  // a tool is told about every participant and endpoint, not only those it matches
+    if (!servers.empty()) dds::use_discovery_servers(qos, servers, /*see_everything=*/true);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--discovery-server: ") + e.what());
   }
   // On a secured domain a tool authenticates too: as the monitor identity unless told otherwise.
   if (auto k = args.value("--keys")) keys = *k;

@@ -99,6 +99,7 @@ const CommandHelp kCommands[] = {
         or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes. hz gives
         the wall-clock rate and, for stamped types, the rate on the pipeline's own clock.
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
+        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
     {"monitor",
      R"(  monitor [--domain N | --pipeline FILE] [--transport T] [--interval SECONDS] [--duration SECONDS] [--once]
@@ -106,6 +107,7 @@ const CommandHelp kCommands[] = {
         overruns, dropped and rejected samples, warnings, the last problem) and the display mode,
         redrawn in place every --interval (0.5 s). --once prints one table and exits.
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
+        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
     {"bridge", R"(  bridge [TOPIC...] [--domain N | --pipeline FILE] [--transport T] [--port P] [--address A]
          [--video TOPIC] [--plot TOPIC:FIELD]... [--duration SECONDS] [--web-root DIR]
@@ -115,6 +117,7 @@ const CommandHelp kCommands[] = {
         default display/view). A topic is read only while someone subscribes to it.
         --address 0.0.0.0 serves other machines too (anyone who can reach the port can watch).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
+        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
     {"record",
      R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
@@ -122,6 +125,7 @@ const CommandHelp kCommands[] = {
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
+        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
     {"play",
      R"(  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]
@@ -130,6 +134,12 @@ const CommandHelp kCommands[] = {
   play FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--topics A,B] [--rate R] [--loop]
         Publish the recorded samples onto a DDS domain on the real clock, spaced as recorded.
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
+        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
+)"},
+    {"discovery-server", R"(  discovery-server [--listen IPV4:PORT] [--id N] [--domain N]
+        A Fast DDS Discovery Server (default 0.0.0.0:11811, id 0), for networks without multicast:
+        pipelines name it (dds: {discovery_server: 10.0.0.5:11811}; a list for servers 0, 1, ...),
+        the tools take --discovery-server 10.0.0.5:11811. Runs until Ctrl-C.
 )"},
     {"new", R"(  new component NAME [--dir DIR]
         Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
@@ -191,6 +201,7 @@ int main(int argc, char** argv) {
     if (command == "play") return wysiwyf::cli::cmd_play(std::move(rest));
     if (command == "monitor") return wysiwyf::cli::cmd_monitor(std::move(rest));
     if (command == "bridge") return wysiwyf::cli::cmd_bridge(std::move(rest));
+    if (command == "discovery-server") return wysiwyf::cli::cmd_discovery_server(std::move(rest));
     std::cerr << "wysiwyf: unknown command '" << command << "'; expected one of:";
     for (const auto& c : kCommands) std::cerr << " " << c.name;
     std::cerr << "\n";

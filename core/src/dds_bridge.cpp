@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "wysiwyf/dds.hpp"
+#include "wysiwyf/dds_discovery.hpp"
 #include "wysiwyf/stale_shared_memory.hpp"
 
 namespace wysiwyf::detail {
@@ -179,6 +180,7 @@ DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const st
     qos = dds::participant_qos(o.transport, o.name);
     dds::remove_stale_shared_memory_once(o.transport, [this](const std::string& s) { say(s); });
   }
+  if (!o.discovery_servers.empty()) dds::use_discovery_servers(qos, o.discovery_servers, /*see_everything=*/false);
   if (o.security) {
     dds::enable_security(qos, *o.security);
     identity_ = o.security->identity;

@@ -47,6 +47,7 @@ struct DdsParticipantOptions {
   std::string participant_profile;  // a participant profile in it ("" the transport's QoS)
   std::string name;                 // announced in discovery
   std::optional<dds::SecurityIdentity> security;
+  std::vector<std::string> discovery_servers;  // IPv4:port; empty: multicast discovery
 };
 
 class DdsBridge {

@@ -20,7 +20,7 @@ const std::vector<std::string>& transport_names() {
 
 bool uses_shared_memory(const std::string& transport) { return transport != "udp" && transport != "loopback"; }
 
-bool uses_data_sharing(const std::string& transport) { return transport != "loopback"; }
+bool uses_data_sharing(const std::string& transport) { return uses_shared_memory(transport); }
 
 DomainParticipantQos participant_qos(const std::string& transport, const std::string& name) {
   DomainParticipantQos qos = PARTICIPANT_QOS_DEFAULT;

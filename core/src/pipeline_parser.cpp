@@ -10,6 +10,7 @@
 
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/dds.hpp"
+#include "wysiwyf/dds_discovery.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/search_paths.hpp"
 #include "wysiwyf/validator.hpp"
@@ -78,7 +79,7 @@ const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include",  "domai
                                            "clock",   "dds",  "security", "components"};
 const std::vector<std::string> kSecurityKeys = {"keys", "identities"};
 const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
-const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile"};
+const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile", "discovery_server"};
 const std::vector<std::string> kComponentKeys = {"type", "rate",    "process",         "enabled", "spin",   "priority",
                                                  "cpus", "trigger", "trigger_timeout", "params",  "topics", "qos"};
 const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
@@ -399,6 +400,21 @@ class Parser {
     }
     if (const YAML::Node m = n["participant_profile"])
       get_string(m, file, "dds participant_profile", dds.participant_profile);
+    if (const YAML::Node m = n["discovery_server"]) {  // one address or a list of them
+      std::vector<std::string> servers;
+      const auto add = [&](const YAML::Node& item) {
+        if (item.IsScalar() && dds::is_server_address(item.Scalar()))
+          servers.push_back(item.Scalar());
+        else
+          error(at(item, file), "dds discovery_server: found " + describe_node(item) +
+                                    "; expected IPv4:port of a discovery server, like 10.0.0.5:11811, or a list");
+      };
+      if (m.IsSequence())
+        for (const auto& item : m) add(item);
+      else
+        add(m);
+      dds.discovery_servers.assign(servers, at(m, file));
+    }
   }
 
   void apply_security(const YAML::Node& n, const std::string& file, SecuritySpec& security) {

@@ -364,9 +364,13 @@ bool Runtime::Impl::setup(RunResult& result) {
     const std::string name = (spec.name.set ? spec.name.value : "pipeline") + "/" +
                              (options.process.empty() ? "all" : options.process) +
                              (spec.security.enabled() ? "" : "/" + std::to_string(getpid()));
-    detail::DdsParticipantOptions participant{
-        spec.domain_id(), spec.transport(), spec.dds.profiles_file.value, spec.dds.participant_profile.value, name,
-        std::nullopt};
+    detail::DdsParticipantOptions participant{spec.domain_id(),
+                                              spec.transport(),
+                                              spec.dds.profiles_file.value,
+                                              spec.dds.participant_profile.value,
+                                              name,
+                                              std::nullopt,
+                                              spec.dds.discovery_servers.value};
     if (spec.security.enabled())  // (validation made sure the process has an identity)
       participant.security = dds::SecurityIdentity{
           spec.security.keys.value, spec.security.identities.at(spec.process_label(options.process)).value};

@@ -137,6 +137,24 @@ TEST(PipelineFile, SecurityNamesAKeysFolderAndAnIdentityPerProcessGroup) {
   }
 }
 
+// dds.discovery_server: an IPv4:port, or a list of them (servers 0, 1, ...).
+TEST(PipelineFile, DiscoveryServersAreAddressesWithPorts) {
+  const PipelineSpec spec = load_pipeline_from_string(
+      "wysiwyf: 1\ndds: {discovery_server: [10.0.0.5:11811, 10.0.0.6:11812]}\ncomponents:\n  a: {type: t, rate: 10}\n",
+      "d.yaml");
+  EXPECT_EQ(spec.dds.discovery_servers.value, (std::vector<std::string>{"10.0.0.5:11811", "10.0.0.6:11812"}));
+  try {
+    load_pipeline_from_string("wysiwyf: 1\ndds: {discovery_server: server.local}\ncomponents:\n  a: {type: t}\n",
+                              "d.yaml");
+    FAIL() << "accepted a host name";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("d.yaml:2:25: error: dds discovery_server: found 'server.local'; expected "
+                                         "IPv4:port"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(PipelineFile, ClosestNameCatchesTyposOnly) {
   EXPECT_EQ(closest_name("threshhold", {"threshold", "rate"}), "threshold");
   EXPECT_EQ(closest_name("componets", {"components", "clock"}), "components");

@@ -23,8 +23,9 @@ const std::vector<std::string>& transport_names();
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
 // Whether participant_qos gives that transport shared memory (all but "udp" and "loopback").
 bool uses_shared_memory(const std::string& transport);
-// Whether endpoints may use Fast DDS data sharing between processes of one host: all transports
-// but "loopback", whose point is that samples take the network path.
+// Whether endpoints may use Fast DDS data sharing between processes of one host: where the
+// transport has shared memory. "udp" and "loopback" keep samples on the network path, even
+// between processes of one host (or of network namespaces that share its /dev/shm).
 bool uses_data_sharing(const std::string& transport);
 
 // `instances`: how many instances (key values) a keyed topic may have, each with its own history

@@ -80,6 +80,9 @@ struct DdsSpec {
   Sourced<std::string> transport;            // dds::transport_names(): "default", "local", ...
   Sourced<std::string> profiles_file;        // Fast DDS XML profiles, relative to the pipeline file
   Sourced<std::string> participant_profile;  // profile name in that file
+  // Fast DDS Discovery Servers (IPv4:port, `wysiwyf discovery-server`): participants find each
+  // other through them instead of by multicast.
+  Sourced<std::vector<std::string>> discovery_servers;
 };
 
 // DDS-Security (scripts/security makes the folder): each process group authenticates as the
