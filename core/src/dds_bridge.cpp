@@ -147,12 +147,26 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
 };
 
 // Who is who on the domain: participants' names by their GUID prefix, for messages that name a writer.
+// A process of the same pipeline ("<pipeline>/<group>...") that leaves or goes silent is said.
 struct DdsBridge::ParticipantNames final : public DomainParticipantListener {
+  ParticipantNames(DdsBridge& b, std::string pipeline) : bridge(b), pipeline_prefix(std::move(pipeline) + "/") {}
   void on_participant_discovery(DomainParticipant*,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
-    std::lock_guard<std::mutex> lock(mutex);
-    names[info.info.m_guid.guidPrefix] = info.info.m_participantName.to_string();
+    using S = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+    const std::string name = info.info.m_participantName.to_string();
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      names[info.info.m_guid.guidPrefix] = name;
+    }
+    if (name.rfind(pipeline_prefix, 0) != 0) return;
+    if (info.status == S::DROPPED_PARTICIPANT)
+      bridge.say("process '" + name + "' is lost: nothing heard from it for its DDS lease (" +
+                 std::to_string(dds::kLeaseSeconds) + " s); its writers are unmatched");
+    else if (info.status == S::REMOVED_PARTICIPANT)
+      bridge.say("process '" + name + "' left the domain");
   }
+  DdsBridge& bridge;
+  const std::string pipeline_prefix;
   std::mutex mutex;
   std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> names;
 };
@@ -185,7 +199,7 @@ DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const st
     dds::enable_security(qos, *o.security);
     identity_ = o.security->identity;
   }
-  names_ = std::make_unique<ParticipantNames>();
+  names_ = std::make_unique<ParticipantNames>(*this, o.name.substr(0, o.name.find('/')));
   participant_ = factory->create_participant(o.domain, qos, names_.get(), StatusMask::none());
   if (!participant_)
     throw std::runtime_error(

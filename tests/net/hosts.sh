@@ -145,6 +145,22 @@ for fault in kill stop link; do
     failures=$((failures + 1))
   fi
   [[ $fault == link ]] && ip -n "$tag-h1" link set eth0 up
+  if [[ $fault == kill ]]; then
+    # A killed group is noticed by its DDS lease (3 s), which frees the setpoint for its restart
+    # (with a discovery server, the server notices and tells the others it left).
+    sleep 4
+    start h1 display
+    display=$started
+    sleep 2
+    if grep -Eq "process 'hosts/display/[0-9]+' (is lost|left the domain)" "$work/robot.log" &&
+      grep -q "left; the next writer heard owns it" "$work/robot.log"; then
+      echo "$1, kill: the robot's process named the lost display process and freed the setpoint for its restart"
+    else
+      echo "$1, kill: FAILED: the robot's process did not name the lost display process or free the setpoint:"
+      cat "$work/robot.log"
+      failures=$((failures + 1))
+    fi
+  fi
   for p in "$display" "$robot"; do kill -CONT "$p" 2>/dev/null; kill -TERM "$p" 2>/dev/null; done
   wait "$display" "$robot" 2>/dev/null
 done

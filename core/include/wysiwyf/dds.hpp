@@ -19,8 +19,10 @@ const std::vector<std::string>& transport_names();
 // "local": shared memory and UDPv4 on 127.0.0.1 only (tests: nothing leaves the machine).
 // "shm": shared memory only. "udp": UDPv4 only. "loopback": UDPv4 on 127.0.0.1 only (one host's
 // processes over the network path: what a capture on `lo` sees).
-// Throws std::invalid_argument for any other name.
+// Throws std::invalid_argument for any other name. Every participant's lease is kLeaseSeconds,
+// announced twice a second.
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
+constexpr int kLeaseSeconds = 3;
 // Whether participant_qos gives that transport shared memory (all but "udp" and "loopback").
 bool uses_shared_memory(const std::string& transport);
 // Whether endpoints may use Fast DDS data sharing between processes of one host: where the
