@@ -106,7 +106,7 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
     if (!owner) owner = writer;
     if (writer == *owner) return true;
     counters.ignored.fetch_add(1);
-    if (named.insert(bridge.writer_name(writer)).second)
+    if (named.insert(writer).second)  // (the name is made once per writer, not per sample)
       bridge.say("topic '" + channel.topic() + "': samples of a second writer, " + bridge.writer_name(writer) +
                  ", are ignored: the topic takes one writer, and " + bridge.writer_name(*owner) + " is it");
     return false;
@@ -142,7 +142,7 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   const bool one_writer;
   std::mutex owner_mutex;  // the receive thread and the discovery thread
   std::optional<InstanceHandle_t> owner;
-  std::set<std::string> named;  // the writers said to be ignored
+  std::set<InstanceHandle_t> named;  // the writers said to be ignored
   Counters counters;
 };
 
