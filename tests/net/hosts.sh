@@ -146,9 +146,9 @@ for fault in kill stop link; do
   fi
   [[ $fault == link ]] && ip -n "$tag-h1" link set eth0 up
   if [[ $fault == kill ]]; then
-    # A killed group is noticed by its DDS lease (3 s), which frees the setpoint for its restart
+    # A killed group is noticed by its DDS lease (5 s), which frees the setpoint for its restart
     # (with a discovery server, the server notices and tells the others it left).
-    sleep 4
+    sleep 6
     start h1 display
     display=$started
     sleep 2

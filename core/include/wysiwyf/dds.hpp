@@ -22,7 +22,7 @@ const std::vector<std::string>& transport_names();
 // Throws std::invalid_argument for any other name. Every participant's lease is kLeaseSeconds,
 // announced twice a second.
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
-constexpr int kLeaseSeconds = 3;
+constexpr int kLeaseSeconds = 5;
 // Whether participant_qos gives that transport shared memory (all but "udp" and "loopback").
 bool uses_shared_memory(const std::string& transport);
 // Whether endpoints may use Fast DDS data sharing between processes of one host: where the
