@@ -239,7 +239,7 @@ void BM_Image640x480_TwoProcess_KernelSecured(benchmark::State& s) {
   two_process_secured<msg::Image>(s, "secured", 109);
 }
 void BM_Image640x480_TwoProcess_KernelAuthenticated(benchmark::State& s) {
-  two_process_secured<msg::Image>(s, "authenticated", 110);
+  two_process_secured<msg::Image>(s, "authenticated", 118);  // (110-115: the security tests)
 }
 
 BENCHMARK(BM_JointState_InProcess_Kernel)

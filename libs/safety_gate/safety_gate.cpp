@@ -266,7 +266,9 @@ const JointReference& SafetyGate::step(std::int64_t now_ns) {
     why += period_ns_ > 0 ? format(" (its stream came every %.0f ms; lost after %.0f ms)",
                                    static_cast<double>(period_ns_) * 1e-6, timeout_ms)
                           : format(" (timeout %.0f ms)", timeout_ms);
-    set_state(SafetyState::kHolding, why + ": braking to a hold");
+    // A fault, not a hold: a returning stream is not followed by itself, only after the
+    // display's request (clear_input_fault), so it resumes through its own start, not mid-motion.
+    fault("setpoint stream lost: " + why + ": held until the display asks", FaultCause::kInput);
   }
   const bool track = started_ && state_ == SafetyState::kOk && have_target_;
   for (int j = 0; j < kDof; ++j) {

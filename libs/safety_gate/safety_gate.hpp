@@ -19,14 +19,16 @@
 //    beyond the limits, an IK failure or branch change, a measured force or torque above its
 //    limit, a following error or an overspeed latch a fault with a reason, and the reference
 //    brakes to a standstill within the limits and holds there. Faults stay until reset().
-//  - When setpoints stop coming it brakes and holds too, but that is not latched: a fresh
-//    setpoint within max_setpoint_step of where the arm stopped resumes the motion. The stream is
-//    lost after setpoint_periods of its own period (learned from the arrivals of its last
-//    setpoints: 3 ms for a 1 kHz stream, 60 ms for a 50 Hz one), at most setpoint_timeout.
+//  - When setpoints stop coming it brakes and holds too, latched as an input fault naming the
+//    lost source: a stream that comes back is not followed by itself (it may be a frozen process
+//    thawing mid-motion), only once the display asks (clear_input_fault). The stream is lost
+//    after setpoint_periods of its own period (learned from the arrivals of its last setpoints:
+//    3 ms for a 1 kHz stream, 60 ms for a 50 Hz one), at most setpoint_timeout.
 //  - A fault that bad input caused (a setpoint refused above, an unreachable or jumping IK
-//    target) may be cleared once the reference is at rest (clear_input_fault: the supervisor's
-//    request once its inputs are good again); a fault of the arm itself (limits, overspeed,
-//    following error, force, a bad measurement) stays until reset().
+//    target, the stream lost) may be cleared once the reference is at rest (clear_input_fault:
+//    the supervisor's request once its inputs are good again); then the first setpoint within
+//    max_setpoint_step of where the arm stands starts it again. A fault of the arm itself
+//    (limits, overspeed, following error, force, a bad measurement) stays until reset().
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -65,13 +67,14 @@ struct SafetyConfig {
 
 enum class SafetyState {
   kOk,       // following setpoints
-  kHolding,  // braking to, or holding, a standstill: no setpoint yet, or the stream stopped
-  kFault,    // latched: braking to, or holding, a standstill until reset()
+  kHolding,  // braking to, or holding, a standstill: no setpoint yet (or since a fault was cleared)
+  kFault,    // latched: braking to, or holding, a standstill until cleared or reset()
 };
 const char* to_string(SafetyState state);
 
-// What latched a fault: bad input (a setpoint), which the supervisor may clear once its input is
-// good again, or the arm itself (a measurement out of bounds), which only reset() clears.
+// What latched a fault: bad input (a setpoint, or the stream's loss), which the supervisor may
+// clear once its input is good again, or the arm itself (a measurement out of bounds), which only
+// reset() clears.
 enum class FaultCause { kInput, kArm };
 
 // A Cartesian setpoint as it arrived (base_T_dev and its twist in base coordinates), unchecked.
@@ -130,14 +133,14 @@ class SafetyGate {
 
   SafetyState state() const { return state_; }
   bool following() const { return state_ == SafetyState::kOk; }
-  // "following setpoints", "waiting for the first setpoint", "no setpoint for 61 ms ...", or the
-  // fault's reason.
+  // "following setpoints", "waiting for the first setpoint", or the fault's reason ("setpoint
+  // stream lost: no setpoint for 61 ms from 'script' ...").
   const std::string& reason() const { return reason_; }
   const JointReference& reference() const { return ref_; }
   // The setpoint stream's period, learned from its last setpoints' arrivals (the longest of the
   // last kPeriodWindow intervals); 0 while unknown (fewer than two since following began).
   std::int64_t setpoint_period_ns() const { return period_ns_; }
-  // How long the stream may be silent before the gate brakes to a hold: setpoint_periods of its
+  // How long the stream may be silent before the gate faults and brakes: setpoint_periods of its
   // period (of the servo period at least), at most setpoint_timeout, which alone applies while
   // the period is unknown.
   std::int64_t setpoint_loss_timeout_ns() const;

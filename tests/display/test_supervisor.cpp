@@ -59,7 +59,7 @@ class SupervisorRig {
     msg::RobotStatus r;
     r.state(arm_state_);
     r.clearable(arm_clearable_);
-    r.reason(arm_state_ == msg::ARM_FAULT ? "setpoint rejected: non-finite number" : "");
+    r.reason(arm_reason_);
     robot_.write(r);
     msg::PlannerStatus p;
     p.state(msg::PLAN_IN_PLACE);
@@ -83,7 +83,10 @@ class SupervisorRig {
   }
   Harness& harness() { return h_; }
   // What the arm reports from the next tick on.
-  void arm(msg::ArmState state, bool clearable = false) { arm_state_ = state, arm_clearable_ = clearable; }
+  void arm(msg::ArmState state, bool clearable = false, std::string reason = "setpoint rejected: non-finite number") {
+    arm_state_ = state, arm_clearable_ = clearable;
+    arm_reason_ = state == msg::ARM_FAULT ? std::move(reason) : std::string();
+  }
   // The clear requests written since the last call.
   int requests() {
     int n = 0;
@@ -106,6 +109,7 @@ class SupervisorRig {
   msg::DisplayMode last_mode_;
   msg::ArmState arm_state_ = msg::ARM_OK;
   bool arm_clearable_ = false;
+  std::string arm_reason_;
   Eigen::Isometry3d plate_ = Eigen::Isometry3d::Identity();
 };
 
@@ -190,6 +194,33 @@ TEST(Supervisor, AnArmFaultOfBadInputIsClearedOnceTheInputsAreGoodAndTheDisplayS
   EXPECT_TRUE(idle);
   EXPECT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
   EXPECT_EQ(rig.requests(), 0);
+}
+
+// A supervisor (re)started while the arm holds after losing its stream sends no setpoint until
+// it has asked the arm to clear the loss and the arm holds cleared: then idle -> surface.
+TEST(Supervisor, AnArmThatLostItsStreamIsStartedOnlyThroughTheNormalStart) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1);
+  rig.arm(msg::ARM_FAULT, true, "setpoint stream lost: no setpoint for 31 ms from 'supervisor/surface'");
+  int first = -1, requests = 0;
+  msg::CartesianSetpoint sp;
+  for (int t = 0; t < 400; ++t) {
+    rig.tick(t, &at);
+    EXPECT_FALSE(rig.setpoint(sp)) << "a setpoint to an arm that waits for the display's request, at " << t;
+    const int n = rig.requests();
+    if (n > 0 && first < 0) first = t;
+    requests += n;
+  }
+  EXPECT_EQ(rig.mode(), msg::MODE_FAULT);
+  EXPECT_NE(rig.reason().find("the arm: setpoint stream lost"), std::string::npos) << rig.reason();
+  EXPECT_GE(first, 200);  // recover_after of good input first
+  EXPECT_LE(first, 202);
+  EXPECT_GE(requests, 2);     // repeated while the arm still reports it
+  rig.arm(msg::ARM_HOLDING);  // cleared: holding, waiting for a setpoint near it
+  for (int t = 400; t < 800 && rig.mode() != msg::MODE_SURFACE; ++t) rig.tick(t, &at);
+  EXPECT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
+  ASSERT_TRUE(rig.setpoint(sp));
+  EXPECT_NEAR((msgs::to_eigen(sp.pose().position()) - at).norm(), 0.0, 1e-12) << "from the planner's start";
 }
 
 TEST(Supervisor, AnArmFaultOfTheArmItselfIsNeverAskedToClear) {

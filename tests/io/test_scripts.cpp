@@ -80,6 +80,48 @@ TEST(SetpointScript, LoopsWhenAsked) {
   EXPECT_NEAR(a.pose().position().x(), b.pose().position().x(), 1e-12);
 }
 
+// With start_arm the script starts the arm as the supervisor would: it asks it to
+// clear a fault of its input (the stream lost while the script's process was away), starts its
+// script once the arm is ready, and never asks again.
+TEST(SetpointScript, StartsTheArmOnceAndOnlyAtItsStart) {
+  Harness h("setpoint_script", "{start_arm: true, waypoints: [0, 0.5, 0, 0.3, 0, 0, 0,  1, 0.6, 0, 0.3, 0, 0, 0]}",
+            1000);
+  auto status = h.feed<msg::RobotStatus>("arm_status");
+  auto out = h.watch<msg::CartesianSetpoint>("setpoint");
+  auto requests = h.watch<msg::ArmRequest>("arm_request");
+  h.activate();
+  const auto count = [](auto& in, auto sample) {
+    int n = 0;
+    while (in.take(sample)) ++n;
+    return n;
+  };
+  msg::CartesianSetpoint sp;
+  msg::ArmRequest rq;
+  for (int t = 0; t < 50; ++t) h.tick(Time{t * kMs});  // no status yet: it waits, silent
+  EXPECT_EQ(count(out, sp), 0);
+  EXPECT_EQ(count(requests, rq), 0);
+  msg::RobotStatus lost;
+  lost.state(msg::ARM_FAULT);
+  lost.clearable(true);
+  lost.reason("setpoint stream lost: no setpoint for 31 ms from 'script'");
+  status.write(lost);
+  for (int t = 50; t < 300; ++t) h.tick(Time{t * kMs});
+  EXPECT_EQ(count(out, sp), 0) << "no setpoint to an arm that holds";
+  EXPECT_EQ(count(requests, rq), 3) << "asked at 50, 150 and 250 ms";
+  EXPECT_EQ(rq.request(), msg::ARM_CLEAR_INPUT_FAULT);
+  msg::RobotStatus ready;
+  ready.state(msg::ARM_HOLDING);
+  ready.reason("input fault cleared; waiting for a setpoint");
+  status.write(ready);
+  h.tick(Time{300 * kMs});
+  ASSERT_TRUE(out.take_latest(sp));
+  EXPECT_NEAR(position(sp).x(), 0.5, 1e-12) << "the script starts at its first waypoint";
+  status.write(lost);  // lost again later: not this script's start, never cleared by it
+  for (int t = 301; t < 1000; ++t) h.tick(Time{t * kMs});
+  EXPECT_EQ(count(requests, rq), 0);
+  EXPECT_EQ(count(out, sp), 699) << "it went on writing";
+}
+
 TEST(SetpointScript, RejectsBadWaypointsWithAClearMessage) {
   try {
     Harness h("setpoint_script", "{waypoints: [0, 1, 2, 3, 0, 0, 0,  0, 1, 2, 3, 0, 0, 0]}");

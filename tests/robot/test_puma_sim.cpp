@@ -322,9 +322,16 @@ TEST(PumaSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
       "the last setpoint (bound %.0f ms)\n",
       v0, stopped_ms, 60 + braking_ms + 100);
   EXPECT_LT(stopped_ms, 60 + braking_ms + 100);
-  EXPECT_EQ(sim.state(), msg::ARM_HOLDING);
-  EXPECT_NE(sim.reason().find("no setpoint for"), std::string::npos) << sim.reason();
-  // And it resumes from where it stopped.
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT);
+  EXPECT_TRUE(sim.last_status.clearable()) << "the stream's loss is the input's fault, not the arm's";
+  EXPECT_NE(sim.reason().find("setpoint stream lost: no setpoint for"), std::string::npos) << sim.reason();
+  // The stream coming back alone does not move the arm (a frozen display thawing mid-motion)...
+  const Vector6d held = sim.last().q;
+  sim.hold_pose(sim.last().dev, 300);
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT) << sim.reason();
+  EXPECT_LT((sim.last().q - held).cwiseAbs().maxCoeff(), 2e-4);
+  // ...the display's request does, from where it stopped.
+  sim.ask_to_clear();
   sim.hold_pose(sim.last().dev, 300);
   EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
 }
@@ -367,7 +374,7 @@ TEST(PumaSim, NanWhileMovingBrakesWithinTheLimits) {
 TEST(PumaSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
   // The plate accelerates at 1 m/s^2 along y (the second-order hold would extrapolate exactly
   // that) and the stream stops at 0.2 m/s. From the moment the next setpoint was due no joint may
-  // go faster than it went then; the status says HOLDING within 3 periods of the last setpoint.
+  // go faster than it went then; the status says FAULT (held) within 3 periods of the last setpoint.
   for (const int period_ms : {1, 5, 20}) {
     Sim sim;
     const Eigen::Isometry3d ready = model().fk(kReady);
@@ -389,7 +396,7 @@ TEST(PumaSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
     int held_after_ms = -1;
     for (int i = 0; i < 400; ++i) {
       sim.tick();
-      if (held_after_ms < 0 && sim.state() == msg::ARM_HOLDING)
+      if (held_after_ms < 0 && sim.state() == msg::ARM_FAULT)
         held_after_ms = static_cast<int>((sim.t - kMs - last_setpoint) / kMs);
     }
     check_limits(sim.samples);
@@ -400,7 +407,7 @@ TEST(PumaSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
     for (std::size_t i = due; i < sim.samples.size(); ++i)
       excess = std::max(excess, (sim.samples[i].qd.cwiseAbs() - at_due).maxCoeff());
     std::printf(
-        "[measured] %d ms stream lost at %.3f rad/s (fastest joint): HOLDING %d ms after the last setpoint; "
+        "[measured] %d ms stream lost at %.3f rad/s (fastest joint): held %d ms after the last setpoint; "
         "largest joint speed-up after the next was due %.2g rad/s; status '%s'\n",
         period_ms, at_due.maxCoeff(), held_after_ms, excess, sim.reason().c_str());
     EXPECT_GT(at_due.maxCoeff(), 0.1) << "the arm was moving";
@@ -445,7 +452,8 @@ TEST(PumaSim, StaleFutureAndOutOfOrderSetpointsAreRefusedAndNeverMoveTheArm) {
     sim.sp.write(setpoint(sim.t - 60 * kMs, away));
     sim.tick();
   }
-  EXPECT_EQ(sim.state(), msg::ARM_HOLDING) << sim.reason();
+  EXPECT_EQ(sim.state(), msg::ARM_FAULT) << sim.reason();
+  EXPECT_NE(sim.reason().find("setpoint stream lost"), std::string::npos) << sim.reason();
 }
 
 TEST(PumaSim, AnInputFaultIsClearedOnRequestOnceTheArmStandsStillButTheArmsOwnIsNot) {

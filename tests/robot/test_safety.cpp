@@ -188,7 +188,7 @@ TEST_F(SafetyGateTest, WatchdogBrakesWithinTheBrakingBoundAndHoldsThenResumes) {
     now += kMs;
     check.check(gate.step(now));
     const std::int64_t timeout_ns = static_cast<std::int64_t>(config.setpoint_timeout * 1e9);  // (in ns, as the gate)
-    EXPECT_EQ(gate.state(), now - last_setpoint <= timeout_ns ? SafetyState::kOk : SafetyState::kHolding) << i;
+    EXPECT_EQ(gate.state(), now - last_setpoint <= timeout_ns ? SafetyState::kOk : SafetyState::kFault) << i;
     if (stopped_at < 0 && gate.reference().qd.norm() == 0.0) stopped_at = i;
   }
   EXPECT_LE(check.worst_velocity, 1.0 + 1e-12);
@@ -199,8 +199,15 @@ TEST_F(SafetyGateTest, WatchdogBrakesWithinTheBrakingBoundAndHoldsThenResumes) {
       config.setpoint_timeout * 1e3 + 20 + std::abs(v0) / gate.reference_acceleration_limit()[3] * 1e3 + 1;
   ASSERT_GT(stopped_at, 0);
   EXPECT_LE(stopped_at, bound_ms);
-  // A fresh setpoint near where the arm stopped resumes.
+  // The loss is an input fault: a fresh setpoint near where the arm stopped is not followed by
+  // itself, only once the display has asked to resume (cleared it).
+  EXPECT_TRUE(gate.input_fault());
   Eigen::Isometry3d pose;
+  EXPECT_FALSE(
+      gate.accept_setpoint(now, setpoint_at(model.fk(gate.reference().q)), model.fk(gate.reference().q), pose));
+  EXPECT_EQ(gate.state(), SafetyState::kFault);
+  ASSERT_TRUE(gate.clear_input_fault(now));
+  EXPECT_EQ(gate.state(), SafetyState::kHolding);
   ASSERT_TRUE(gate.accept_setpoint(now, setpoint_at(model.fk(gate.reference().q)), model.fk(gate.reference().q), pose));
   EXPECT_EQ(gate.state(), SafetyState::kOk);
 }
@@ -222,7 +229,8 @@ TEST_F(SafetyGateTest, TheStreamIsLostAfterThreeOfItsOwnPeriodsAtMostTheTimeout)
     }
     EXPECT_EQ(now - last_setpoint, expected + kMs) << period_ms << " ms stream: held one tick after the timeout";
     EXPECT_NE(gate.reason().find("lost after"), std::string::npos) << gate.reason();
-    // Resumed, the stream's period is learned anew.
+    // Resumed (asked to), the stream's period is learned anew.
+    ASSERT_TRUE(gate.clear_input_fault(now)) << gate.reason();
     Eigen::Isometry3d pose;
     ASSERT_TRUE(
         gate.accept_setpoint(now, setpoint_at(model.fk(gate.reference().q)), model.fk(gate.reference().q), pose));

@@ -16,8 +16,9 @@
 // Faults (held: the last pose again, zero twist, DisplayMode FAULT with the reason): a stale or
 // non-finite input, a setpoint from another source than its port's, a setpoint that jumps faster
 // than max_setpoint_speed, the arm, the planner or admittance_sim failing, a force on the plate
-// with the hand far from it. An arm fault that bad input caused (RobotStatus.clearable) is
-// cleared by asking the arm (arm_request) once every other input is good again.
+// with the hand far from it. An arm fault that bad input caused (RobotStatus.clearable: a NaN,
+// a jump, its setpoint stream lost) is cleared by asking the arm (arm_request) once every other
+// input is good again, idle or not: the arm follows again only through this normal start.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -120,6 +121,12 @@ class Supervisor final : public Component {
     if (mode_ != msg::MODE_FAULT) check_inputs(now.ns);
     switch (mode_) {
       case msg::MODE_IDLE:
+        // An arm held by a fault (its stream lost while this display was away, say) starts only
+        // through the fault's recovery: cleared on request, then idle -> surface as here.
+        if (robot_ns_ >= 0 && robot_msg_.state() == msg::ARM_FAULT) {
+          bad(std::string("the arm: ") + robot_msg_.reason().c_str(), now.ns);
+          break;
+        }
         if (surface_.at_ns >= 0 && robot_ok() && (!sent_ || near(surface_))) enter(msg::MODE_SURFACE, now.ns, "");
         break;
       case msg::MODE_SURFACE:

@@ -1,6 +1,12 @@
 // setpoint_script: a Cartesian device setpoint stream through timed waypoints, with minimum-jerk
 // timing between them (zero velocity and acceleration at each waypoint, continuous velocity), the
 // way a test or a demo drives the robot without the haptic loop.
+//
+// With start_arm (and arm_status, arm_request mapped to the arm's status and request) it starts
+// the arm the way the supervisor does: it waits for the arm's status, asks it to clear a fault
+// that its input caused (its stream lost while this script's process was away), and starts its
+// script once the arm is ready. That is its only start: a fault later (the stream lost again) is
+// never cleared by it.
 #include <Eigen/Geometry>
 
 #include "keyframes/keyframes.hpp"
@@ -24,6 +30,15 @@ class SetpointScript final : public Component {
     setpoint_ = ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist at each tick (its one writer)",
                                                    Qos::reliable().one_writer());
     pose_ = ctx.output<msg::PoseStamped>("pose", "the same pose as a PoseStamped (e.g. a scripted hand target)");
+    start_arm_ = ctx.param<bool>("start_arm", false,
+                                 "start as the display would: wait for arm_status, ask (arm_request) to clear a fault "
+                                 "of the arm's input, run the script once the arm is ready");
+    arm_status_ =
+        ctx.input<msg::RobotStatus>("arm_status", "the arm's RobotStatus (read with start_arm)",
+                                    Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0}.optional_input());
+    arm_request_ = ctx.output<msg::ArmRequest>(
+        "arm_request", "with start_arm, at its start: asks the arm to clear a fault that its input caused",
+        Qos::reliable(8));
     try {
       table_ = std::make_unique<Keyframes>(waypoints, 6);
     } catch (const std::invalid_argument& e) {
@@ -40,6 +55,7 @@ class SetpointScript final : public Component {
   }
 
   void tick(Time now) override {
+    if (!started_ && !start_arm(now.ns)) return;
     const Keyframes::Segment seg = table_->at(time_.at(now.ns, table_->end_time(), loop_));
     const double tau = seg.tau, tau2 = tau * tau;
     const double s = tau2 * tau * (10 - 15 * tau + 6 * tau2);                                  // min-jerk
@@ -64,6 +80,35 @@ class SetpointScript final : public Component {
   }
 
  private:
+  // true once the script may run: at once without start_arm; with it, once the arm reports it is
+  // following or holding (not faulted), after asking it (every 100 ms) to clear a fault of its input.
+  bool start_arm(std::int64_t now_ns) {
+    if (!start_arm_) return started_ = true;
+    while (arm_status_.take(status_)) have_status_ = true;
+    if (!have_status_) return false;
+    if (status_.state() != msg::ARM_FAULT) {
+      if (asked_) log(std::string("the arm is ready (") + status_.reason().c_str() + "): the script starts");
+      report_health(Health::kOk);
+      return started_ = true;
+    }
+    if (!status_.clearable()) {
+      if (!said_unclearable_)
+        report_health(Health::kHolding, std::string("the arm's own fault: ") + status_.reason().c_str());
+      said_unclearable_ = true;
+      return false;
+    }
+    if (now_ns - asked_ns_ >= 100'000'000) {
+      fill_header(request_.header(), now_ns, request_seq_++, "base");
+      request_.request(msg::ARM_CLEAR_INPUT_FAULT);
+      request_.reason(("setpoint_script starting after: " + std::string(status_.reason().c_str())).substr(0, 127));
+      arm_request_.write(request_);
+      if (!asked_)
+        log(std::string("the arm holds (") + status_.reason().c_str() + "): asking it to clear that to start");
+      asked_ = true, asked_ns_ = now_ns;
+    }
+    return false;
+  }
+
   std::unique_ptr<Keyframes> table_;
   std::vector<Eigen::Vector3d> positions_;
   std::vector<Eigen::Quaterniond> rotations_;
@@ -75,6 +120,13 @@ class SetpointScript final : public Component {
   msg::PoseStamped pose_msg_;
   Output<msg::CartesianSetpoint> setpoint_;
   Output<msg::PoseStamped> pose_;
+  Input<msg::RobotStatus> arm_status_;
+  Output<msg::ArmRequest> arm_request_;
+  msg::RobotStatus status_;
+  msg::ArmRequest request_;
+  bool start_arm_ = false, started_ = false, have_status_ = false, asked_ = false, said_unclearable_ = false;
+  std::int64_t asked_ns_ = -1'000'000'000;
+  std::uint64_t request_seq_ = 0;
 };
 
 }  // namespace wysiwyf::io
