@@ -90,14 +90,19 @@ std::int64_t SafetyGate::setpoint_loss_timeout_ns() const {
                   static_cast<std::int64_t>(config_.setpoint_periods * static_cast<double>(std::max(period_ns_, dt))));
 }
 
-// Several setpoints in one servo period are one arrival; the period is the longest gap of the
-// window, so a stream's jitter never reads as its loss.
-void SafetyGate::learn_period(std::int64_t now_ns) {
-  if (state_ != SafetyState::kOk || now_ns <= last_setpoint_ns_) return;
-  intervals_[next_interval_] = now_ns - last_setpoint_ns_;
+// The period is the longest gap of the window, so a stream's jitter never reads as its loss. The
+// gaps are the sender's (its stamps): arrivals bunch up after a delay in the network, which would
+// shorten the period and read the next ordinary gap as a loss. Unstamped, several setpoints in one
+// servo period are one arrival.
+void SafetyGate::learn_period(std::int64_t now_ns, std::int64_t stamp_ns) {
+  if (state_ != SafetyState::kOk) return;
+  const bool stamped = stamp_ns >= 0 && last_stamp_ns_ >= 0;
+  const std::int64_t interval = stamped ? stamp_ns - last_stamp_ns_ : now_ns - last_setpoint_ns_;
+  if (interval <= 0) return;
+  intervals_[next_interval_] = interval;
   next_interval_ = (next_interval_ + 1) % kPeriodWindow;
   n_intervals_ = std::min(n_intervals_ + 1, kPeriodWindow);
-  period_ns_ = *std::max_element(intervals_, intervals_ + n_intervals_);
+  if (n_intervals_ >= kMinIntervals) period_ns_ = *std::max_element(intervals_, intervals_ + n_intervals_);
 }
 
 void SafetyGate::reset(const Vector6d& q_measured, std::int64_t now_ns) {
@@ -183,9 +188,10 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
           FaultCause::kInput);
     return false;
   }
-  learn_period(now_ns);
+  learn_period(now_ns, sp.stamp_ns);
   last_setpoint_ = candidate;
   last_setpoint_ns_ = now_ns;
+  last_stamp_ns_ = sp.stamp_ns;
   if (source_ != sp.source) source_.assign(sp.source);  // (reuses its buffer: no allocation per setpoint)
   if (!following) set_state(SafetyState::kOk, "following setpoints");
   pose = candidate;

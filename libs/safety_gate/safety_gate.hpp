@@ -22,8 +22,9 @@
 //  - When setpoints stop coming it brakes and holds too, latched as an input fault naming the
 //    lost source: a stream that comes back is not followed by itself (it may be a frozen process
 //    thawing mid-motion), only once the display asks (clear_input_fault). The stream is lost
-//    after setpoint_periods of its own period (learned from the arrivals of its last setpoints:
-//    3 ms for a 1 kHz stream, 60 ms for a 50 Hz one), at most setpoint_timeout.
+//    after setpoint_periods of its own period (learned from the stamps of its last setpoints, so a
+//    burst of late deliveries does not shorten it: 3 ms for a 1 kHz stream, 60 ms for a 50 Hz
+//    one), at most setpoint_timeout.
 //  - A fault that bad input caused (a setpoint refused above, an unreachable or jumping IK
 //    target, the stream lost) may be cleared once the reference is at rest (clear_input_fault:
 //    the supervisor's request once its inputs are good again); then the first setpoint within
@@ -84,6 +85,10 @@ struct SetpointInput {
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
   std::string_view source;  // who sent it (named when its stream is lost)
+  // The sender's stamp (its clock), from which the stream's period is learned: a delivery burst
+  // (samples held up in a network, then arriving one per servo period) does not shorten it. -1:
+  // not known, the period is learned from the arrivals.
+  std::int64_t stamp_ns = -1;
 };
 
 struct JointReference {
@@ -137,8 +142,9 @@ class SafetyGate {
   // stream lost: no setpoint for 61 ms from 'script' ...").
   const std::string& reason() const { return reason_; }
   const JointReference& reference() const { return ref_; }
-  // The setpoint stream's period, learned from its last setpoints' arrivals (the longest of the
-  // last kPeriodWindow intervals); 0 while unknown (fewer than two since following began).
+  // The setpoint stream's period, learned from its last setpoints' stamps (their arrivals when
+  // unstamped): the longest of the last kPeriodWindow intervals; 0 while unknown (fewer than
+  // kMinIntervals since following began: two samples bunched at the start say little).
   std::int64_t setpoint_period_ns() const { return period_ns_; }
   // How long the stream may be silent before the gate faults and brakes: setpoint_periods of its
   // period (of the servo period at least), at most setpoint_timeout, which alone applies while
@@ -155,9 +161,10 @@ class SafetyGate {
 
  private:
   void set_state(SafetyState state, std::string reason);
-  void learn_period(std::int64_t now_ns);
+  void learn_period(std::int64_t now_ns, std::int64_t stamp_ns);
 
   static constexpr int kPeriodWindow = 8;
+  static constexpr int kMinIntervals = 4;
 
   SafetyConfig config_;
   Vector6d v_max_, a_max_, c_;
@@ -167,8 +174,9 @@ class SafetyGate {
   bool started_ = false;
   FaultCause cause_ = FaultCause::kArm;
   std::int64_t last_setpoint_ns_ = 0;
+  std::int64_t last_stamp_ns_ = -1;             // the sender's stamp of the last accepted setpoint
   std::string source_;                          // of the last accepted setpoint
-  std::int64_t intervals_[kPeriodWindow] = {};  // between the last setpoints' arrivals, ns
+  std::int64_t intervals_[kPeriodWindow] = {};  // between the last setpoints' stamps (arrivals), ns
   int n_intervals_ = 0, next_interval_ = 0;
   std::int64_t period_ns_ = 0;
   Eigen::Isometry3d last_setpoint_ = Eigen::Isometry3d::Identity();

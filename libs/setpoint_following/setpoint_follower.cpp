@@ -45,6 +45,7 @@ SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, 
   in.linear_velocity = msgs::to_eigen(m.twist().linear());
   in.angular_velocity = msgs::to_eigen(m.twist().angular());
   in.source = m.source().c_str();
+  in.stamp_ns = stamp;
   const bool was_following = gate_.following();
   const Eigen::Isometry3d reference_pose = model_.fk(gate_.reference().q);
   Eigen::Isometry3d pose;

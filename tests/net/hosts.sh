@@ -140,7 +140,8 @@ for fault in kill stop link; do
   sleep 1
   arm_status >"$work/status"
   # The arm's reason: "no setpoint for N ms from 'script' (its stream came every P ms; lost
-  # after L ms)": P is the longest of its last 8 gaps (10 ms, or a little more on a loaded machine).
+  # after L ms)": P is the longest gap between its last 8 stamps (10 ms; 20 ms when the script,
+  # late by a whole period on a loaded machine, skipped a tick).
   reason=$(grep -o 'reason: ".*"' "$work/status")
   n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$reason" | grep -o '[0-9]*')
   p=$(grep -o 'came every [0-9]* ms' <<<"$reason" | grep -o '[0-9]*')
@@ -149,7 +150,7 @@ for fault in kill stop link; do
   # its next tick after it, which a loaded 2-core machine can delay by a few ms (real clock):
   # 10 ms of slack for that.
   if grep -q "state: ARM_FAULT" "$work/status" && grep -q "setpoint stream lost" <<<"$reason" &&
-    [[ -n $n && -n $p && -n $l ]] && ((p <= 15 && l <= 3 * (p + 1) && n <= l + 10)); then
+    [[ -n $n && -n $p && -n $l ]] && ((p <= 21 && l <= 3 * (p + 1) && n <= l + 10)); then
     echo "$1, $fault: the arm holds within 3 of the stream's periods: $reason"
   else
     echo "$1, $fault: FAILED: expected a hold after 3 periods of the 100 Hz stream (noticed within 10 ms):"

@@ -238,6 +238,43 @@ TEST_F(SafetyGateTest, TheStreamIsLostAfterThreeOfItsOwnPeriodsAtMostTheTimeout)
   }
 }
 
+// A 100 Hz stream whose first samples reach the arm together (queued while DDS matched the two
+// processes, then delivered one per servo period): learned from the arrivals its period would
+// read as 1 ms and its first ordinary 10 ms gap as a loss; learned from the sender's stamps it is
+// 10 ms, and no period is trusted before kMinIntervals of them.
+TEST_F(SafetyGateTest, TheStreamsPeriodComesFromItsStampsSoADeliveryBurstIsNotALoss) {
+  for (const bool stamped : {true, false}) {
+    SafetyGate gate(config);
+    start(gate, q0);
+    const Eigen::Isometry3d pose = model.fk(q0);
+    Eigen::Isometry3d accepted;
+    const auto deliver = [&](std::int64_t stamp_ms) {
+      SetpointInput in = setpoint_at(pose);
+      in.stamp_ns = stamped ? stamp_ms * kMs : -1;
+      EXPECT_TRUE(gate.accept_setpoint(now, in, pose, accepted)) << gate.reason();
+    };
+    const auto tick_to = [&](std::int64_t t_ms) {
+      while (now < t_ms * kMs) {
+        now += kMs;
+        gate.set_joint_target(ik_ok(q0), Vector6d::Zero());
+        gate.step(now);
+      }
+    };
+    for (std::int64_t k = 0; k < 6; ++k) tick_to(100 + k), deliver(10 * k);  // stamps 0 .. 50, at 100 .. 105 ms
+    tick_to(114);  // the next, stamped 60 ms, comes at 115 ms: 10 ms after the last arrival
+    if (stamped) {
+      EXPECT_EQ(gate.setpoint_period_ns(), 10 * kMs);
+      EXPECT_EQ(gate.state(), SafetyState::kOk) << gate.reason();
+      tick_to(115), deliver(60);
+      for (std::int64_t k = 7; k < 30; ++k) tick_to(55 + 10 * k), deliver(10 * k);  // on time from then on
+      EXPECT_EQ(gate.state(), SafetyState::kOk) << gate.reason();
+    } else {
+      EXPECT_EQ(gate.setpoint_period_ns(), kMs);
+      EXPECT_EQ(gate.state(), SafetyState::kFault) << "unstamped, the burst reads as a 1 kHz stream, lost";
+    }
+  }
+}
+
 TEST_F(SafetyGateTest, AnInputFaultClearsAtAStandstillAndAnArmFaultDoesNot) {
   SafetyGate gate(config);
   start(gate, q0);
