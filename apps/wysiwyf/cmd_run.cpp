@@ -83,6 +83,7 @@ int cmd_run(Args args) {
   RunOptions options;
   options.process = process;
   options.start_after_s = start_after;
+  options.one_writer_topics = loaded->validation.one_writer_topics;
   options.progress = progress || (!no_progress && isatty(STDERR_FILENO));
   Runtime runtime(loaded->spec, loader, options);
   const RunResult result = runtime.run();

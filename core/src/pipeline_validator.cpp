@@ -38,9 +38,34 @@ struct PortUse {
   PortDirection direction;
   Location where;
   bool single_writer = false;
+  Reliability reliability = Reliability::kReliable;
+  Durability durability = Durability::kVolatile;
   bool unmapped_optional = false;  // an optional input the pipeline did not connect to a topic
   std::string process;             // its component's process group
 };
+
+// Between process groups a topic is a DDS writer and reader, which DDS matches only when the
+// writer offers what the reader asks: reliability and durability at least as strong. (Inside one
+// process the kernel hands samples over whatever they ask.)
+template <class Error>
+void check_across_processes(const std::string& topic, const std::vector<PortUse>& uses, Error& error) {
+  for (const auto& in : uses) {
+    if (in.direction != PortDirection::kInput) continue;
+    for (const auto& out : uses) {
+      if (out.direction != PortDirection::kOutput || out.process == in.process) continue;
+      std::string policy;
+      if (in.reliability == Reliability::kReliable && out.reliability == Reliability::kBestEffort)
+        policy = "wants reliable samples, but " + out.label + " (process '" + out.process +
+                 "') offers best effort (RELIABILITY); expected a best-effort input (Qos::sensor)";
+      else if (in.durability == Durability::kTransientLocal && out.durability == Durability::kVolatile)
+        policy = "wants the last samples kept for late readers, but " + out.label + " (process '" + out.process +
+                 "') keeps none (DURABILITY); expected a volatile input";
+      if (!policy.empty())
+        error(in.where, "topic '" + topic + "': port " + in.label + " (process '" + in.process + "') " + policy +
+                            ", or both in one process group: across processes DDS refuses this reader");
+    }
+  }
+}
 
 }  // namespace
 
@@ -130,9 +155,11 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     for (const auto& p : ctx.declared_ports()) {
       auto t = c.topics.find(p.name);
       const Location where = t != c.topics.end() ? t->second.where : c.where;
+      const auto over = c.qos.find(p.name);  // the pipeline's qos: for the port, as the kernel applies it
+      const Qos q = over == c.qos.end() ? p.qos : over->second.apply(p.qos);
       topics[c.topic_for(p.name)].push_back(PortUse{c.name + "." + p.name, p.type_name, p.direction, where,
-                                                    p.qos.single_writer, p.qos.optional && t == c.topics.end(),
-                                                    c.process_name()});
+                                                    q.single_writer, q.reliability, q.durability,
+                                                    q.optional && t == c.topics.end(), c.process_name()});
     }
     result.described[c.name] = ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path,
                                                     ctx.declared_params(), ctx.declared_ports()};
@@ -155,6 +182,9 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
           result.warnings.push_back({use.where, "no component of this pipeline publishes topic '" + topic +
                                                     "' (read by " + use.label +
                                                     "); it must come from another program"});
+    check_across_processes(topic, uses, error);
+    if (std::any_of(uses.begin(), uses.end(), [](const PortUse& u) { return u.single_writer; }))
+      result.one_writer_topics.insert(topic);
     // An input that takes one writer (a robot's setpoint): every writer after the first is an error.
     const auto one_writer = std::find_if(uses.begin(), uses.end(), [](const PortUse& u) {
       return u.single_writer && u.direction == PortDirection::kInput;

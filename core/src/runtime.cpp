@@ -96,7 +96,9 @@ struct Slot final : ComponentHost {
       std::lock_guard<std::mutex> lock(health_mutex);
       ++rejected;
     }
-    warn_once("reject " + port + ": " + why,
+    // Once per port and kind of reason (its text up to the first ':'): "stale: stamped 61.2 ms
+    // ago" and "stale: stamped 61.3 ms ago" are one warning, not one per sample.
+    warn_once("reject " + port + ": " + why.substr(0, why.find(':')),
               "input '" + port + "': rejected a sample: " + why + " (further ones are counted in the diagnostics)");
   }
   void report_health(Health h, const std::string& reason) override {
@@ -419,7 +421,10 @@ bool Runtime::Impl::setup(RunResult& result) {
   diag_channel->reserve_outbox(static_cast<int>(slots.size()));  // one sample per component, at once
   diagnostics = Output<kernel_msgs::Diagnostics>(diag_channel);
   try {
-    for (const auto& [name, channel] : bus.channels()) bridge->connect(*channel);
+    for (const auto& [name, channel] : bus.channels()) {
+      if (options.one_writer_topics.count(name)) channel->set_one_writer();
+      bridge->connect(*channel);
+    }
   } catch (const std::exception& e) {
     result.ok = false;
     result.error = std::string("DDS: ") + e.what();

@@ -118,10 +118,10 @@ class DisplayMetrics final : public Component {
                               Qos::reliable(8).optional_input());
     wrench_in_ = ctx.input<msg::WrenchStamped>(
         "wrench", "optional: the wrist sensor's reading, for the user's peak force while attached",
-        Qos::reliable(256).optional_input());
+        Qos::sensor(256).optional_input());
     hand_in_ = ctx.input<msg::HandPosition>(
         "hand", "optional: the tracked hand (hand/position), for the sensor-to-setpoint latency of every hand sample",
-        Qos::reliable(64).optional_input());
+        Qos::sensor(64).optional_input());
     force_onset_ =
         ctx.param<double>("force_onset", 1.0, "N: the user's force from which a contact is felt", Range{0.01, 100});
     diagnostics_in_ = ctx.input<kernel_msgs::Diagnostics>(

@@ -8,6 +8,7 @@
 #include <iosfwd>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,10 @@ struct RunOptions {
   // Wall-clock seconds to wait after DDS is up and the components are active, before t = 0: a
   // recorder or monitor in another process is matched by then and misses no sample.
   double start_after_s = 0;
+  // Topics that take one writer somewhere in the pipeline (ValidationResult::one_writer_topics):
+  // this process's DDS endpoints on them are exclusive even where no local port says so (a
+  // monitor reading the robot's setpoint in another group than the arm and the supervisor).
+  std::set<std::string> one_writer_topics;
 };
 
 class Runtime {

@@ -3,6 +3,7 @@
 // component type exists, every parameter is declared, of the right type and in range, every
 // topic mapping names a real port, ports sharing a topic carry one type, rates fit the clock.
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct ValidationResult {
   std::vector<ConfigIssue> errors;
   std::vector<ConfigIssue> warnings;
   std::map<std::string, ComponentDescription> described;  // by instance name
+  // Topics that some port of the pipeline, in any process group, declares one-writer
+  // (Qos::one_writer): every process's DDS endpoints on them must be exclusive (RunOptions).
+  std::set<std::string> one_writer_topics;
   bool ok() const { return errors.empty(); }
 };
 

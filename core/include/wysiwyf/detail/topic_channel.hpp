@@ -45,8 +45,10 @@ class TopicChannelBase {
   // Strictest QoS among the local ports on this topic, used for the DDS endpoints.
   const Qos& writer_qos() const { return writer_qos_; }
   const Qos& reader_qos() const { return reader_qos_; }
-  // A topic with one writer (some local port says so): DDS exclusive ownership for its endpoints.
-  bool one_writer() const { return writer_qos_.single_writer || reader_qos_.single_writer; }
+  // A topic with one writer (some local port says so, or the pipeline: set_one_writer()): DDS
+  // exclusive ownership for its endpoints.
+  bool one_writer() const { return one_writer_ || writer_qos_.single_writer || reader_qos_.single_writer; }
+  void set_one_writer() { one_writer_ = true; }
 
   // The bridge owns the link and unsets it before it goes (null: local only from then on).
   void set_dds_writer(DdsWriterLink* link) {
@@ -99,6 +101,7 @@ class TopicChannelBase {
   int local_writers_ = 0;
   Qos writer_qos_;
   Qos reader_qos_;
+  bool one_writer_ = false;
   DdsWriterLink* dds_writer_ = nullptr;
   int outbox_depth_ = 1;
 };
