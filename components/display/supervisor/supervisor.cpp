@@ -127,7 +127,10 @@ class Supervisor final : public Component {
           bad(std::string("the arm: ") + robot_msg_.reason().c_str(), now.ns);
           break;
         }
-        if (surface_.at_ns >= 0 && robot_ok() && (!sent_ || near(surface_))) enter(msg::MODE_SURFACE, now.ns, "");
+        // Every input there first (between processes they come one by one as DDS matches them).
+        if (surface_.at_ns >= 0 && robot_ok() && wrench_ns_ >= 0 && now.ns - wrench_ns_ <= wrench_timeout_ns_ &&
+            planner_ns_ >= 0 && (!sent_ || near(surface_)))
+          enter(msg::MODE_SURFACE, now.ns, "");
         break;
       case msg::MODE_SURFACE:
         if (taking_over_)
@@ -355,7 +358,10 @@ class Supervisor final : public Component {
   void recover(std::int64_t now_ns) {
     if (!auto_recover_) return;
     const bool arm_clearable = robot_ns_ >= 0 && robot_msg_.state() == msg::ARM_FAULT && robot_msg_.clearable();
-    const bool good = surface_.fresh && now_ns - wrench_ns_ <= wrench_timeout_ns_ && (robot_ok() || arm_clearable) &&
+    // (The planner's setpoint within setpoint_timeout, not this very tick: on the real clock the
+    // planner ticks on a thread of its own, and some ticks find nothing new.)
+    const bool good = surface_.at_ns >= 0 && now_ns - surface_.at_ns <= setpoint_timeout_ns_ &&
+                      now_ns - wrench_ns_ <= wrench_timeout_ns_ && (robot_ok() || arm_clearable) &&
                       now_ns - planner_ns_ <= status_timeout_ns_ && planner_msg_.state() != msg::PLAN_FAULT;
     if (!good) {
       good_since_ns_ = -1;

@@ -1,0 +1,126 @@
+#!/bin/bash
+# The display itself split over hosts (config/pipelines/demo-hosts.yaml): network namespaces h1
+# (vision: the hand tracker), h2 (display: planner, physics, supervisor), h3 (robot: puma_sim and
+# the scripted user) and h4 (monitor: display_metrics), each with its own address on a bridge,
+# DDS over UDP only, the real clock. First the user's scripted run end to end: the hand's track,
+# the wrist's force, the setpoints and the arm's state cross the hosts, the display switches to
+# admittance on the touch, and the monitor judges the contacts. Then each group in turn is frozen
+# (SIGSTOP) for 2 s in the middle of the run and thawed:
+#   display: the arm holds within 3 of its setpoint stream's periods (250 Hz: 12 ms; 10 ms of
+#            slack for the arm's tick on a loaded machine), naming the lost source; thawed, the
+#            supervisor starts it again the normal way (its request, then idle -> surface);
+#   robot:   the supervisor holds (no wrist reading) and, the arm back, starts it again;
+#   vision:  the display carries on with the hand's last track and the run ends.
+# In every case the user's script runs to its end. Needs root; exits 77 (skipped) without it.
+# Usage: demo_hosts.sh <build dir> <source dir> <domain>
+set -uo pipefail
+build=$1 src=$2 domain=$3
+cli="$build/bin/wysiwyf"
+tag="wd$$"
+work=$(mktemp -d)
+pids=()
+
+cleanup() {
+  for p in "${pids[@]}"; do kill -CONT "$p" 2>/dev/null; kill -TERM "$p" 2>/dev/null; done
+  sleep 0.5
+  for p in "${pids[@]}"; do kill -KILL "$p" 2>/dev/null; done
+  for n in sw h1 h2 h3 h4; do ip netns del "$tag-$n" 2>/dev/null; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+if [[ $(id -u) -ne 0 ]] || ! ip netns add "$tag-sw" 2>/dev/null; then
+  echo "skipped: network namespaces need root (CAP_SYS_ADMIN, CAP_NET_ADMIN); run as root to test several hosts"
+  exit 77
+fi
+ip -n "$tag-sw" link add br0 type bridge
+ip -n "$tag-sw" link set br0 up
+i=0
+for n in h1 h2 h3 h4; do
+  i=$((i + 1))
+  ip netns add "$tag-$n"
+  ip link add "$tag$n" type veth peer name eth0 netns "$tag-$n"
+  ip link set "$tag$n" netns "$tag-sw"
+  ip -n "$tag-sw" link set "$tag$n" master br0 up
+  ip -n "$tag-$n" addr add "10.78.0.$i/24" dev eth0
+  ip -n "$tag-$n" link set eth0 up
+  ip -n "$tag-$n" link set lo up
+  ip -n "$tag-$n" route add 224.0.0.0/4 dev eth0
+done
+
+declare -A host=([vision]=h1 [display]=h2 [robot]=h3 [monitor]=h4) pid=()
+run_display() {  # run_display <group to freeze or ""> : one scripted run, logs in $work/<group>.log
+  for g in robot display vision monitor; do
+    ip netns exec "$tag-${host[$g]}" "$cli" run "$src/config/pipelines/demo-hosts.yaml" --process "$g" \
+      --set domain="$domain" --set metrics.params.summary="$work/metrics.json" --no-progress >"$work/$g.log" 2>&1 &
+    pid[$g]=$!
+    pids+=("$!")
+  done
+  if [[ -n $1 ]]; then
+    sleep 5  # the user is reaching for the cube's knob, or pushing it
+    kill -STOP "${pid[$1]}"
+    sleep 2
+    kill -CONT "${pid[$1]}"
+  fi
+  # The robot's group ends with the user's script (stop_when_done); the others are stopped after.
+  for _ in $(seq 90); do kill -0 "${pid[robot]}" 2>/dev/null || break; sleep 1; done
+  sleep 1
+  for g in display vision monitor robot; do kill -INT "${pid[$g]}" 2>/dev/null; done
+  for g in display vision monitor robot; do wait "${pid[$g]}" 2>/dev/null; done
+}
+
+failures=0
+check() {  # check <what> <command...>: counts a failure, prints the logs
+  local what=$1
+  shift
+  if "$@"; then
+    echo "$what"
+  else
+    echo "FAILED: $what"
+    for g in robot display vision monitor; do echo "--- $g"; grep -v "no component of this pipeline publishes" "$work/$g.log" | head -60; done
+    failures=$((failures + 1))
+  fi
+}
+script_done() { grep -Eq "script done: 2 reach\(es\)" "$work/robot.log"; }
+hits() { grep -o "script done: .*" "$work/robot.log"; }
+
+# 1. The scripted run across the hosts.
+run_display ""
+check "the user's script ran to its end across four hosts: $(hits)" script_done
+check "the display switched to admittance on a touch (h2), from the wrist's force (h3)" \
+  grep -q "surface -> admittance: touch" "$work/display.log"
+check "no DDS endpoint was refused between the hosts (QoS, ownership)" \
+  bash -c "! grep -h 'refused' '$work'/*.log"
+check "the monitor on h4 judged the contacts: $(grep -o '[0-9]* contact(s), [0-9]* hit(s)' "$work/monitor.log")" \
+  grep -q "contact(s), [1-9][0-9]* hit(s)" "$work/monitor.log"
+check "the monitor on h4 read the one-writer setpoint (sensor to setpoint: $(grep -o 'wrench): p50 [0-9.]* ms' "$work/monitor.log"))" \
+  grep -q "sensor sample to setpoint (wrench)" "$work/monitor.log"
+
+# 2. The display's group frozen for 2 s.
+run_display display
+lost=$(grep -o "fault: setpoint stream lost: no setpoint for [0-9]* ms .*lost after [0-9]* ms)" "$work/robot.log" | head -1)
+n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
+l=$(grep -o 'lost after [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
+check "display frozen: the arm held within 3 of the stream's periods: ${lost#fault: }" \
+  test -n "$n" -a -n "$l" -a "${n:-999}" -le $((${l:-0} + 10)) -a "${l:-999}" -le 15
+check "display thawed: the supervisor started the arm again through idle -> surface" \
+  bash -c "grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log' &&
+           grep -A2 'fault -> idle' '$work/display.log' | grep -q 'idle -> surface'"
+check "display frozen and thawed, the user's script ran to its end: $(hits)" script_done
+
+# 3. The robot's group frozen for 2 s.
+run_display robot
+check "robot frozen: the supervisor held ($(grep -o -m1 'fault: no wrist reading for [0-9.]* s' "$work/display.log"))" \
+  grep -q "> fault: no wrist reading" "$work/display.log"
+check "robot thawed: the arm held (its stream lost while it was frozen) until the supervisor started it again" \
+  bash -c "grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log' &&
+           grep -A2 'fault -> idle' '$work/display.log' | grep -q 'idle -> surface'"
+stale=$(grep -c "rejected a sample: stale" "$work/robot.log")
+check "robot thawed: the setpoints that waited for it were refused as stale, one warning for all ($stale)" test "$stale" -le 1
+check "robot frozen and thawed, the user's script ran to its end: $(hits)" script_done
+
+# 4. The vision group frozen for 2 s.
+run_display vision
+check "vision frozen and thawed, the user's script ran to its end: $(hits)" script_done
+check "vision frozen: the arm never faulted" bash -c "! grep -q '\[arm\] fault' '$work/robot.log'"
+exit $((failures > 0))
