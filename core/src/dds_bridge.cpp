@@ -31,7 +31,8 @@ struct Counters {
   std::atomic<std::uint64_t> incompatible{0};
   std::atomic<int> last_policy{0};
   std::atomic<std::uint64_t> lost{0};
-  std::atomic<std::uint64_t> ignored{0};  // samples of a writer that does not own a one-writer topic
+  std::atomic<std::uint64_t> ignored{0};          // samples of a writer that does not own a one-writer topic
+  std::atomic<std::uint64_t> deadline_missed{0};  // reader: periods of its deadline without a sample
 };
 
 // The channel's QoS for its DDS endpoints: a one-writer topic is one for writers and readers alike.
@@ -95,8 +96,34 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   ~ReaderLink() override { channel.delete_sample(sample); }
   void on_data_available(DataReader* reader) override {
     SampleInfo info;
-    while (reader->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK)
-      if (info.valid_data && (!one_writer || follows(info.publication_handle))) channel.deliver_from_dds(sample);
+    while (reader->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data || (one_writer && !follows(info.publication_handle))) continue;
+      if (late.exchange(false))
+        bridge.say("topic '" + channel.topic() + "': samples again from " +
+                   bridge.writer_name(info.publication_handle) + " (" +
+                   std::to_string(counters.deadline_missed.load()) + " deadline(s) missed so far)");
+      {
+        std::lock_guard<std::mutex> lock(owner_mutex);
+        last_writer = info.publication_handle;
+      }
+      channel.deliver_from_dds(sample);
+    }
+  }
+  // The deadline QoS (the pipeline's `qos: {port: {deadline: ..}}`): a writer whose process is
+  // frozen, cut off or overloaded is named as soon as a period passes without its sample, once
+  // per silence; the misses are counted (health()).
+  void on_requested_deadline_missed(DataReader*, const RequestedDeadlineMissedStatus& status) override {
+    counters.deadline_missed.store(static_cast<std::uint64_t>(status.total_count));
+    if (late.exchange(true)) return;
+    std::optional<InstanceHandle_t> writer;
+    {
+      std::lock_guard<std::mutex> lock(owner_mutex);
+      writer = last_writer;
+    }
+    bridge.say("topic '" + channel.topic() + "': no sample for its deadline (" +
+               std::to_string(channel.reader_qos().deadline_ns / 1'000'000) + " ms) from " +
+               (writer ? bridge.writer_name(*writer) : std::string("any writer")) +
+               ": is its process frozen, cut off or overloaded?");
   }
   // A one-writer topic follows the first writer it hears until that writer leaves; DDS ownership
   // already passes only its owner's samples, but it would hand the topic to a newcomer of equal
@@ -140,9 +167,11 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   TopicChannelBase& channel;
   void* sample;
   const bool one_writer;
-  std::mutex owner_mutex;  // the receive thread and the discovery thread
+  std::mutex owner_mutex;  // the receive, discovery and event threads
   std::optional<InstanceHandle_t> owner;
-  std::set<InstanceHandle_t> named;  // the writers said to be ignored
+  std::set<InstanceHandle_t> named;             // the writers said to be ignored
+  std::atomic<bool> late{false};                // a deadline passed without a sample, and none came since
+  std::optional<InstanceHandle_t> last_writer;  // whose sample came last (owner_mutex)
   Counters counters;
 };
 
@@ -273,7 +302,8 @@ void DdsBridge::connect(TopicChannelBase& channel) {
     if (!subscriber_->create_datareader(topic, qos, link.get(),
                                         StatusMask::data_available()
                                             << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()
-                                            << StatusMask::subscription_matched()))
+                                            << StatusMask::subscription_matched()
+                                            << StatusMask::requested_deadline_missed()))
       throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'" +
                                refused_by_permissions("subscribe to"));
     readers_.push_back(std::move(link));
@@ -284,10 +314,12 @@ std::vector<DdsTopicHealth> DdsBridge::health() const {
   std::vector<DdsTopicHealth> out;
   auto add = [&](const TopicChannelBase& channel, const Counters& c, std::uint64_t outbox_dropped) {
     const std::uint64_t incompatible = c.incompatible.load();
-    if (incompatible == 0 && c.lost.load() == 0 && outbox_dropped == 0 && c.ignored.load() == 0) return;
+    if (incompatible == 0 && c.lost.load() == 0 && outbox_dropped == 0 && c.ignored.load() == 0 &&
+        c.deadline_missed.load() == 0)
+      return;
     out.push_back(DdsTopicHealth{channel.topic(), incompatible,
                                  incompatible ? dds::qos_policy_name(c.last_policy.load()) : "", c.lost.load(),
-                                 outbox_dropped, c.ignored.load()});
+                                 outbox_dropped, c.ignored.load(), c.deadline_missed.load()});
   };
   {
     std::lock_guard<std::mutex> lock(writers_mutex_);

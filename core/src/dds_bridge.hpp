@@ -37,6 +37,7 @@ struct DdsTopicHealth {
   std::uint64_t lost = 0;              // reader: samples DDS reports lost (best effort gaps, full history)
   std::uint64_t outbox_dropped = 0;    // writer: samples the publisher thread had no time to send
   std::uint64_t ignored = 0;           // reader of a one-writer topic: samples of a writer not its owner
+  std::uint64_t deadline_missed = 0;   // reader: deadline periods without a sample
 };
 
 // The process's participant: where, over what, and as whom.

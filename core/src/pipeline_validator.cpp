@@ -40,12 +40,14 @@ struct PortUse {
   bool single_writer = false;
   Reliability reliability = Reliability::kReliable;
   Durability durability = Durability::kVolatile;
+  std::int64_t deadline_ns = 0;    // 0: none
   bool unmapped_optional = false;  // an optional input the pipeline did not connect to a topic
   std::string process;             // its component's process group
 };
 
 // Between process groups a topic is a DDS writer and reader, which DDS matches only when the
-// writer offers what the reader asks: reliability and durability at least as strong. (Inside one
+// writer offers what the reader asks: reliability and durability at least as strong, a deadline
+// at least as short. (Inside one
 // process the kernel hands samples over whatever they ask.)
 template <class Error>
 void check_across_processes(const std::string& topic, const std::vector<PortUse>& uses, Error& error) {
@@ -60,6 +62,11 @@ void check_across_processes(const std::string& topic, const std::vector<PortUse>
       else if (in.durability == Durability::kTransientLocal && out.durability == Durability::kVolatile)
         policy = "wants the last samples kept for late readers, but " + out.label + " (process '" + out.process +
                  "') keeps none (DURABILITY); expected a volatile input";
+      else if (in.deadline_ns > 0 && (out.deadline_ns == 0 || out.deadline_ns > in.deadline_ns))
+        policy = "wants a sample at least every " + std::to_string(in.deadline_ns / 1'000'000) + " ms, but " +
+                 out.label + " (process '" + out.process + "') offers " +
+                 (out.deadline_ns ? std::to_string(out.deadline_ns / 1'000'000) + " ms" : std::string("no deadline")) +
+                 " (DEADLINE); expected the writer's qos deadline at most the reader's";
       if (!policy.empty())
         error(in.where, "topic '" + topic + "': port " + in.label + " (process '" + in.process + "') " + policy +
                             ", or both in one process group: across processes DDS refuses this reader");
@@ -158,7 +165,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
       const auto over = c.qos.find(p.name);  // the pipeline's qos: for the port, as the kernel applies it
       const Qos q = over == c.qos.end() ? p.qos : over->second.apply(p.qos);
       topics[c.topic_for(p.name)].push_back(PortUse{c.name + "." + p.name, p.type_name, p.direction, where,
-                                                    q.single_writer, q.reliability, q.durability,
+                                                    q.single_writer, q.reliability, q.durability, q.deadline_ns,
                                                     q.optional && t == c.topics.end(), c.process_name()});
     }
     result.described[c.name] = ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path,

@@ -584,6 +584,7 @@ void Runtime::Impl::teardown(RunResult& result) {
       if (h.lost) line += " " + std::to_string(h.lost) + " samples lost on the way in;";
       if (h.outbox_dropped) line += " " + std::to_string(h.outbox_dropped) + " samples never sent (publisher behind);";
       if (h.ignored) line += " " + std::to_string(h.ignored) + " samples of a second writer ignored (one writer);";
+      if (h.deadline_missed) line += " its deadline missed " + std::to_string(h.deadline_missed) + " time(s);";
       line.pop_back();
       result.dds_problems.push_back(line);
     }

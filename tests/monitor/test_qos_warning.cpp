@@ -2,7 +2,9 @@
 // policy: before, a reliable reader on a best-effort writer silently received nothing.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <fstream>
+#include <thread>
 
 #include "../kernel/cli_process.hpp"
 #include "../kernel/test_support.hpp"
@@ -50,6 +52,38 @@ TEST(QosMismatch, AReliableReaderOnABestEffortWriterIsReportedOnBothSides) {
   EXPECT_NE(consumed.find("dds: topic 'crossing': 1 endpoint(s) of other processes refused (RELIABILITY)"),
             std::string::npos)
       << consumed;
+}
+
+// A stream with a DDS deadline (the pipeline's qos): when its writer's process freezes, the
+// reading process names it as soon as a deadline passes, says when samples come again, and
+// counts the misses in the run's summary. (Real clock: the freeze is in wall time.)
+TEST(Deadline, AWriterWhoseProcessFreezesIsNamedByItsReader) {
+  const fs::path dir = scratch_dir();
+  const fs::path pipeline = dir / "deadline.yaml";
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: deadline\ndomain: 120\ndds: {transport: local}\n"
+                             "clock: {mode: real, duration: 5s}\n"
+                             "components:\n"
+                             "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing},\n"
+                             "        qos: {out: {deadline: 50ms}}}\n"
+                             "  sink: {type: test_probe, rate: 100, process: consumer, topics: {in: crossing},\n"
+                             "         qos: {in: {deadline: 50ms}}}\n";
+  const pid_t consumer =
+      spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
+  const pid_t producer =
+      spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "producer.log");
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  kill(producer, SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  kill(producer, SIGCONT);
+  EXPECT_EQ(wait_exit(producer, std::chrono::seconds(60)), 0) << read_file(dir / "producer.log");
+  wait_exit(consumer, std::chrono::seconds(60));  // (its summary has the misses: not a clean exit)
+  const std::string consumed = read_file(dir / "consumer.log");
+  EXPECT_NE(consumed.find("[dds] topic 'crossing': no sample for its deadline (50 ms) from 'deadline/producer/"),
+            std::string::npos)
+      << consumed;
+  EXPECT_NE(consumed.find("[dds] topic 'crossing': samples again from 'deadline/producer/"), std::string::npos)
+      << consumed;
+  EXPECT_NE(consumed.find("dds: topic 'crossing': its deadline missed"), std::string::npos) << consumed;
 }
 
 }  // namespace wysiwyf::test

@@ -11,6 +11,7 @@
 #            supervisor starts it again the normal way (its request, then idle -> surface);
 #   robot:   the supervisor holds (no wrist reading) and, the arm back, starts it again;
 #   vision:  the display carries on with the hand's last track and the run ends.
+# Each freeze is also named by the stream's DDS deadline in the process that reads it.
 # In every case the user's script runs to its end. Needs root; exits 77 (skipped) without it.
 # Usage: demo_hosts.sh <build dir> <source dir> <domain>
 set -uo pipefail
@@ -103,6 +104,8 @@ n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
 l=$(grep -o 'lost after [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
 check "display frozen: the arm held within 3 of the stream's periods: ${lost#fault: }" \
   test -n "$n" -a -n "$l" -a "${n:-999}" -le $((${l:-0} + 10)) -a "${l:-999}" -le 15
+check "display frozen: the robot's process named it by the setpoint's DDS deadline (12 ms)" \
+  grep -q "topic 'robot/setpoint': no sample for its deadline (12 ms) from 'demo-hosts/display/" "$work/robot.log"
 check "display thawed: the supervisor started the arm again through idle -> surface" \
   bash -c "grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log' &&
            grep -A2 'fault -> idle' '$work/display.log' | grep -q 'idle -> surface'"
@@ -112,6 +115,8 @@ check "display frozen and thawed, the user's script ran to its end: $(hits)" scr
 run_display robot
 check "robot frozen: the supervisor held ($(grep -o -m1 'fault: no wrist reading for [0-9.]* s' "$work/display.log"))" \
   grep -q "> fault: no wrist reading" "$work/display.log"
+check "robot frozen: the display's process named it by the wrist reading's DDS deadline (30 ms)" \
+  grep -q "topic 'robot/wrench': no sample for its deadline (30 ms) from 'demo-hosts/robot/" "$work/display.log"
 check "robot thawed: the arm held (its stream lost while it was frozen) until the supervisor started it again" \
   bash -c "grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log' &&
            grep -A2 'fault -> idle' '$work/display.log' | grep -q 'idle -> surface'"
@@ -122,5 +127,7 @@ check "robot frozen and thawed, the user's script ran to its end: $(hits)" scrip
 # 4. The vision group frozen for 2 s.
 run_display vision
 check "vision frozen and thawed, the user's script ran to its end: $(hits)" script_done
+check "vision frozen: the display's process named it by the hand's DDS deadline (50 ms)" \
+  grep -q "topic 'hand/position': no sample for its deadline (50 ms) from 'demo-hosts/vision/" "$work/display.log"
 check "vision frozen: the arm never faulted" bash -c "! grep -q '\[arm\] fault' '$work/robot.log'"
 exit $((failures > 0))

@@ -84,7 +84,7 @@ struct RunOptions {
   // Topics that take one writer somewhere in the pipeline (ValidationResult::one_writer_topics):
   // this process's DDS endpoints on them are exclusive even where no local port says so (a
   // monitor reading the robot's setpoint in another group than the arm and the supervisor).
-  std::set<std::string> one_writer_topics;
+  std::set<std::string> one_writer_topics{};
 };
 
 class Runtime {
