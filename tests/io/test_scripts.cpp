@@ -97,9 +97,10 @@ TEST(SetpointScript, StartsTheArmOnceAndOnlyAtItsStart) {
   };
   msg::CartesianSetpoint sp;
   msg::ArmRequest rq;
-  for (int t = 0; t < 50; ++t) h.tick(Time{t * kMs});  // no status yet: it waits, silent
+  for (int t = 0; t < 50; ++t) h.tick(Time{t * kMs});  // no status yet: it waits, writes nothing, says why
   EXPECT_EQ(count(out, sp), 0);
   EXPECT_EQ(count(requests, rq), 0);
+  EXPECT_NE(h.health_reason().find("waiting for the arm's status"), std::string::npos) << h.health_reason();
   msg::RobotStatus lost;
   lost.state(msg::ARM_FAULT);
   lost.clearable(true);

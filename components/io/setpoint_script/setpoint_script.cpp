@@ -85,7 +85,10 @@ class SetpointScript final : public Component {
   bool start_arm(std::int64_t now_ns) {
     if (!start_arm_) return started_ = true;
     while (arm_status_.take(status_)) have_status_ = true;
-    if (!have_status_) return false;
+    if (!have_status_) {  // (said: an arm_status mapped to nothing would wait silently)
+      report_health(Health::kHolding, "start_arm: waiting for the arm's status on input arm_status");
+      return false;
+    }
     if (status_.state() != msg::ARM_FAULT) {
       if (asked_) log(std::string("the arm is ready (") + status_.reason().c_str() + "): the script starts");
       report_health(Health::kOk);
