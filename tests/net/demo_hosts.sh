@@ -11,7 +11,8 @@
 #            supervisor starts it again the normal way (its request, then idle -> surface);
 #   robot:   the supervisor holds (no wrist reading) and, the arm back, starts it again;
 #   vision:  the display carries on with the hand's last track and the run ends.
-# Each freeze is also named by the stream's DDS deadline in the process that reads it.
+# Each freeze is also named by the stream's DDS deadline in the process that reads it. Then the
+# robot's and the vision group's links are taken down for 2 s: the same holds.
 # In every case the user's script runs to its end. Needs root; exits 77 (skipped) without it.
 # Usage: demo_hosts.sh <build dir> <source dir> <domain>
 set -uo pipefail
@@ -50,7 +51,8 @@ for n in h1 h2 h3 h4; do
 done
 
 declare -A host=([vision]=h1 [display]=h2 [robot]=h3 [monitor]=h4) pid=()
-run_display() {  # run_display <group to freeze or ""> : one scripted run, logs in $work/<group>.log
+run_display() {  # run_display <group or ""> [stop|link]: one scripted run, the group frozen (SIGSTOP)
+  # or cut off (its link down) for 2 s; logs in $work/<group>.log
   for g in robot display vision monitor; do
     ip netns exec "$tag-${host[$g]}" "$cli" run "$src/config/pipelines/demo-hosts.yaml" --process "$g" \
       --set domain="$domain" --set metrics.params.summary="$work/metrics.json" --no-progress >"$work/$g.log" 2>&1 &
@@ -59,9 +61,16 @@ run_display() {  # run_display <group to freeze or ""> : one scripted run, logs 
   done
   if [[ -n $1 ]]; then
     sleep 5  # the user is reaching for the cube's knob, or pushing it
-    kill -STOP "${pid[$1]}"
-    sleep 2
-    kill -CONT "${pid[$1]}"
+    if [[ ${2:-stop} == link ]]; then
+      ip -n "$tag-${host[$1]}" link set eth0 down
+      sleep 2
+      ip -n "$tag-${host[$1]}" link set eth0 up
+      ip -n "$tag-${host[$1]}" route add 224.0.0.0/4 dev eth0  # (gone with the link)
+    else
+      kill -STOP "${pid[$1]}"
+      sleep 2
+      kill -CONT "${pid[$1]}"
+    fi
   fi
   # The robot's group ends with the user's script (stop_when_done); the others are stopped after.
   for _ in $(seq 90); do kill -0 "${pid[robot]}" 2>/dev/null || break; sleep 1; done
@@ -130,4 +139,17 @@ check "vision frozen and thawed, the user's script ran to its end: $(hits)" scri
 check "vision frozen: the display's process named it by the hand's DDS deadline (50 ms)" \
   grep -q "topic 'hand/position': no sample for its deadline (50 ms) from 'demo-hosts/vision/" "$work/display.log"
 check "vision frozen: the arm never faulted" bash -c "! grep -q '\[arm\] fault' '$work/robot.log'"
+
+# 5. The robot's and the vision group's links down for 2 s.
+run_display robot link
+check "robot cut off: the display's process named it by the wrist reading's DDS deadline (30 ms)" \
+  grep -q "topic 'robot/wrench': no sample for its deadline (30 ms) from 'demo-hosts/robot/" "$work/display.log"
+check "robot cut off: the supervisor held, and started the arm again once it was back" \
+  bash -c "grep -q '> fault: no wrist reading' '$work/display.log' &&
+           grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log'"
+check "robot cut off and reconnected, the user's script ran to its end: $(hits)" script_done
+run_display vision link
+check "vision cut off: the display's process named it by the hand's DDS deadline (50 ms)" \
+  grep -q "topic 'hand/position': no sample for its deadline (50 ms) from 'demo-hosts/vision/" "$work/display.log"
+check "vision cut off and reconnected, the user's script ran to its end: $(hits)" script_done
 exit $((failures > 0))
