@@ -20,34 +20,10 @@ tag="wy$$"
 work=$(mktemp -d)
 pids=()
 
-cleanup() {
-  for p in "${pids[@]}"; do kill -CONT "$p" 2>/dev/null; kill -TERM "$p" 2>/dev/null; done
-  sleep 0.5
-  for p in "${pids[@]}"; do kill -KILL "$p" 2>/dev/null; done
-  for n in sw h1 h2 h3; do ip netns del "$tag-$n" 2>/dev/null; done
-  rm -rf "$work"
-}
-trap cleanup EXIT
-
-if [[ $(id -u) -ne 0 ]] || ! ip netns add "$tag-sw" 2>/dev/null; then
-  echo "skipped: network namespaces need root (CAP_SYS_ADMIN, CAP_NET_ADMIN); run as root to test several hosts"
-  exit 77
-fi
+# shellcheck source=namespaces.sh
+source "$src/tests/net/namespaces.sh"
+make_hosts "$tag" 10.77.0 3
 in_ns() { local n=$1; shift; ip netns exec "$tag-$n" "$@"; }
-ip -n "$tag-sw" link add br0 type bridge
-ip -n "$tag-sw" link set br0 up
-i=0
-for n in h1 h2 h3; do
-  i=$((i + 1))
-  ip netns add "$tag-$n"
-  ip link add "$tag$n" type veth peer name eth0 netns "$tag-$n"
-  ip link set "$tag$n" netns "$tag-sw"
-  ip -n "$tag-sw" link set "$tag$n" master br0 up
-  ip -n "$tag-$n" addr add "10.77.0.$i/24" dev eth0
-  ip -n "$tag-$n" link set eth0 up
-  ip -n "$tag-$n" link set lo up
-  ip -n "$tag-$n" route add 224.0.0.0/4 dev eth0  # DDS discovery's multicast goes out on eth0
-done
 
 pipeline="$work/hosts.yaml"
 cat >"$pipeline" <<EOF
