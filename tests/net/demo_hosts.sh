@@ -10,7 +10,8 @@
 #            slack for the arm's tick on a loaded machine), naming the lost source; thawed, the
 #            supervisor starts it again the normal way (its request, then idle -> surface);
 #   robot:   the supervisor holds (no wrist reading) and, the arm back, starts it again;
-#   vision:  the display carries on with the hand's last track and the run ends.
+#   vision:  the display carries on with the hand's last track (it never holds for the hand) and
+#            the run ends.
 # Each freeze is also named by the stream's DDS deadline in the process that reads it. Then the
 # robot's and the vision group's links are taken down for 2 s: the same holds.
 # In every case the user's script runs to its end. Needs root; exits 77 (skipped) without it.
@@ -114,7 +115,10 @@ run_display vision
 check "vision frozen and thawed, the user's script ran to its end: $(hits)" script_done
 check "vision frozen: the display's process named it by the hand's DDS deadline (50 ms)" \
   grep -q "topic 'hand/position': no sample for its deadline (50 ms) from 'demo-hosts/vision/" "$work/display.log"
-check "vision frozen: the arm never faulted" bash -c "! grep -q '\[arm\] fault' '$work/robot.log'"
+# (The 250 Hz stream may still be lost once to a scheduling stall of this busy machine, vision or
+# not: what the freeze must not do is hold the display.)
+check "vision frozen: the display never held for the hand or the planner" \
+  bash -c "! grep -Eq '> fault: .*(hand|planner)' '$work/display.log'"
 
 # 5. The robot's and the vision group's links down for 2 s.
 run_display robot link
