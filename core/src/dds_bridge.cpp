@@ -125,13 +125,23 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
                (writer ? bridge.writer_name(*writer) : std::string("any writer")) +
                ": is its process frozen, cut off or overloaded?");
   }
-  // A one-writer topic follows the first writer it hears until that writer leaves; DDS ownership
-  // already passes only its owner's samples, but it would hand the topic to a newcomer of equal
-  // strength and lower GUID. Another writer's samples are dropped, counted and it is named once.
+  // A one-writer topic follows the first writer it hears until that writer leaves, or, where the
+  // topic has a deadline, until it misses it (DDS's ownership rule: a killed process's writer is
+  // unmatched only after its lease, 5 s, and its restarted successor would wait that long). DDS
+  // ownership already passes only its owner's samples, but it would hand the topic to a newcomer
+  // of equal strength and lower GUID. Another writer's samples are dropped, counted and it is
+  // named once.
   bool follows(const InstanceHandle_t& writer) {
     std::lock_guard<std::mutex> lock(owner_mutex);
     if (!owner) owner = writer;
     if (writer == *owner) return true;
+    if (late.load()) {  // (cleared by the next sample delivered: this one)
+      bridge.say("topic '" + channel.topic() + "': its writer " + bridge.writer_name(*owner) +
+                 " missed its deadline; " + bridge.writer_name(writer) + " owns it now");
+      owner = writer;
+      named.erase(writer);
+      return true;
+    }
     counters.ignored.fetch_add(1);
     if (named.insert(writer).second)  // (the name is made once per writer, not per sample)
       bridge.say("topic '" + channel.topic() + "': samples of a second writer, " + bridge.writer_name(writer) +

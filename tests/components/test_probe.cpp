@@ -40,8 +40,12 @@ class TestProbe final : public wysiwyf::Component {
     const double lo = ctx.param<double>("lo", 0, "lower bound (with hi)");
     const double hi = ctx.param<double>("hi", 1, "upper bound, larger than lo");
     if (!(hi > lo)) ctx.reject("hi", "must be larger than lo (" + std::to_string(lo) + ")");
-    in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", wysiwyf::Qos::reliable(100));
-    out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]");
+    const bool one_writer =
+        ctx.param<bool>("one_writer", false, "in takes one writer, out declares itself it (ownership tests)");
+    const wysiwyf::Qos in_qos = wysiwyf::Qos::reliable(100), out_qos;
+    in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", one_writer ? in_qos.one_writer() : in_qos);
+    out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]",
+                                                one_writer ? out_qos.one_writer() : out_qos);
     if (ctx.mode() == wysiwyf::Context::Mode::kRun) event("configure");  // validation configures too
     if (fail_phase_ == "configure") throw std::runtime_error("configure failed on purpose");
   }

@@ -54,19 +54,34 @@ TEST(QosMismatch, AReliableReaderOnABestEffortWriterIsReportedOnBothSides) {
       << consumed;
 }
 
+namespace {
+
+// Two process groups of test_probe on the real clock for `seconds`: the producer's out on topic
+// 'crossing', the consumer's in, both with a 50 ms deadline, `params` on both.
+fs::path producer_and_consumer(const fs::path& dir, const std::string& name, int domain, int seconds,
+                               const std::string& params) {
+  const fs::path pipeline = dir / (name + ".yaml");
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: " << name << "\ndomain: " << domain
+                          << "\ndds: {transport: local}\nclock: {mode: real, duration: " << seconds
+                          << "s}\ncomponents:\n"
+                             "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing},\n"
+                             "        params: "
+                          << params
+                          << ", qos: {out: {deadline: 50ms}}}\n"
+                             "  sink: {type: test_probe, rate: 100, process: consumer, topics: {in: crossing},\n"
+                             "         params: "
+                          << params << ", qos: {in: {deadline: 50ms}}}\n";
+  return pipeline;
+}
+
+}  // namespace
+
 // A stream with a DDS deadline (the pipeline's qos): when its writer's process freezes, the
 // reading process names it as soon as a deadline passes, says when samples come again, and
 // counts the misses in the run's summary. (Real clock: the freeze is in wall time.)
 TEST(Deadline, AWriterWhoseProcessFreezesIsNamedByItsReader) {
   const fs::path dir = scratch_dir();
-  const fs::path pipeline = dir / "deadline.yaml";
-  std::ofstream(pipeline) << "wysiwyf: 1\nname: deadline\ndomain: 120\ndds: {transport: local}\n"
-                             "clock: {mode: real, duration: 5s}\n"
-                             "components:\n"
-                             "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing},\n"
-                             "        qos: {out: {deadline: 50ms}}}\n"
-                             "  sink: {type: test_probe, rate: 100, process: consumer, topics: {in: crossing},\n"
-                             "         qos: {in: {deadline: 50ms}}}\n";
+  const fs::path pipeline = producer_and_consumer(dir, "deadline", 120, 5, "{}");
   const pid_t consumer =
       spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
   const pid_t producer =
@@ -84,6 +99,37 @@ TEST(Deadline, AWriterWhoseProcessFreezesIsNamedByItsReader) {
   EXPECT_NE(consumed.find("[dds] topic 'crossing': samples again from 'deadline/producer/"), std::string::npos)
       << consumed;
   EXPECT_NE(consumed.find("dds: topic 'crossing': its deadline missed"), std::string::npos) << consumed;
+}
+
+// A one-writer stream with a deadline (the robot's setpoint): when its writer's process is killed,
+// its restarted successor owns the topic once the deadline passes, not after the dead process's
+// DDS lease (5 s), which is when its writer is unmatched. (Real clock: the kill is in wall time.)
+TEST(Deadline, ARestartedOneWriterOwnsTheTopicOnceTheKilledOneMissedItsDeadline) {
+  const fs::path dir = scratch_dir();
+  const fs::path pipeline = producer_and_consumer(dir, "owner", 121, 10, "{one_writer: true}");
+  const pid_t consumer =
+      spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
+  const pid_t first =
+      spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "first.log");
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  kill(first, SIGKILL);
+  wait_exit(first, std::chrono::seconds(10));
+  const pid_t second =
+      spawn_cli({"run", pipeline.string(), "--process", "producer", "--no-progress"}, dir / "second.log");
+  wait_exit(second, std::chrono::seconds(60));
+  wait_exit(consumer, std::chrono::seconds(60));
+  const std::string consumed = read_file(dir / "consumer.log");
+  const std::string first_name = "'owner/producer/" + std::to_string(first) + "'";
+  const std::string second_name = "'owner/producer/" + std::to_string(second) + "'";
+  const auto handed = consumed.find("[dds] topic 'crossing': its writer " + first_name);
+  ASSERT_NE(handed, std::string::npos) << consumed;
+  const std::string line = consumed.substr(handed, consumed.find('\n', handed) - handed);
+  EXPECT_NE(line.find("missed its deadline; " + second_name), std::string::npos) << line;
+  EXPECT_NE(line.find("owns it now"), std::string::npos) << line;
+  EXPECT_EQ(consumed.find("samples of a second writer"), std::string::npos) << "the successor was ignored:\n"
+                                                                            << consumed;
+  const auto lost = consumed.find("process " + first_name + " is lost");
+  EXPECT_TRUE(lost == std::string::npos || lost > handed) << "handed over only after the lease:\n" << consumed;
 }
 
 }  // namespace wysiwyf::test
