@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "display_support.hpp"
 #include "wysiwyf/harness.hpp"
@@ -15,7 +16,8 @@ namespace {
 constexpr std::int64_t kMs = 1'000'000;
 
 // The supervisor with every input fed as a healthy display would: the plate on the +x face, the
-// arm following, the planner in place, no force but the tool's weight.
+// arm holding until the first setpoint comes, then following, the planner in place, no force but
+// the tool's weight.
 class SupervisorRig {
  public:
   SupervisorRig()
@@ -47,6 +49,7 @@ class SupervisorRig {
       sp.sensed_ns(t - 20 * kMs);  // the hand sample it answers, seen 20 ms ago
       surface_.write(sp);
     }
+    if (arm_silent_) return h_.tick(Time{t});  // (nothing from the arm's process)
     msg::WrenchStamped w;  // the tool's weight only: 11.34 N down in base, the sensor's x axis down here
     fill_header(w.header(), t, 0, "ft_sensor");
     const Eigen::Vector3d weight = plate_.linear().transpose() * Eigen::Vector3d(0, 0, -1.1563 * 9.81);
@@ -65,6 +68,11 @@ class SupervisorRig {
     p.state(msg::PLAN_IN_PLACE);
     planner_.write(p);
     h_.tick(Time{t});
+    msg::CartesianSetpoint out;
+    while (out_.take(out)) {
+      sent_.push_back(out);
+      if (arm_state_ == msg::ARM_HOLDING) arm_state_ = msg::ARM_OK;  // as the arm: it follows the first one
+    }
   }
 
   msg::DisplayModeKind mode() {
@@ -76,13 +84,19 @@ class SupervisorRig {
     mode();
     return last_mode_.reason().c_str();
   }
+  // The newest setpoint written since the last call.
   bool setpoint(msg::CartesianSetpoint& out) {
-    bool any = false;
-    while (out_.take(out)) any = true;
-    return any;
+    if (sent_.empty()) return false;
+    out = sent_.back();
+    sent_.clear();
+    return true;
   }
+  // The arm's process silent (killed, frozen): no status, wrist reading or pose from it.
+  void silence_arm(bool silent) { arm_silent_ = silent; }
+  // The arm's measured plate pose, from the next tick on.
+  void move_plate(const Eigen::Vector3d& p) { plate_.translation() = p; }
   Harness& harness() { return h_; }
-  // What the arm reports from the next tick on.
+  // What the arm reports from the next tick on (holding: until a setpoint comes, then following).
   void arm(msg::ArmState state, bool clearable = false, std::string reason = "setpoint rejected: non-finite number") {
     arm_state_ = state, arm_clearable_ = clearable;
     arm_reason_ = state == msg::ARM_FAULT ? std::move(reason) : std::string();
@@ -107,8 +121,9 @@ class SupervisorRig {
   Input<msg::DisplayMode> mode_;
   Input<msg::ArmRequest> request_;
   msg::DisplayMode last_mode_;
-  msg::ArmState arm_state_ = msg::ARM_OK;
-  bool arm_clearable_ = false;
+  msg::ArmState arm_state_ = msg::ARM_HOLDING;
+  bool arm_clearable_ = false, arm_silent_ = false;
+  std::vector<msg::CartesianSetpoint> sent_;
   std::string arm_reason_;
   Eigen::Isometry3d plate_ = Eigen::Isometry3d::Identity();
 };
@@ -196,8 +211,9 @@ TEST(Supervisor, AnArmFaultOfBadInputIsClearedOnceTheInputsAreGoodAndTheDisplayS
   EXPECT_EQ(rig.requests(), 0);
 }
 
-// A supervisor (re)started while the arm holds after losing its stream sends no setpoint until
-// it has asked the arm to clear the loss and the arm holds cleared: then idle -> surface.
+// A supervisor (re)started while the arm holds after losing its stream sends nothing but the hold
+// where the arm stands until it has asked the arm to clear the loss and the arm follows that hold:
+// then idle -> surface.
 TEST(Supervisor, AnArmThatLostItsStreamIsStartedOnlyThroughTheNormalStart) {
   SupervisorRig rig;
   const Eigen::Vector3d at(0.7, 0, 0.1);
@@ -206,7 +222,10 @@ TEST(Supervisor, AnArmThatLostItsStreamIsStartedOnlyThroughTheNormalStart) {
   msg::CartesianSetpoint sp;
   for (int t = 0; t < 400; ++t) {
     rig.tick(t, &at);
-    EXPECT_FALSE(rig.setpoint(sp)) << "a setpoint to an arm that waits for the display's request, at " << t;
+    if (rig.setpoint(sp)) {
+      EXPECT_STREQ(sp.source().c_str(), "supervisor/hold") << t;
+      EXPECT_NEAR((msgs::to_eigen(sp.pose().position()) - at).norm(), 0.0, 1e-12) << "not where the arm stands: " << t;
+    }
     const int n = rig.requests();
     if (n > 0 && first < 0) first = t;
     requests += n;
@@ -221,6 +240,41 @@ TEST(Supervisor, AnArmThatLostItsStreamIsStartedOnlyThroughTheNormalStart) {
   EXPECT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
   ASSERT_TRUE(rig.setpoint(sp));
   EXPECT_NEAR((msgs::to_eigen(sp.pose().position()) - at).norm(), 0.0, 1e-12) << "from the planner's start";
+}
+
+// The arm's process killed mid-run and started again: the new arm stands parked elsewhere and
+// waits for its first setpoint. The supervisor's hold goes to where the arm stands, not to where
+// it was held (the arm would refuse that jump), and the display starts from there.
+TEST(Supervisor, ARestartedArmIsHeldWhereItStandsAndTheDisplayStartsFromThere) {
+  SupervisorRig rig;
+  const Eigen::Vector3d at(0.7, 0, 0.1), parked(0.5, 0.2, 0.3);
+  for (int t = 0; t < 50; ++t) rig.tick(t, &at);
+  ASSERT_EQ(rig.mode(), msg::MODE_SURFACE) << rig.reason();
+  rig.silence_arm(true);
+  msg::CartesianSetpoint sp;
+  for (int t = 50; t < 550; ++t) rig.tick(t, &at);
+  ASSERT_EQ(rig.mode(), msg::MODE_FAULT);
+  EXPECT_NE(rig.reason().find("no wrist reading"), std::string::npos) << rig.reason();
+  ASSERT_TRUE(rig.setpoint(sp));
+  EXPECT_NEAR((msgs::to_eigen(sp.pose().position()) - at).norm(), 0.0, 1e-12) << "held where it was sent";
+  // Nothing from the arm for status_timeout (0.5 s): where it stands is not known, nothing is sent.
+  for (int t = 550; t < 1000; ++t) rig.tick(t, &at);
+  rig.setpoint(sp);
+  for (int t = 1000; t < 1100; ++t) rig.tick(t, &at);
+  EXPECT_FALSE(rig.setpoint(sp)) << "a hold sent to an arm silent for longer than status_timeout";
+  rig.silence_arm(false);
+  rig.arm(msg::ARM_HOLDING);  // the new arm, parked
+  rig.move_plate(parked);
+  int surface_at = -1;
+  for (int t = 1100; t < 2000 && surface_at < 0; ++t) {
+    rig.tick(t, &parked);  // (the planner follows what the arm is commanded)
+    while (rig.setpoint(sp))
+      ASSERT_NEAR((msgs::to_eigen(sp.pose().position()) - parked).norm(), 0.0, 1e-12)
+          << "a setpoint away from where the restarted arm stands, at " << t;
+    if (rig.mode() == msg::MODE_SURFACE) surface_at = t;
+  }
+  EXPECT_GE(surface_at, 1100 + 200) << "recover_after of good input first";
+  EXPECT_EQ(rig.requests(), 0) << "the new arm had nothing to clear";
 }
 
 TEST(Supervisor, AnArmFaultOfTheArmItselfIsNeverAskedToClear) {

@@ -13,7 +13,13 @@
 #   vision:  the display carries on with the hand's last track (it never holds for the hand) and
 #            the run ends.
 # Each freeze is also named by the stream's DDS deadline in the process that reads it. Then the
-# robot's and the vision group's links are taken down for 2 s: the same holds.
+# robot's and the vision group's links are taken down for 2 s: the same holds. Then each group is
+# killed (SIGKILL) and started again after 1 s:
+#   display: the arm holds as when frozen; the restarted display's setpoint owns the topic once the
+#            killed one has missed its deadline, and its supervisor starts the arm again;
+#   robot:   the supervisor holds; the restarted arm stands parked elsewhere, and the supervisor
+#            holds it there (no setpoint refused) before the display starts again;
+#   vision:  the display carries on.
 # In every case the user's script runs to its end. Needs root; exits 77 (skipped) without it.
 # Usage: demo_hosts.sh <build dir> <source dir> <domain>
 set -uo pipefail
@@ -28,26 +34,37 @@ source "$src/tests/net/namespaces.sh"
 make_hosts "$tag" 10.78.0 4
 
 declare -A host=([vision]=h1 [display]=h2 [robot]=h3 [monitor]=h4) pid=()
-run_display() {  # run_display <group or ""> [stop|link]: one scripted run, the group frozen (SIGSTOP)
-  # or cut off (its link down) for 2 s; logs in $work/<group>.log
+start_group() {  # start_group <group>: its process in its host, log in $work/<group>.log (appended)
+  ip netns exec "$tag-${host[$1]}" "$cli" run "$src/config/pipelines/demo-hosts.yaml" --process "$1" \
+    --set domain="$domain" --set metrics.params.summary="$work/metrics.json" --no-progress >>"$work/$1.log" 2>&1 &
+  pid[$1]=$!
+  pids+=("$!")
+}
+run_display() {  # run_display <group or ""> [stop|link|kill]: one scripted run, the group frozen
+  # (SIGSTOP) or cut off (its link down) for 2 s, or killed (SIGKILL) and started again after 1 s
   for g in robot display vision monitor; do
-    ip netns exec "$tag-${host[$g]}" "$cli" run "$src/config/pipelines/demo-hosts.yaml" --process "$g" \
-      --set domain="$domain" --set metrics.params.summary="$work/metrics.json" --no-progress >"$work/$g.log" 2>&1 &
-    pid[$g]=$!
-    pids+=("$!")
+    : >"$work/$g.log"
+    start_group "$g"
   done
   if [[ -n $1 ]]; then
     sleep 5  # the user is reaching for the cube's knob, or pushing it
-    if [[ ${2:-stop} == link ]]; then
-      ip -n "$tag-${host[$1]}" link set eth0 down
-      sleep 2
-      ip -n "$tag-${host[$1]}" link set eth0 up
-      ip -n "$tag-${host[$1]}" route add 224.0.0.0/4 dev eth0  # (gone with the link)
-    else
-      kill -STOP "${pid[$1]}"
-      sleep 2
-      kill -CONT "${pid[$1]}"
-    fi
+    case ${2:-stop} in
+      link)
+        ip -n "$tag-${host[$1]}" link set eth0 down
+        sleep 2
+        ip -n "$tag-${host[$1]}" link set eth0 up
+        ip -n "$tag-${host[$1]}" route add 224.0.0.0/4 dev eth0 ;;  # (gone with the link)
+      kill)
+        kill -KILL "${pid[$1]}"
+        wait "${pid[$1]}" 2>/dev/null
+        echo "=== killed, started again" >>"$work/$1.log"
+        sleep 1
+        start_group "$1" ;;
+      *)
+        kill -STOP "${pid[$1]}"
+        sleep 2
+        kill -CONT "${pid[$1]}" ;;
+    esac
   fi
   # The robot's group ends with the user's script (stop_when_done); the others are stopped after.
   for _ in $(seq 90); do kill -0 "${pid[robot]}" 2>/dev/null || break; sleep 1; done
@@ -70,6 +87,16 @@ check() {  # check <what> <command...>: counts a failure, prints the logs
 }
 script_done() { grep -Eq "script done: 2 reach\(es\)" "$work/robot.log"; }
 hits() { grep -o "script done: .*" "$work/robot.log"; }
+# The arm's loss of its setpoint stream, from its log: within 3 of the 250 Hz stream's periods
+# (12 ms; 10 ms of slack for the arm's own tick on a loaded machine).
+arm_held_within_3_periods() {  # arm_held_within_3_periods <what happened>
+  local lost n l
+  lost=$(grep -o "fault: setpoint stream lost: no setpoint for [0-9]* ms .*lost after [0-9]* ms)" "$work/robot.log" | head -1)
+  n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
+  l=$(grep -o 'lost after [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
+  check "$1: the arm held within 3 of the stream's periods: ${lost#fault: }" \
+    test -n "$n" -a -n "$l" -a "${n:-999}" -le $((${l:-0} + 10)) -a "${l:-999}" -le 15
+}
 
 # 1. The scripted run across the hosts.
 run_display ""
@@ -85,11 +112,7 @@ check "the monitor on h4 read the one-writer setpoint (sensor to setpoint: $(gre
 
 # 2. The display's group frozen for 2 s.
 run_display display
-lost=$(grep -o "fault: setpoint stream lost: no setpoint for [0-9]* ms .*lost after [0-9]* ms)" "$work/robot.log" | head -1)
-n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
-l=$(grep -o 'lost after [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
-check "display frozen: the arm held within 3 of the stream's periods: ${lost#fault: }" \
-  test -n "$n" -a -n "$l" -a "${n:-999}" -le $((${l:-0} + 10)) -a "${l:-999}" -le 15
+arm_held_within_3_periods "display frozen"
 check "display frozen: the robot's process named it by the setpoint's DDS deadline (12 ms)" \
   grep -q "topic 'robot/setpoint': no sample for its deadline (12 ms) from 'demo-hosts/display/" "$work/robot.log"
 check "display thawed: the supervisor started the arm again through idle -> surface" \
@@ -132,4 +155,25 @@ run_display vision link
 check "vision cut off: the display's process named it by the hand's DDS deadline (50 ms)" \
   grep -q "topic 'hand/position': no sample for its deadline (50 ms) from 'demo-hosts/vision/" "$work/display.log"
 check "vision cut off and reconnected, the user's script ran to its end: $(hits)" script_done
+# 6. Each group killed (SIGKILL) and started again after 1 s.
+run_display display kill
+arm_held_within_3_periods "display killed"
+check "display restarted: its setpoint writer owned the topic once the killed one missed its deadline (not after its 5 s lease)" \
+  grep -q "topic 'robot/setpoint': its writer 'demo-hosts/display/.*missed its deadline; 'demo-hosts/display/.* owns it now" "$work/robot.log"
+check "display restarted: its supervisor started the arm again (request, hold where it stands, idle -> surface)" \
+  bash -c "grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log' &&
+           sed -n '/=== killed/,\$p' '$work/display.log' | grep -A3 'fault -> idle' | grep -q 'idle -> surface'"
+check "display killed and restarted, the user's script ran to its end: $(hits)" script_done
+run_display robot kill
+check "robot killed: the supervisor held ($(grep -o -m1 'fault: no wrist reading for [0-9.]* s' "$work/display.log"))" \
+  grep -q "> fault: no wrist reading" "$work/display.log"
+check "robot restarted elsewhere (parked): the supervisor's first setpoint was where the arm stood, none refused" \
+  bash -c "! sed -n '/=== killed/,\$p' '$work/robot.log' | grep -q 'setpoint rejected'"
+check "robot restarted: the display started again through idle -> surface" \
+  bash -c "grep -A3 'fault -> idle' '$work/display.log' | grep -q 'idle -> surface'"
+check "robot killed and restarted, its user's script ran to its end: $(hits)" script_done
+run_display vision kill
+check "vision killed and restarted, the user's script ran to its end: $(hits)" script_done
+check "vision killed: the display never held for the hand or the planner" \
+  bash -c "! grep -Eq '> fault: .*(hand|planner)' '$work/display.log'"
 exit $((failures > 0))

@@ -19,6 +19,12 @@
 // with the hand far from it. An arm fault that bad input caused (RobotStatus.clearable: a NaN,
 // a jump, its setpoint stream lost) is cleared by asking the arm (arm_request) once every other
 // input is good again, idle or not: the arm follows again only through this normal start.
+//
+// The start: idle or held, while the arm follows nothing (it waits for its first setpoint, holds
+// after a fault, or has said nothing for status_timeout), the supervisor's setpoint is the hold
+// where the arm stands (its measured pose; nothing without a fresh one), so neither side's restart
+// makes a step: a restarted arm parked elsewhere, or a restarted display whose physics and planner
+// begin anew. Once the arm follows that hold, idle -> surface, the planner continuing from it.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -127,9 +133,11 @@ class Supervisor final : public Component {
           bad(std::string("the arm: ") + robot_msg_.reason().c_str(), now.ns);
           break;
         }
-        // Every input there first (between processes they come one by one as DDS matches them).
-        if (surface_.at_ns >= 0 && robot_ok() && wrench_ns_ >= 0 && now.ns - wrench_ns_ <= wrench_timeout_ns_ &&
-            planner_ns_ >= 0 && (!sent_ || near(surface_)))
+        hold_where_the_arm_stands(now.ns);
+        // Every input there first (between processes they come one by one as DDS matches them),
+        // and the arm following the hold.
+        if (surface_.at_ns >= 0 && arm_follows(now.ns) && sent_ && wrench_ns_ >= 0 &&
+            now.ns - wrench_ns_ <= wrench_timeout_ns_ && planner_ns_ >= 0 && near(surface_))
           enter(msg::MODE_SURFACE, now.ns, "");
         break;
       case msg::MODE_SURFACE:
@@ -146,9 +154,12 @@ class Supervisor final : public Component {
           forward(admittance_);
         watch_contact(now.ns);
         break;
-      case msg::MODE_FAULT: recover(now.ns); break;
+      case msg::MODE_FAULT:
+        hold_where_the_arm_stands(now.ns);
+        recover(now.ns);
+        break;
     }
-    if (sent_) publish_setpoint(now.ns);
+    if (sent_ && !hold_unknown_) publish_setpoint(now.ns);
     if (now.ns - mode_sent_ns_ >= 100'000'000) publish_mode(now.ns);
   }
 
@@ -172,7 +183,7 @@ class Supervisor final : public Component {
         bad("a non-finite device pose", now_ns);
         continue;
       }
-      device_ = msgs::to_isometry(device_msg_.pose()), have_device_ = true;
+      device_ = msgs::to_isometry(device_msg_.pose()), have_device_ = true, device_ns_ = now_ns;
     }
     while (hand_in_.take(hand_msg_)) {
       const Vec3 p = msgs::to_eigen(hand_msg_.position());
@@ -236,6 +247,24 @@ class Supervisor final : public Component {
   }
 
   bool robot_ok() const { return robot_ns_ >= 0 && robot_msg_.state() != msg::ARM_FAULT; }
+  bool arm_follows(std::int64_t now_ns) const {
+    return robot_ns_ >= 0 && now_ns - robot_ns_ <= status_timeout_ns_ && robot_msg_.state() == msg::ARM_OK;
+  }
+
+  // Idle or held: while the arm follows nothing, the hold is its measured pose, at rest; without a
+  // fresh measurement nothing is sent (a killed arm's last pose is no hold for its successor).
+  void hold_where_the_arm_stands(std::int64_t now_ns) {
+    hold_unknown_ = false;
+    if (arm_follows(now_ns)) return;  // (the last setpoint, which it follows)
+    if (!have_device_ || now_ns - device_ns_ > wrench_timeout_ns_) {
+      hold_unknown_ = true;
+      return;
+    }
+    msgs::to_msg(device_, out_.pose());
+    out_.twist() = geometry_msgs::Twist();
+    out_.sensed_ns(0);
+    sent_ = true;
+  }
   bool near(const Stream& s) const {
     return (msgs::to_eigen(s.sample.pose().position()) - msgs::to_eigen(out_.pose().position())).norm() <=
            max_switch_step_;
@@ -335,11 +364,7 @@ class Supervisor final : public Component {
     reason_ = why;
     report_health(mode == msg::MODE_FAULT ? Health::kHolding : Health::kOk, why);
     switched_ns_ = now_ns;
-    taking_over_ = sent_ && (mode == msg::MODE_SURFACE || mode == msg::MODE_ADMITTANCE);
-    if (mode == msg::MODE_SURFACE && !sent_) {
-      out_ = surface_.sample;  // the first setpoint: where the planner starts (the plate's pose)
-      sent_ = true;
-    }
+    taking_over_ = mode == msg::MODE_SURFACE || mode == msg::MODE_ADMITTANCE;  // (from the hold, at the start)
     detector_.reset();
     good_since_ns_ = -1;
     publish_mode(now_ns);
@@ -382,7 +407,7 @@ class Supervisor final : public Component {
   void publish_setpoint(std::int64_t now_ns) {
     fill_header(out_.header(), now_ns, out_seq_++, "base");
     out_.child_frame_id("dev");
-    const bool holding = mode_ == msg::MODE_FAULT || taking_over_;
+    const bool holding = mode_ == msg::MODE_FAULT || mode_ == msg::MODE_IDLE || taking_over_;
     out_.source(holding                         ? "supervisor/hold"
                 : mode_ == msg::MODE_ADMITTANCE ? "supervisor/admittance"
                                                 : "supervisor/surface");
@@ -417,13 +442,14 @@ class Supervisor final : public Component {
   Eigen::Isometry3d device_ = Eigen::Isometry3d::Identity();
   Vec3 hand_ = Vec3::Zero();
   double hand_sigma_ = 0;  // m, the tracker's stated uncertainty
-  std::int64_t wrench_ns_ = -1, hand_ns_ = -1, robot_ns_ = -1, planner_ns_ = -1;
+  std::int64_t wrench_ns_ = -1, hand_ns_ = -1, robot_ns_ = -1, planner_ns_ = -1, device_ns_ = -1;
   std::map<std::string, Eigen::Isometry3d> base_T_obj_;
   // the mode
   msg::DisplayModeKind mode_ = msg::MODE_IDLE;
   std::string reason_ = "starting";
   std::int64_t switched_ns_ = 0, good_since_ns_ = -1, mode_sent_ns_ = -1'000'000'000;
   bool taking_over_ = false, sent_ = false, attached_ = false;
+  bool hold_unknown_ = false;  // the arm follows nothing and its pose is not known: send nothing
   std::uint64_t out_seq_ = 0, mode_seq_ = 0, attach_seq_ = 0;
   // messages and ports
   msg::CartesianSetpoint setpoint_msg_, out_;
