@@ -51,6 +51,13 @@ void ArmPorts::take_requests(SafetyGate& gate, std::int64_t now_ns) {
   }
 }
 
+void ArmPorts::log_bursts(const SafetyGate& gate) {
+  if (gate.burst_periods() == 0) return;
+  report_.log("setpoint bursts: " + std::to_string(gate.burst_periods()) +
+              " servo period(s) brought more than one setpoint (at most " + std::to_string(gate.largest_burst()) +
+              "); each was screened against the setpoint before its period");
+}
+
 void ArmPorts::publish_measurement(std::int64_t stamp_ns, std::uint64_t seq, const Vector6d& q, const Vector6d& qd,
                                    const Vector6d& effort, const std::string& tip_frame,
                                    const Eigen::Isometry3d& base_T_tip) {

@@ -38,6 +38,8 @@ class ArmPorts {
   // Requests to the arm: CLEAR_INPUT_FAULT clears an input fault once the arm stands still; one
   // that cannot be honoured (a fault of the arm, still braking, no fault) is reported.
   void take_requests(SafetyGate& gate, std::int64_t now_ns);
+  // At the end of a run: how many servo periods brought a burst of setpoints (none: nothing said).
+  void log_bursts(const SafetyGate& gate);
 
   // joint_state (angles, velocities, motor torques) and device_pose (base_T_tip) of one
   // measurement, with one sequence number.

@@ -111,6 +111,7 @@ void SafetyGate::reset(const Vector6d& q_measured, std::int64_t now_ns) {
   ref_ = JointReference{};
   have_target_ = false;
   last_setpoint_ns_ = now_ns;
+  in_period_ = 0;
   if (!q_measured.allFinite()) {
     set_state(SafetyState::kFault, "reset with a non-finite joint measurement");
     return;  // the reference stays where it was: zero velocity, nothing to follow
@@ -136,6 +137,7 @@ void SafetyGate::fault(const std::string& reason, FaultCause cause) {
 bool SafetyGate::clear_input_fault(std::int64_t now_ns) {
   if (!input_fault() || !started_ || ref_.qd.cwiseAbs().maxCoeff() != 0.0) return false;
   last_setpoint_ns_ = now_ns;
+  in_period_ = 0;
   set_state(SafetyState::kHolding, "input fault cleared (was: " + reason_ + "); waiting for a setpoint");
   return true;
 }
@@ -171,24 +173,36 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
   candidate.linear() = q.toRotationMatrix();
   candidate.translation() = sp.position;
 
+  // A burst (several setpoints in one servo period) is screened as one: each against the
+  // setpoint before the period (the arm's position before the first one followed), so small
+  // steps cannot add up to a jump within a period.
   const bool following = state_ == SafetyState::kOk;
-  const Eigen::Isometry3d& from = following ? last_setpoint_ : reference_pose;
-  const char* from_what = following ? "previous setpoint" : "arm's position";
+  const bool burst = in_period_ > 0;
+  const Eigen::Isometry3d& from = burst ? period_start_setpoint_ : following ? last_setpoint_ : reference_pose;
+  const bool from_arm = burst ? period_start_is_arm_ : !following;
+  const auto from_what = [&] {  // (for a fault's reason only: no allocation per setpoint)
+    if (!burst) return std::string(from_arm ? "arm's position" : "previous setpoint");
+    return format(from_arm ? "arm's position (%.0f setpoints in this servo period)"
+                           : "setpoint before this servo period (%.0f setpoints in it)",
+                  in_period_ + 1.0);
+  };
   const double step = (candidate.translation() - from.translation()).norm();
   if (step > config_.max_setpoint_step) {
-    fault(std::string("setpoint rejected: ") + format("%.4f m from the ", step) + from_what +
+    fault(std::string("setpoint rejected: ") + format("%.4f m from the ", step) + from_what() +
               format(" (limit %.4f m)", config_.max_setpoint_step),
           FaultCause::kInput);
     return false;
   }
   const double turn = Eigen::AngleAxisd(Eigen::Matrix3d(candidate.linear() * from.linear().transpose())).angle();
   if (turn > config_.max_setpoint_rotation) {
-    fault(std::string("setpoint rejected: ") + format("turned %.4f rad from the ", turn) + from_what +
+    fault(std::string("setpoint rejected: ") + format("turned %.4f rad from the ", turn) + from_what() +
               format(" (limit %.4f rad)", config_.max_setpoint_rotation),
           FaultCause::kInput);
     return false;
   }
   learn_period(now_ns, sp.stamp_ns);
+  if (!burst) period_start_setpoint_ = from, period_start_is_arm_ = from_arm;
+  ++in_period_;
   last_setpoint_ = candidate;
   last_setpoint_ns_ = now_ns;
   last_stamp_ns_ = sp.stamp_ns;
@@ -265,6 +279,8 @@ void SafetyGate::check_wrench(const Eigen::Vector3d& force, const Eigen::Vector3
 
 const JointReference& SafetyGate::step(std::int64_t now_ns) {
   const double dt = config_.dt;
+  if (in_period_ > 1) ++burst_periods_, largest_burst_ = std::max(largest_burst_, in_period_);
+  in_period_ = 0;
   if (state_ == SafetyState::kOk && now_ns - last_setpoint_ns_ > setpoint_loss_timeout_ns()) {
     const double silent_ms = static_cast<double>(now_ns - last_setpoint_ns_) * 1e-6;
     const double timeout_ms = static_cast<double>(setpoint_loss_timeout_ns()) * 1e-6;

@@ -16,7 +16,8 @@
 //  - approaches a target on that same curve (time-optimal far away, first order with rate
 //    approach_rate near it): no overshoot on a still target, no chatter on a moving one;
 //  - is never moved by bad input: a non-finite or malformed setpoint, a setpoint jump or speed
-//    beyond the limits, an IK failure or branch change, a measured force or torque above its
+//    beyond the limits (a burst of setpoints in one servo period jumps from the setpoint before
+//    it: it moves the arm no further than one setpoint may; bursts are counted), an IK failure or branch change, a measured force or torque above its
 //    limit, a following error or an overspeed latch a fault with a reason, and the reference
 //    brakes to a standstill within the limits and holds there. Faults stay until reset().
 //  - When setpoints stop coming it brakes and holds too, latched as an input fault naming the
@@ -146,6 +147,11 @@ class SafetyGate {
   // unstamped): the longest of the last kPeriodWindow intervals; 0 while unknown (fewer than
   // kMinIntervals since following began: two samples bunched at the start say little).
   std::int64_t setpoint_period_ns() const { return period_ns_; }
+  // Rate bursts: servo periods that brought more than one setpoint (a network's bunching, or a
+  // sender writing faster than its stream), and the most one brought. Each of a burst is screened
+  // against the setpoint before its period, so a burst moves the arm no further than one setpoint.
+  std::uint64_t burst_periods() const { return burst_periods_; }
+  int largest_burst() const { return largest_burst_; }
   // How long the stream may be silent before the gate faults and brakes: setpoint_periods of its
   // period (of the servo period at least), at most setpoint_timeout, which alone applies while
   // the period is unknown.
@@ -180,6 +186,11 @@ class SafetyGate {
   int n_intervals_ = 0, next_interval_ = 0;
   std::int64_t period_ns_ = 0;
   Eigen::Isometry3d last_setpoint_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d period_start_setpoint_ = Eigen::Isometry3d::Identity();  // the jump checks' origin in a burst
+  bool period_start_is_arm_ = false;  // (the first of the period was checked against the arm)
+  int in_period_ = 0;                 // setpoints accepted this servo period
+  std::uint64_t burst_periods_ = 0;
+  int largest_burst_ = 0;
   bool have_target_ = false;
   Vector6d target_q_ = Vector6d::Zero();
   Vector6d target_qd_ = Vector6d::Zero();

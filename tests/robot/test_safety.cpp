@@ -275,6 +275,65 @@ TEST_F(SafetyGateTest, TheStreamsPeriodComesFromItsStampsSoADeliveryBurstIsNotAL
   }
 }
 
+// Rate bursts: several setpoints in one servo period (a sender writing faster than its stream, a
+// network's bunching) are counted, and each is screened against the setpoint before the period:
+// 4 cm steps, each within max_setpoint_step (10 cm) of the one before, add up to 12 cm by the
+// third within one period, a jump; the same steps one per period are followed.
+TEST_F(SafetyGateTest, ABurstOfSmallStepsInOneServoPeriodIsScreenedAsOneJumpAndCounted) {
+  const Eigen::Isometry3d start_pose = model.fk(q0);
+  const auto step_to = [&](int k) {
+    Eigen::Isometry3d T = start_pose;
+    T.translation().x() += 0.04 * k;
+    SetpointInput in = setpoint_at(T);
+    in.stamp_ns = now;
+    return in;
+  };
+  const auto servo_period = [&](SafetyGate& gate) {
+    now += kMs;
+    gate.set_joint_target(ik_ok(q0), Vector6d::Zero());
+    gate.step(now);
+  };
+  Eigen::Isometry3d accepted;
+  {  // one per servo period: followed
+    SafetyGate gate(config);
+    start(gate, q0);
+    for (int k = 0; k <= 4; ++k) {
+      EXPECT_TRUE(gate.accept_setpoint(now, step_to(k), start_pose, accepted)) << k << ": " << gate.reason();
+      servo_period(gate);
+    }
+    EXPECT_EQ(gate.burst_periods(), 0u);
+  }
+  {  // the first at the arm, then a period with two (counted), then four in one: a jump
+    SafetyGate gate(config);
+    start(gate, q0);
+    ASSERT_TRUE(gate.accept_setpoint(now, step_to(0), start_pose, accepted)) << gate.reason();
+    servo_period(gate);
+    ASSERT_TRUE(gate.accept_setpoint(now, step_to(0), start_pose, accepted)) << gate.reason();
+    ASSERT_TRUE(gate.accept_setpoint(now, step_to(1), start_pose, accepted)) << gate.reason();
+    servo_period(gate);
+    EXPECT_EQ(gate.burst_periods(), 1u);
+    EXPECT_EQ(gate.largest_burst(), 2);
+    for (int k = 2; k <= 4; ++k) {
+      const bool ok = gate.accept_setpoint(now, step_to(k), start_pose, accepted);
+      EXPECT_EQ(ok, k < 4) << k << ": " << gate.reason();  // 4, 8, then 12 cm from the period's start
+    }
+    EXPECT_TRUE(gate.input_fault());
+    EXPECT_NE(gate.reason().find("0.1200 m from the setpoint before this servo period (3 setpoints in it)"),
+              std::string::npos)
+        << gate.reason();
+  }
+  {  // a burst as the first setpoints: each against the arm's position
+    SafetyGate gate(config);
+    start(gate, q0);
+    for (int k = 0; k <= 3; ++k) {
+      const bool ok = gate.accept_setpoint(now, step_to(k), start_pose, accepted);
+      EXPECT_EQ(ok, k < 3) << k << ": " << gate.reason();
+    }
+    EXPECT_NE(gate.reason().find("from the arm's position (4 setpoints in this servo period)"), std::string::npos)
+        << gate.reason();
+  }
+}
+
 TEST_F(SafetyGateTest, AnInputFaultClearsAtAStandstillAndAnArmFaultDoesNot) {
   SafetyGate gate(config);
   start(gate, q0);
@@ -373,14 +432,16 @@ TEST_F(SafetyGateTest, MalformedSetpointsFaultWithTheirReason) {
     EXPECT_EQ(gate.state(), SafetyState::kFault) << c.expect;
     EXPECT_NE(gate.reason().find(c.expect), std::string::npos) << gate.reason();
   }
-  // A jump between consecutive setpoints of a running stream.
+  // A jump between consecutive setpoints of a running stream (one per servo period).
   SafetyGate gate(config);
   gate.reset(q0, 0);
   Eigen::Isometry3d pose;
   ASSERT_TRUE(gate.accept_setpoint(kMs, setpoint_at(model.fk(q0)), model.fk(q0), pose));
+  gate.step(kMs);
   Eigen::Isometry3d far = model.fk(q0);
   far.translation().x() += 0.09;  // fine once
   ASSERT_TRUE(gate.accept_setpoint(2 * kMs, setpoint_at(far), model.fk(q0), pose));
+  gate.step(2 * kMs);
   far.translation().x() += 0.11;  // too far from the previous setpoint
   EXPECT_FALSE(gate.accept_setpoint(3 * kMs, setpoint_at(far), model.fk(q0), pose));
   EXPECT_NE(gate.reason().find("previous setpoint"), std::string::npos) << gate.reason();

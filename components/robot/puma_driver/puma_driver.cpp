@@ -170,6 +170,7 @@ class PumaDriver final : public Component {
   }
 
   void deactivate() override {
+    if (gate_) ports_.log_bursts(*gate_);
     if (!link_) return;
     link::Command c;
     c.hold = true;

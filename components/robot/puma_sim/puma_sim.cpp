@@ -216,6 +216,10 @@ class PumaSim final : public Component {
     report_health(ports_.health(*gate_), gate_->reason());  // the kernel logs the changes
   }
 
+  void deactivate() override {
+    if (gate_) ports_.log_bursts(*gate_);
+  }
+
   void hold() noexcept override {
     try {
       if (gate_) gate_->fault("hold: the pipeline stopped on a fault");
