@@ -12,15 +12,18 @@
 #   robot:   the supervisor holds (no wrist reading) and, the arm back, starts it again;
 #   vision:  the display carries on with the hand's last track (it never holds for the hand) and
 #            the run ends.
-# Each freeze is also named by the stream's DDS deadline in the process that reads it. Then the
-# robot's and the vision group's links are taken down for 2 s: the same holds. Then each group is
-# killed (SIGKILL) and started again after 1 s:
+# Each freeze is also named by the stream's DDS deadline in the process that reads it. Then each
+# group's link is taken down for 2 s: the same holds. Then each group is killed (SIGKILL) and
+# started again after 1 s:
 #   display: the arm holds as when frozen; the restarted display's setpoint owns the topic once the
 #            killed one has missed its deadline, and its supervisor starts the arm again;
 #   robot:   the supervisor holds; the restarted arm stands parked elsewhere, and the supervisor
 #            holds it there (no setpoint refused) before the display starts again;
 #   vision:  the display carries on.
-# In every case the user's script runs to its end. Needs root; exits 77 (skipped) without it.
+# Whenever the display's group is lost, the monitor on h4 records joint states and setpoints
+# across the loss, and no joint may speed up after the next setpoint was due
+# (speeds_after_loss.py). In every case the user's script runs to its end. Needs root; exits 77
+# (skipped) without it.
 # Usage: demo_hosts.sh <build dir> <source dir> <domain>
 set -uo pipefail
 build=$1 src=$2 domain=$3
@@ -40,6 +43,13 @@ start_group() {  # start_group <group>: its process in its host, log in $work/<g
   pid[$1]=$!
   pids+=("$!")
 }
+record_across_the_loss() {  # in $work/joints.yaml and $work/setpoints.yaml
+  local t
+  for t in joints:joint_state setpoints:setpoint; do
+    ip netns exec "$tag-${host[monitor]}" timeout 2.5 "$cli" topic echo "robot/${t#*:}" --domain "$domain" \
+      --transport udp --timeout 2 >"$work/${t%%:*}.yaml" 2>/dev/null &
+  done
+}
 run_display() {  # run_display <group or ""> [stop|link|kill]: one scripted run, the group frozen
   # (SIGSTOP) or cut off (its link down) for 2 s, or killed (SIGKILL) and started again after 1 s
   for g in robot display vision monitor; do
@@ -47,7 +57,17 @@ run_display() {  # run_display <group or ""> [stop|link|kill]: one scripted run,
     start_group "$g"
   done
   if [[ -n $1 ]]; then
-    sleep 5  # the user is reaching for the cube's knob, or pushing it
+    # At 5 s the user is reaching for the cube's knob, or pushing it. The display is lost at 7 s,
+    # as the plate relocates to the cube's -y face (joint 4 at about 2 rad/s), and the monitor's
+    # host records joint states and setpoints from 1.5 s before it to 1 s after (before a killed
+    # display's successor writes).
+    if [[ $1 == display ]]; then
+      sleep 5.5
+      record_across_the_loss
+    else
+      sleep 3.5
+    fi
+    sleep 1.5
     case ${2:-stop} in
       link)
         ip -n "$tag-${host[$1]}" link set eth0 down
@@ -89,13 +109,17 @@ script_done() { grep -Eq "script done: 2 reach\(es\)" "$work/robot.log"; }
 hits() { grep -o "script done: .*" "$work/robot.log"; }
 # The arm's loss of its setpoint stream, from its log: within 3 of the 250 Hz stream's periods
 # (12 ms; 10 ms of slack for the arm's own tick on a loaded machine).
-arm_held_within_3_periods() {  # arm_held_within_3_periods <what happened>
+arm_held_within_3_periods() {  # arm_held_within_3_periods <what happened>: and no joint sped up
   local lost n l
   lost=$(grep -o "fault: setpoint stream lost: no setpoint for [0-9]* ms .*lost after [0-9]* ms)" "$work/robot.log" | head -1)
   n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
   l=$(grep -o 'lost after [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
   check "$1: the arm held within 3 of the stream's periods: ${lost#fault: }" \
     test -n "$n" -a -n "$l" -a "${n:-999}" -le $((${l:-0} + 10)) -a "${l:-999}" -le 15
+  wait  # (the monitor's records)
+  local speeds
+  speeds=$(python3 "$src/tests/net/speeds_after_loss.py" "$work/joints.yaml" "$work/setpoints.yaml" 4)
+  check "$1: no joint sped up after the loss (the monitor's record on h4): $speeds" test $? -eq 0
 }
 
 # 1. The scripted run across the hosts.
@@ -143,7 +167,13 @@ check "vision frozen: the display's process named it by the hand's DDS deadline 
 check "vision frozen: the display never held for the hand or the planner" \
   bash -c "! grep -Eq '> fault: .*(hand|planner)' '$work/display.log'"
 
-# 5. The robot's and the vision group's links down for 2 s.
+# 5. Each group's link down for 2 s.
+run_display display link
+arm_held_within_3_periods "display cut off"
+check "display reconnected: the supervisor started the arm again through idle -> surface" \
+  bash -c "grep -q \"cleared the input fault 'setpoint stream lost\" '$work/robot.log' &&
+           grep -A3 'fault -> idle' '$work/display.log' | grep -q 'idle -> surface'"
+check "display cut off and reconnected, the user's script ran to its end: $(hits)" script_done
 run_display robot link
 check "robot cut off: the display's process named it by the wrist reading's DDS deadline (30 ms)" \
   grep -q "topic 'robot/wrench': no sample for its deadline (30 ms) from 'demo-hosts/robot/" "$work/display.log"
