@@ -102,11 +102,19 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
         bridge.say("topic '" + channel.topic() + "': samples again from " +
                    bridge.writer_name(info.publication_handle) + " (" +
                    std::to_string(counters.deadline_missed.load()) + " deadline(s) missed so far)");
+      const std::string* origin = nullptr;
       {
         std::lock_guard<std::mutex> lock(owner_mutex);
         last_writer = info.publication_handle;
+        // The writing process's name, looked up when the writer changes (not per sample).
+        if (!origin_ || info.publication_handle != origin_writer) {
+          const std::string process = bridge.process_name(info.publication_handle);
+          origin_ = process.empty() ? nullptr : channel.intern_origin(process);  // (unknown yet: again)
+          origin_writer = info.publication_handle;
+        }
+        origin = origin_;
       }
-      channel.deliver_from_dds(sample);
+      channel.deliver_from_dds(sample, origin);
     }
   }
   // The deadline QoS (the pipeline's `qos: {port: {deadline: ..}}`): a writer whose process is
@@ -182,6 +190,8 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   std::set<InstanceHandle_t> named;             // the writers said to be ignored
   std::atomic<bool> late{false};                // a deadline passed without a sample, and none came since
   std::optional<InstanceHandle_t> last_writer;  // whose sample came last (owner_mutex)
+  InstanceHandle_t origin_writer;               // the writer origin_ names (owner_mutex)
+  const std::string* origin_ = nullptr;
   Counters counters;
 };
 
@@ -210,14 +220,21 @@ struct DdsBridge::ParticipantNames final : public DomainParticipantListener {
   std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> names;
 };
 
+std::string DdsBridge::process_name(const InstanceHandle_t& handle) const {
+  eprosima::fastrtps::rtps::GUID_t guid;
+  eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
+  std::lock_guard<std::mutex> lock(names_->mutex);
+  const auto it = names_->names.find(guid.guidPrefix);
+  return it != names_->names.end() ? it->second : std::string();
+}
+
 std::string DdsBridge::writer_name(const InstanceHandle_t& handle) const {
   eprosima::fastrtps::rtps::GUID_t guid;
   eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
   std::ostringstream id;
   id << guid;
-  std::lock_guard<std::mutex> lock(names_->mutex);
-  const auto it = names_->names.find(guid.guidPrefix);
-  return it != names_->names.end() ? "'" + it->second + "' (writer " + id.str() + ")" : "writer " + id.str();
+  const std::string process = process_name(handle);
+  return !process.empty() ? "'" + process + "' (writer " + id.str() + ")" : "writer " + id.str();
 }
 
 DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const std::string&)> report)

@@ -78,6 +78,8 @@ class DdsBridge {
   struct ParticipantNames;
   // "'<participant name>' (writer <GUID>)", or the GUID alone before its participant is known.
   std::string writer_name(const eprosima::fastdds::dds::InstanceHandle_t& writer) const;
+  // The name of the writer's participant ("<pipeline>/<group>/<pid>"), empty while not discovered.
+  std::string process_name(const eprosima::fastdds::dds::InstanceHandle_t& writer) const;
   void publish_loop();
   // Why DDS may have refused an endpoint: "" without security.
   std::string refused_by_permissions(const std::string& action) const;

@@ -259,7 +259,7 @@ struct Runtime::Impl final : RunHost {
     feed_payload.pos = 0;
     if (!target.type->deserialize(&feed_payload, target.sample))
       return refuse("a sample does not deserialise as " + target.channel->type_name());
-    target.channel->deliver_from_dds(target.sample);
+    target.channel->deliver_from_dds(target.sample, nullptr);
     ++feed_result->fed_samples;
   };
   bool any_triggered = false;

@@ -28,7 +28,7 @@ void ArmPorts::take_setpoints(const ArmParams& params, SetpointFollower& followe
       report_.reject_setpoint(setpoint, why);
       continue;
     }
-    if (follower.take(setpoint_msg_, now_ns) == SetpointFollower::Taken::kRefused)
+    if (follower.take(setpoint_msg_, now_ns, setpoint.writer()) == SetpointFollower::Taken::kRefused)
       report_.reject_setpoint(setpoint, follower.refusal());
   }
 }

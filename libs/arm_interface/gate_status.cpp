@@ -20,7 +20,7 @@ bool GateStatus::publish(std::int64_t now_ns, const SafetyGate& gate, const std:
       case SafetyState::kOk: msg_.state(msg::ARM_OK); break;
     }
     msg_.source(state == SafetyState::kOk ? source.substr(0, 31) : std::string());
-    msg_.reason(gate.reason().substr(0, 127));
+    msg_.reason(gate.reason().substr(0, 255));
   }
   msg_.clearable(gate.input_fault());
   fill_header(msg_.header(), now_ns, seq_++, "base");

@@ -207,6 +207,7 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
   last_setpoint_ns_ = now_ns;
   last_stamp_ns_ = sp.stamp_ns;
   if (source_ != sp.source) source_.assign(sp.source);  // (reuses its buffer: no allocation per setpoint)
+  if (writer_ != sp.writer) writer_.assign(sp.writer);
   if (!following) set_state(SafetyState::kOk, "following setpoints");
   pose = candidate;
   return true;
@@ -285,6 +286,7 @@ const JointReference& SafetyGate::step(std::int64_t now_ns) {
     const double silent_ms = static_cast<double>(now_ns - last_setpoint_ns_) * 1e-6;
     const double timeout_ms = static_cast<double>(setpoint_loss_timeout_ns()) * 1e-6;
     std::string why = format("no setpoint for %.0f ms", silent_ms) + (source_.empty() ? "" : " from '" + source_ + "'");
+    if (!writer_.empty()) why += " in process '" + writer_ + "'";  // (the lost group, between processes)
     why += period_ns_ > 0 ? format(" (its stream came every %.0f ms; lost after %.0f ms)",
                                    static_cast<double>(period_ns_) * 1e-6, timeout_ms)
                           : format(" (timeout %.0f ms)", timeout_ms);

@@ -86,6 +86,7 @@ struct SetpointInput {
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
   std::string_view source;  // who sent it (named when its stream is lost)
+  std::string_view writer;  // the process that sent it, from another one ("demo-hosts/display/4711"), else empty
   // The sender's stamp (its clock), from which the stream's period is learned: a delivery burst
   // (samples held up in a network, then arriving one per servo period) does not shorten it. -1:
   // not known, the period is learned from the arrivals.
@@ -182,6 +183,7 @@ class SafetyGate {
   std::int64_t last_setpoint_ns_ = 0;
   std::int64_t last_stamp_ns_ = -1;             // the sender's stamp of the last accepted setpoint
   std::string source_;                          // of the last accepted setpoint
+  std::string writer_;                          // its process, when another one
   std::int64_t intervals_[kPeriodWindow] = {};  // between the last setpoints' stamps (arrivals), ns
   int n_intervals_ = 0, next_interval_ = 0;
   std::int64_t period_ns_ = 0;

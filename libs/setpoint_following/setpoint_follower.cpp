@@ -11,7 +11,8 @@ SetpointFollower::SetpointFollower(const PumaModel& model, std::string tip_name,
                                    double dt)
     : model_(model), tip_name_(std::move(tip_name)), gate_(gate), omega_(6.283185307179586 * tracker_hz), dt_(dt) {}
 
-SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, std::int64_t now_ns) {
+SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, std::int64_t now_ns,
+                                               std::string_view writer) {
   // The stamp first: a stale, replayed or future setpoint is not followed, and says nothing of
   // the stream's health (it does not feed the watchdog). (A zero stamp is stale, but at t = 0 of
   // a sim clock, where it is the time.)
@@ -46,6 +47,7 @@ SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, 
   in.angular_velocity = msgs::to_eigen(m.twist().angular());
   in.source = m.source().c_str();
   in.stamp_ns = stamp;
+  in.writer = writer;
   const bool was_following = gate_.following();
   const Eigen::Isometry3d reference_pose = model_.fk(gate_.reference().q);
   Eigen::Isometry3d pose;

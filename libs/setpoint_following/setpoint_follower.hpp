@@ -6,6 +6,7 @@
 // identically.
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "puma_model/puma_model.hpp"
 #include "safety_gate/safety_gate.hpp"
@@ -25,7 +26,9 @@ class SetpointFollower {
   // from the future (beyond max_setpoint_lead) or older than the last followed one is refused
   // and changes nothing (refusal() says why): it does not feed the watchdog either. One for
   // another frame than base_T_<tip>, or one the gate refuses, faults the gate (an input fault).
-  Taken take(const msg::CartesianSetpoint& setpoint, std::int64_t now_ns);
+  // `writer`: the process that sent it (Input::writer(): empty for this one), named by the gate
+  // when the stream is lost.
+  Taken take(const msg::CartesianSetpoint& setpoint, std::int64_t now_ns, std::string_view writer = {});
   const std::string& refusal() const { return refusal_; }
   // Every servo period, before SafetyGate::step(): advances the tracker and sets the gate's target.
   void update(std::int64_t now_ns);

@@ -42,6 +42,7 @@ class TestProbe final : public wysiwyf::Component {
     if (!(hi > lo)) ctx.reject("hi", "must be larger than lo (" + std::to_string(lo) + ")");
     const bool one_writer =
         ctx.param<bool>("one_writer", false, "in takes one writer, out declares itself it (ownership tests)");
+    name_writers_ = ctx.param<bool>("name_writers", false, "log each new process its input's samples come from");
     const wysiwyf::Qos in_qos = wysiwyf::Qos::reliable(100), out_qos;
     in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", one_writer ? in_qos.one_writer() : in_qos);
     out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]",
@@ -66,6 +67,10 @@ class TestProbe final : public wysiwyf::Component {
     if (tick_sleep_us_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(tick_sleep_us_));
     double sum = 0;
     while (in_.take(sample_)) {
+      if (name_writers_ && in_.writer() != last_writer_) {
+        last_writer_ = in_.writer();
+        log("samples from process '" + last_writer_ + "'");
+      }
       if (!std::isfinite(sample_.position()[0])) {
         reject(in_, "position[0] is not finite");
         continue;
@@ -97,7 +102,8 @@ class TestProbe final : public wysiwyf::Component {
   }
 
   double gain_ = 0;
-  bool emit_nan_ = false;
+  bool emit_nan_ = false, name_writers_ = false;
+  std::string last_writer_;
   std::array<double, 3> weights_{};
   std::vector<double> window_;
   std::string fail_phase_, record_, lifecycle_log_;

@@ -106,7 +106,7 @@ TEST(Deadline, AWriterWhoseProcessFreezesIsNamedByItsReader) {
 // DDS lease (5 s), which is when its writer is unmatched. (Real clock: the kill is in wall time.)
 TEST(Deadline, ARestartedOneWriterOwnsTheTopicOnceTheKilledOneMissedItsDeadline) {
   const fs::path dir = scratch_dir();
-  const fs::path pipeline = producer_and_consumer(dir, "owner", 121, 10, "{one_writer: true}");
+  const fs::path pipeline = producer_and_consumer(dir, "owner", 121, 10, "{one_writer: true, name_writers: true}");
   const pid_t consumer =
       spawn_cli({"run", pipeline.string(), "--process", "consumer", "--no-progress"}, dir / "consumer.log");
   const pid_t first =
@@ -130,6 +130,12 @@ TEST(Deadline, ARestartedOneWriterOwnsTheTopicOnceTheKilledOneMissedItsDeadline)
                                                                             << consumed;
   const auto lost = consumed.find("process " + first_name + " is lost");
   EXPECT_TRUE(lost == std::string::npos || lost > handed) << "handed over only after the lease:\n" << consumed;
+  // The consumer's input says which process each sample came from (Input::writer()).
+  const auto from_first = consumed.find("[sink] samples from process " + first_name);
+  const auto from_second = consumed.find("[sink] samples from process " + second_name);
+  EXPECT_NE(from_first, std::string::npos) << consumed;
+  EXPECT_NE(from_second, std::string::npos) << consumed;
+  EXPECT_LT(from_first, from_second) << consumed;
 }
 
 }  // namespace wysiwyf::test

@@ -238,6 +238,28 @@ TEST_F(SafetyGateTest, TheStreamIsLostAfterThreeOfItsOwnPeriodsAtMostTheTimeout)
   }
 }
 
+// A stream from another process: its loss names the process (the lost group), beside the source.
+TEST_F(SafetyGateTest, ALostStreamFromAnotherProcessNamesIt) {
+  SafetyGate gate(config);
+  start(gate, q0);
+  Eigen::Isometry3d pose;
+  for (int i = 0; i < 20; ++i) {
+    now += kMs;
+    SetpointInput in = setpoint_at(model.fk(q0));
+    in.source = "supervisor/surface";
+    in.writer = "demo-hosts/display/4711";
+    in.stamp_ns = now;
+    ASSERT_TRUE(gate.accept_setpoint(now, in, model.fk(q0), pose)) << gate.reason();
+    gate.set_joint_target(ik_ok(q0), Vector6d::Zero());
+    gate.step(now);
+  }
+  while (gate.state() == SafetyState::kOk) gate.step(now += kMs);
+  EXPECT_NE(gate.reason().find("no setpoint for 4 ms from 'supervisor/surface' in process 'demo-hosts/display/4711' "
+                               "(its stream came every 1 ms; lost after 3 ms)"),
+            std::string::npos)
+      << gate.reason();
+}
+
 // A 100 Hz stream whose first samples reach the arm together (queued while DDS matched the two
 // processes, then delivered one per servo period): learned from the arrivals its period would
 // read as 1 ms and its first ordinary 10 ms gap as a loss; learned from the sender's stamps it is

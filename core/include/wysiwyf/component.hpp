@@ -120,7 +120,7 @@ class Component {
 };
 
 // Bumped whenever the Component/Context/port layout changes incompatibly.
-constexpr std::uint32_t kAbiVersion = 4;
+constexpr std::uint32_t kAbiVersion = 5;
 
 // The C entry point's answer. abi_version stays the first field in every version.
 struct ComponentEntry {

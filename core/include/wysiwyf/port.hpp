@@ -38,6 +38,14 @@ class Input {
   std::uint64_t dropped() const { return queue_ ? queue_->dropped() : 0; }
   bool connected() const { return queue_ != nullptr; }
   const std::string& port() const { return port_; }
+  // The process that wrote the sample the last take returned, as it names itself on DDS
+  // ("<pipeline>/<group>/<pid>": a fault can name a lost process group); empty for a sample
+  // from this process (or from a writer not yet discovered).
+  const std::string& writer() const {
+    static const std::string kThisProcess;
+    const std::string* origin = queue_ ? queue_->taken_origin() : nullptr;
+    return origin ? *origin : kThisProcess;
+  }
 
  private:
   detail::SubscriberQueue<T>* queue_ = nullptr;

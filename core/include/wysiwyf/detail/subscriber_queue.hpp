@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -33,19 +34,24 @@ class QueueCounters {
 template <class T>
 class SubscriberQueue final : public QueueCounters {
  public:
-  explicit SubscriberQueue(int depth) : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)) {}
+  explicit SubscriberQueue(int depth)
+      : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)), origins_(slots_.size(), nullptr) {}
 
-  void push(const T& sample) {
-    store([&](T& slot) { slot = sample; });
+  // `origin`: the process that wrote the sample (its DDS participant's name, kept by the channel
+  // for the run), or null for this process.
+  void push(const T& sample, const std::string* origin = nullptr) {
+    store([&](T& slot) { slot = sample; }, origin);
   }
 
   // Like push, but moves the sample in by swapping buffers with the slot it lands in: no copy.
   // `sample` is left holding that slot's previous contents.
-  void push_swap(T& sample) {
-    store([&](T& slot) {
-      using std::swap;
-      swap(slot, sample);
-    });
+  void push_swap(T& sample, const std::string* origin = nullptr) {
+    store(
+        [&](T& slot) {
+          using std::swap;
+          swap(slot, sample);
+        },
+        origin);
   }
 
   // Oldest unread sample into out; false when none.
@@ -54,6 +60,7 @@ class SubscriberQueue final : public QueueCounters {
     if (count_ == 0) return false;
     using std::swap;
     swap(out, slots_[head_]);
+    taken_origin_ = origins_[head_];
     head_ = (head_ + 1) % slots_.size();
     --count_;
     return true;
@@ -64,11 +71,16 @@ class SubscriberQueue final : public QueueCounters {
     std::lock_guard<std::mutex> lock(mutex_);
     if (count_ == 0) return false;
     using std::swap;
-    swap(out, slots_[(head_ + count_ - 1) % slots_.size()]);
+    const std::size_t newest = (head_ + count_ - 1) % slots_.size();
+    swap(out, slots_[newest]);
+    taken_origin_ = origins_[newest];
     head_ = 0;
     count_ = 0;
     return true;
   }
+
+  // The origin of the sample the last take returned (the taking thread's; null: this process).
+  const std::string* taken_origin() const { return taken_origin_; }
 
   std::size_t size() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -87,7 +99,7 @@ class SubscriberQueue final : public QueueCounters {
   // `put` fills the slot the next sample lands in (keep-last: a full queue drops its oldest
   // first); then the doorbell rings, outside the lock.
   template <class Put>
-  void store(Put&& put) {
+  void store(Put&& put, const std::string* origin) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       const std::size_t n = slots_.size();
@@ -97,6 +109,7 @@ class SubscriberQueue final : public QueueCounters {
         ++dropped_;
       }
       put(slots_[(head_ + count_) % n]);
+      origins_[(head_ + count_) % n] = origin;
       ++count_;
       ++received_;
     }
@@ -105,6 +118,8 @@ class SubscriberQueue final : public QueueCounters {
 
   mutable std::mutex mutex_;
   std::vector<T> slots_;
+  std::vector<const std::string*> origins_;  // each slot's sample's
+  const std::string* taken_origin_ = nullptr;
   std::size_t head_ = 0;
   std::size_t count_ = 0;
   std::uint64_t received_ = 0;

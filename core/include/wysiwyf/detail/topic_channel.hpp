@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -72,8 +73,16 @@ class TopicChannelBase {
   // fell behind by the writer's depth).
   virtual std::uint64_t outgoing_dropped() const = 0;
   // Called from a DDS listener thread with a sample of this channel's type, which it may take
-  // the contents of (the caller reuses it only as a buffer for the next take).
-  virtual void deliver_from_dds(void* sample) = 0;
+  // the contents of (the caller reuses it only as a buffer for the next take). `origin`: the
+  // writing process's name from intern_origin(), or null where it is not known.
+  virtual void deliver_from_dds(void* sample, const std::string* origin) = 0;
+  // A writing process's name, kept for the run (readers' samples point at it).
+  const std::string* intern_origin(const std::string& process) {
+    std::lock_guard<std::mutex> lock(origins_mutex_);
+    for (const std::string& o : origins_)
+      if (o == process) return &o;
+    return &origins_.emplace_back(process);
+  }
   virtual void* create_sample() const = 0;
   virtual void delete_sample(void* sample) const = 0;
 
@@ -104,6 +113,8 @@ class TopicChannelBase {
   bool one_writer_ = false;
   DdsWriterLink* dds_writer_ = nullptr;
   int outbox_depth_ = 1;
+  std::mutex origins_mutex_;
+  std::deque<std::string> origins_;  // (a deque: the strings never move)
 };
 
 template <class T>
@@ -133,11 +144,11 @@ class TopicChannel final : public TopicChannelBase {
   bool take_outgoing(void* sample) override { return outbox_ && outbox_->take(*static_cast<T*>(sample)); }
   std::uint64_t outgoing_dropped() const override { return outbox_ ? outbox_->dropped() : 0; }
 
-  void deliver_from_dds(void* sample) override {
+  void deliver_from_dds(void* sample, const std::string* origin) override {
     T& s = *static_cast<T*>(sample);
     if (queues_.empty()) return;
-    for (std::size_t i = 0; i + 1 < queues_.size(); ++i) queues_[i]->push(s);
-    queues_.back()->push_swap(s);  // the last reader gets the buffer itself: no copy
+    for (std::size_t i = 0; i + 1 < queues_.size(); ++i) queues_[i]->push(s, origin);
+    queues_.back()->push_swap(s, origin);  // the last reader gets the buffer itself: no copy
   }
   void* create_sample() const override { return new T(); }
   void delete_sample(void* sample) const override { delete static_cast<T*>(sample); }
