@@ -105,13 +105,12 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
       const std::string* origin = nullptr;
       {
         std::lock_guard<std::mutex> lock(owner_mutex);
-        last_writer = info.publication_handle;
         // The writing process's name, looked up when the writer changes (not per sample).
-        if (!origin_ || info.publication_handle != origin_writer) {
+        if (!origin_ || last_writer != info.publication_handle) {
           const std::string process = bridge.process_name(info.publication_handle);
           origin_ = process.empty() ? nullptr : channel.intern_origin(process);  // (unknown yet: again)
-          origin_writer = info.publication_handle;
         }
+        last_writer = info.publication_handle;
         origin = origin_;
       }
       channel.deliver_from_dds(sample, origin);
@@ -190,8 +189,7 @@ struct DdsBridge::ReaderLink final : public DataReaderListener {
   std::set<InstanceHandle_t> named;             // the writers said to be ignored
   std::atomic<bool> late{false};                // a deadline passed without a sample, and none came since
   std::optional<InstanceHandle_t> last_writer;  // whose sample came last (owner_mutex)
-  InstanceHandle_t origin_writer;               // the writer origin_ names (owner_mutex)
-  const std::string* origin_ = nullptr;
+  const std::string* origin_ = nullptr;         // its process's name, interned (owner_mutex)
   Counters counters;
 };
 

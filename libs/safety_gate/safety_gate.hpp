@@ -17,9 +17,10 @@
 //    approach_rate near it): no overshoot on a still target, no chatter on a moving one;
 //  - is never moved by bad input: a non-finite or malformed setpoint, a setpoint jump or speed
 //    beyond the limits (a burst of setpoints in one servo period jumps from the setpoint before
-//    it: it moves the arm no further than one setpoint may; bursts are counted), an IK failure or branch change, a measured force or torque above its
-//    limit, a following error or an overspeed latch a fault with a reason, and the reference
-//    brakes to a standstill within the limits and holds there. Faults stay until reset().
+//    it: it moves the arm no further than one setpoint may; bursts are counted), an IK failure
+//    or branch change, a measured force or torque above its limit, a following error or an
+//    overspeed latch a fault with a reason, and the reference brakes to a standstill within the
+//    limits and holds there. Faults stay until reset().
 //  - When setpoints stop coming it brakes and holds too, latched as an input fault naming the
 //    lost source: a stream that comes back is not followed by itself (it may be a frozen process
 //    thawing mid-motion), only once the display asks (clear_input_fault). The stream is lost
