@@ -49,9 +49,9 @@ void fill(msg::Image& s) {
 
 Qos qos_for(bool image) { return image ? Qos::sensor(1) : Qos::reliable(4); }
 
-// The topics of a ping-pong. Under bench/kernel/security-policy.yaml "ping" and "pong" are
+// The topics of a ping-pong. Under bench/kernel/security-policy-topics.yaml "ping" and "pong" are
 // encrypted; the "authenticated" rows' "clear/..." topics are access-controlled but in clear, as
-// the shipped policy leaves the camera images.
+// a policy that lists the robot's topics leaves the camera images.
 std::string topic_of(const std::string& impl, const char* name) {
   return (impl == "authenticated" ? "clear/" : "") + std::string(name);
 }
@@ -225,15 +225,21 @@ void BM_Image640x480_TwoProcess_Kernel(benchmark::State& s) {
 void BM_Image640x480_TwoProcess_RawDds(benchmark::State& s) {
   two_process<RawEndpoint<msg::Image>, msg::Image>(s, "raw", 107);
 }
-// The same hops with DDS-Security on (keys made in main()).
-// "secured": encrypted; "authenticated": authenticated and access-controlled, in clear.
+// The same hops with DDS-Security on (keys made in main()). "secured": every message encrypted
+// (as shipped); "secured-topic": the topic's submessages encrypted; "authenticated":
+// authenticated and access-controlled, in clear.
+bool per_topic(const std::string& impl) { return impl != "secured"; }
 template <class T>
 void two_process_secured(benchmark::State& s, const std::string& impl, int domain) {
   if (!std::getenv("WYSIWYF_BENCH_KEYS")) return s.SkipWithError("no keys: scripts/security failed (see above)");
+  if (per_topic(impl)) return two_process<SecuredKernelEndpoint<T, true>, T>(s, impl, domain);
   two_process<SecuredKernelEndpoint<T>, T>(s, impl, domain);
 }
 void BM_JointState_TwoProcess_KernelSecured(benchmark::State& s) {
   two_process_secured<msg::JointState>(s, "secured", 108);
+}
+void BM_JointState_TwoProcess_KernelSecuredTopic(benchmark::State& s) {
+  two_process_secured<msg::JointState>(s, "secured-topic", 123);  // (116, 119: the net tests)
 }
 void BM_Image640x480_TwoProcess_KernelSecured(benchmark::State& s) {
   two_process_secured<msg::Image>(s, "secured", 109);
@@ -270,6 +276,10 @@ BENCHMARK(BM_JointState_TwoProcess_KernelSecured)
     ->UseManualTime()
     ->Iterations(wysiwyf::bench::iterations(20000))
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_KernelSecuredTopic)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Image640x480_TwoProcess_Kernel)
     ->UseManualTime()
     ->Iterations(wysiwyf::bench::iterations(2000))
@@ -291,9 +301,13 @@ BENCHMARK(BM_Image640x480_TwoProcess_KernelAuthenticated)
 void make_keys() {
   if (std::getenv("WYSIWYF_BENCH_KEYS")) return;
   const std::string dir = "/tmp/wysiwyf-bench-keys-" + std::to_string(getpid());
-  const std::string command = std::string(WYSIWYF_SOURCE_DIR) + "/scripts/security " + WYSIWYF_SOURCE_DIR +
-                              "/bench/kernel/security-policy.yaml " + dir + " >/dev/null";
-  if (std::system(command.c_str()) == 0) setenv("WYSIWYF_BENCH_KEYS", dir.c_str(), 1);
+  const auto keys = [&](const char* policy, const char* folder) {
+    const std::string command = std::string(WYSIWYF_SOURCE_DIR) + "/scripts/security " + WYSIWYF_SOURCE_DIR +
+                                "/bench/kernel/" + policy + " " + dir + "/" + folder + " >/dev/null";
+    return std::system(command.c_str()) == 0;
+  };
+  if (keys("security-policy.yaml", "messages") && keys("security-policy-topics.yaml", "topics"))
+    setenv("WYSIWYF_BENCH_KEYS", dir.c_str(), 1);
 }
 
 }  // namespace wysiwyf::bench
@@ -306,9 +320,13 @@ int main(int argc, char** argv) {
     const int domain = std::atoi(argv[4]);
     const bool kernel = std::strcmp(argv[2], "kernel") == 0;
     const std::string impl = argv[2];
-    if (impl == "secured" || impl == "authenticated")
+    if (impl == "secured")
       return image ? bench::echo<bench::SecuredKernelEndpoint<msg::Image>, msg::Image>(domain, true, impl)
                    : bench::echo<bench::SecuredKernelEndpoint<msg::JointState>, msg::JointState>(domain, false, impl);
+    if (impl == "secured-topic" || impl == "authenticated")
+      return image ? bench::echo<bench::SecuredKernelEndpoint<msg::Image, true>, msg::Image>(domain, true, impl)
+                   : bench::echo<bench::SecuredKernelEndpoint<msg::JointState, true>, msg::JointState>(domain, false,
+                                                                                                       impl);
     if (image)
       return kernel ? bench::echo<bench::KernelEndpoint<msg::Image>, msg::Image>(domain, true, impl)
                     : bench::echo<bench::RawEndpoint<msg::Image>, msg::Image>(domain, true, impl);

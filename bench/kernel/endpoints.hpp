@@ -81,14 +81,18 @@ class KernelEndpoint {
   Input<T> in_;
 };
 
-// The kernel's ports with DDS-Security on: authenticated, access-controlled, AES-GCM on the
-// topics (bench/kernel/security-policy.yaml, made into keys once per run in $WYSIWYF_BENCH_KEYS).
-template <class T>
+// The kernel's ports with DDS-Security on: authenticated, access-controlled, AES-GCM. Keys made
+// once per run in $WYSIWYF_BENCH_KEYS: "messages" from bench/kernel/security-policy.yaml (every
+// message encrypted as a whole, as shipped), "topics" from security-policy-topics.yaml (the
+// ping-pong topics' submessages encrypted one by one, "clear/..." topics in clear).
+template <class T, bool kPerTopic = false>
 class SecuredKernelEndpoint : public KernelEndpoint<T> {
  public:
   SecuredKernelEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos)
-      : KernelEndpoint<T>(domain, out_topic, in_topic, qos,
-                          dds::SecurityIdentity{std::getenv("WYSIWYF_BENCH_KEYS"), "bench"}) {}
+      : KernelEndpoint<T>(
+            domain, out_topic, in_topic, qos,
+            dds::SecurityIdentity{
+                std::string(std::getenv("WYSIWYF_BENCH_KEYS")) + (kPerTopic ? "/topics" : "/messages"), "bench"}) {}
 };
 
 }  // namespace wysiwyf::bench

@@ -187,9 +187,12 @@ class Security : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     keys_ = dir_ / "keys";
-    const std::string command = std::string(WYSIWYF_SOURCE_DIR) + "/scripts/security " + WYSIWYF_SOURCE_DIR +
-                                "/config/security/policy.yaml " + keys_.string() + " > " +
-                                (dir_ / "security.log").string() + " 2>&1";
+    make_keys(fs::path(WYSIWYF_SOURCE_DIR) / "config/security/policy.yaml");
+  }
+  // scripts/security's keys and signed documents for `policy` in keys_ (documents made again).
+  void make_keys(const fs::path& policy) {
+    const std::string command = std::string(WYSIWYF_SOURCE_DIR) + "/scripts/security " + policy.string() + " " +
+                                keys_.string() + " > " + (dir_ / "security.log").string() + " 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << "scripts/security failed: " << read_text(dir_ / "security.log");
   }
   void TearDown() override {
@@ -316,6 +319,16 @@ class Security : public ::testing::Test {
   }
 
   static std::string pose_bytes() { return std::string(reinterpret_cast<const char*>(kPose), sizeof kPose); }
+  // Once the arm follows (the setpoints have crossed from the display's process for a while), no
+  // RTPS datagram of the domain holds the script's pose.
+  void expect_no_pose_on_the_wire(LoopbackCapture& capture) {
+    expect_arm_following();
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    const auto [rtps, holding] = capture.count(domain_, pose_bytes());
+    std::cout << rtps << " RTPS datagrams of domain " << domain_ << " captured, " << holding << " with the pose\n";
+    EXPECT_GT(rtps, 200) << "too little traffic captured to say anything";
+    EXPECT_EQ(holding, 0) << holding << " of " << rtps << " RTPS frames hold the script's pose in clear";
+  }
 
   fs::path dir_, keys_, pipeline_;
   int domain_ = 0;
@@ -373,14 +386,25 @@ TEST_F(Security, TheSetpointCrossesTheWireEncrypted) {
   LoopbackCapture capture;
   if (!capture.ok()) GTEST_SKIP() << "capturing on lo needs CAP_NET_RAW (root); skipped";
   start(113, /*secured=*/true);
-  expect_arm_following();  // the setpoints have been crossing from the display's process for a while
-  std::this_thread::sleep_for(std::chrono::seconds(1));
-  const auto [rtps, holding] = capture.count(domain_, pose_bytes());
-  std::cout << rtps << " RTPS datagrams of domain " << domain_ << " captured, " << holding << " with the pose\n";
-  EXPECT_GT(rtps, 200) << "too little traffic captured to say anything";
-  EXPECT_EQ(holding, 0) << holding << " of " << rtps << " RTPS frames hold the script's pose in clear";
+  expect_no_pose_on_the_wire(capture);
   // Announcements are in clear by the standard: they no longer name the host, user and process.
   EXPECT_EQ(capture.count(domain_, "fastdds.physical_data.").second, 0);
+}
+
+// The same with a policy that lists the robot's topics instead of `encrypt: all`: their
+// submessages are encrypted one by one, other topics travel in clear.
+TEST_F(Security, ThePolicysListOfRobotTopicsEncryptsTheSetpointOnTheWire) {
+  LoopbackCapture capture;
+  if (!capture.ok()) GTEST_SKIP() << "capturing on lo needs CAP_NET_RAW (root); skipped";
+  std::string policy = read_text(fs::path(WYSIWYF_SOURCE_DIR) / "config/security/policy.yaml");
+  const std::string all = "\nencrypt: all\n";
+  ASSERT_NE(policy.find(all), std::string::npos) << "the shipped policy no longer says `encrypt: all`";
+  policy.replace(policy.find(all), all.size(), "\nencrypt: [robot/setpoint, robot/request, robot/joint_state]\n");
+  std::ofstream(dir_ / "policy.yaml") << policy;
+  make_keys(dir_ / "policy.yaml");
+  ASSERT_NE(read_text(keys_ / "governance.xml").find("<rtps_protection_kind>NONE<"), std::string::npos);
+  start(124, /*secured=*/true);
+  expect_no_pose_on_the_wire(capture);
 }
 
 // One voice to the robot, without security: the setpoint has DDS exclusive ownership and the arm

@@ -1,7 +1,7 @@
 #pragma once
 // DDS-Security for one participant: the identity it authenticates with (PKI-DH), the signed
 // governance and permissions documents it is checked against (Access-Permissions), and AES-GCM
-// for the topics the governance protects. The files are what scripts/security makes:
+// for what the governance protects (every message, or some topics' submessages). The files are what scripts/security makes:
 //   <keys>/identity_ca.pem, <keys>/permissions_ca.pem, <keys>/governance.p7s,
 //   <keys>/<identity>/cert.pem, key.pem, permissions.p7s
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
