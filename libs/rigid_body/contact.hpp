@@ -46,10 +46,16 @@ ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& mod
 // box's extreme point along it, within `cone` (a direction cosine); a vertex-face feature always
 // does. Nearly parallel edges lying on each other (equal boxes side by side, their top edges
 // together) have a normal of round-off, sideways or up, which would press the boxes together
-// along it: their contact is the faces', held by vertex-face ones.
+// along it: their contact is the faces', held by vertex-face ones. Edges that cross
+// (kCrossingEdges) separate within kFaceEdgeCone whatever `cone`: one lies on a face beside the
+// other, which rests on it where the face ends.
 bool separates(const ContactFeature& f, const ContactPoint& c, const std::vector<Pose>& poses, double cone);
 // A contact's cone: its normal must separate.
 constexpr double kContactCone = 1e-6;
+// Edges that cross at least this sine apart while one lies on a face beside the other: within
+// this cone of the face's normal they still separate (separates()).
+constexpr double kCrossingEdges = 0.1;
+constexpr double kFaceEdgeCone = 0.02;
 // A feature watched while the boxes are apart: they turn within a step, and an edge pair outside
 // its cone at the step's start can be inside it, and crossing, by the step's end (measured in
 // landing piles: 0.0074 outside, 0.027 inside 1 ms later, 1 mm deep; 0.05 was not enough for
