@@ -108,7 +108,7 @@ ContactPoint evaluate(const ContactFeature& f, const std::vector<BodyModel>& mod
 }
 
 void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses, double margin,
-                     double rim, std::vector<ContactFeature>& out) {
+                     double rim, double horizon, std::vector<ContactFeature>& out) {
   const auto& ma = models[a];
   const auto& mb = models[b];
   const double reach = ma.half_extents.norm() + mb.half_extents.norm() + margin;
@@ -197,9 +197,16 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
         if (!c.valid || std::abs(c.gap) <= rim) continue;
       }
       if (std::abs(c.gap) > margin) continue;
-      if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.n = -c.n, c.gap = -c.gap;  // point the normal out of b
+      if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.n = -c.n, c.ndot = -c.ndot, c.gap = -c.gap;  // out of b
       // (the watched cone: whether it may become a contact is World's call, in kContactCone)
-      if (!separates(f, c, poses, kWatchedCone)) continue;
+      if (!separates(f, c, poses, kWatchedCone)) {
+        // The normal e_a x e_b / |e_a x e_b| turns 1/sin faster than the edges: edges crossing at
+        // sine 0.2 while a box spins turned it 0.3 rad in a step, from outside the cone to 0.1 mm
+        // deep. Watched as well: a pair whose normal, as it turns now, is in the cone a horizon on.
+        ContactPoint ahead = c;
+        ahead.n = (c.n + horizon * c.ndot).normalized();
+        if (!separates(f, ahead, poses, kWatchedCone)) continue;
+      }
       if (c.gap > -depth) out.push_back(f);
     }
   }

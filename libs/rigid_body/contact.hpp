@@ -63,8 +63,9 @@ constexpr double kFaceEdgeCone = 0.02;
 constexpr double kWatchedCone = 0.2;
 
 // Every feature pair between body a (dynamic) and body b closer than `margin`. A corner within
-// `rim` of a face's edge counts as over the face (evaluate's slack: the same rim).
+// `rim` of a face's edge counts as over the face (evaluate's slack: the same rim). An edge pair is
+// one if its normal is in kWatchedCone now or, turning as it does, `horizon` seconds on.
 void find_candidates(int a, int b, const std::vector<BodyModel>& models, const std::vector<Pose>& poses, double margin,
-                     double rim, std::vector<ContactFeature>& out);
+                     double rim, double horizon, std::vector<ContactFeature>& out);
 
 }  // namespace wysiwyf::haptics

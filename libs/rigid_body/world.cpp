@@ -279,13 +279,13 @@ bool World::twin_of_touching(const ContactFeature& f, const ContactPoint& c) con
   return false;
 }
 
-void World::classify_contacts() {
+void World::classify_contacts(double dt) {
   std::vector<Pose>& poses = work_.poses;
   state_.poses_of(model_, state_.bodies, poses);
   work_.candidates.clear();
   work_.broad_phase.pairs(model_, poses, model_.params.margin, work_.pairs);
   for (const auto& [a, b] : work_.pairs)
-    find_candidates(a, b, model_.bodies, poses, model_.params.margin, model_.params.rim_slack, work_.candidates);
+    find_candidates(a, b, model_.bodies, poses, model_.params.margin, model_.params.rim_slack, dt, work_.candidates);
   std::vector<ActiveContact>& touching = work_.touching;
   std::vector<ContactFeature>& watched = work_.watched_next;
   touching.clear();
@@ -367,7 +367,7 @@ void World::hold(double t, const std::string& why) {
 }
 
 void World::integrate(double dt, bool friction) {
-  classify_contacts();
+  classify_contacts(dt);
   if (friction) update_friction(dt);
   CvodeIntegrator& cv = *integrator_;
   double* y = cv.state();

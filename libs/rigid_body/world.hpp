@@ -89,7 +89,7 @@ class World {
   // The bodies set to `bodies` at t, the contacts to be found again and CVODE started over.
   void restart_from(double t, const std::vector<BodyState>& bodies);
   void hold(double t, const std::string& why);
-  void classify_contacts();
+  void classify_contacts(double dt);  // (dt: the step ahead, over which an edge pair may turn to face)
   // Feature f at `poses`, a point within the rim of its face or edge still on it (every
   // evaluation of the world's contacts: search, right-hand sides, roots and impacts).
   ContactPoint point_of(const ContactFeature& f, const std::vector<Pose>& poses) const;
