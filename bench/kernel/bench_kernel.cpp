@@ -235,6 +235,11 @@ void two_process_secured(benchmark::State& s, const std::string& impl, int domai
   if (per_topic(impl)) return two_process<SecuredKernelEndpoint<T, true>, T>(s, impl, domain);
   two_process<SecuredKernelEndpoint<T>, T>(s, impl, domain);
 }
+template <class T>
+int echo_secured(int domain, bool image, const std::string& impl) {
+  if (per_topic(impl)) return echo<SecuredKernelEndpoint<T, true>, T>(domain, image, impl);
+  return echo<SecuredKernelEndpoint<T>, T>(domain, image, impl);
+}
 void BM_JointState_TwoProcess_KernelSecured(benchmark::State& s) {
   two_process_secured<msg::JointState>(s, "secured", 108);
 }
@@ -320,13 +325,9 @@ int main(int argc, char** argv) {
     const int domain = std::atoi(argv[4]);
     const bool kernel = std::strcmp(argv[2], "kernel") == 0;
     const std::string impl = argv[2];
-    if (impl == "secured")
-      return image ? bench::echo<bench::SecuredKernelEndpoint<msg::Image>, msg::Image>(domain, true, impl)
-                   : bench::echo<bench::SecuredKernelEndpoint<msg::JointState>, msg::JointState>(domain, false, impl);
-    if (impl == "secured-topic" || impl == "authenticated")
-      return image ? bench::echo<bench::SecuredKernelEndpoint<msg::Image, true>, msg::Image>(domain, true, impl)
-                   : bench::echo<bench::SecuredKernelEndpoint<msg::JointState, true>, msg::JointState>(domain, false,
-                                                                                                       impl);
+    if (impl == "secured" || impl == "secured-topic" || impl == "authenticated")
+      return image ? bench::echo_secured<msg::Image>(domain, true, impl)
+                   : bench::echo_secured<msg::JointState>(domain, false, impl);
     if (image)
       return kernel ? bench::echo<bench::KernelEndpoint<msg::Image>, msg::Image>(domain, true, impl)
                     : bench::echo<bench::RawEndpoint<msg::Image>, msg::Image>(domain, true, impl);

@@ -76,6 +76,14 @@ bool edge_supports(const Mat3& R, const std::array<int, 2>& edge, const Vec3& d,
   return true;
 }
 
+// The direction of `edge` of a box with rotation R, up to its sign: the body axis along which
+// its two corners differ.
+Vec3 edge_axis(const Mat3& R, const std::array<int, 2>& edge) {
+  Eigen::Index axis = 0;
+  (BoxTopology::corner_signs()[edge[1]] - BoxTopology::corner_signs()[edge[0]]).cwiseAbs().maxCoeff(&axis);
+  return R.col(axis);
+}
+
 }  // namespace
 
 bool separates(const ContactFeature& f, const ContactPoint& c, const std::vector<Pose>& poses, double cone) {
@@ -91,11 +99,8 @@ bool separates(const ContactFeature& f, const ContactPoint& c, const std::vector
   // a tilt of round-off or of the step puts the face, not its edge, at the support, yet where the
   // face ends is where it rests on the other edge. (Nearly parallel edges keep the narrow cone:
   // their normal is round-off.)
-  const auto direction = [&](const Pose& pose, const std::array<int, 2>& edge) {
-    return Vec3(pose.R * (BoxTopology::corner_signs()[edge[1]] - BoxTopology::corner_signs()[edge[0]]).normalized());
-  };
   const double crossing =
-      direction(poses[f.a], edges[f.feature_a]).cross(direction(poses[f.b], edges[f.feature_b])).norm();
+      edge_axis(poses[f.a].R, edges[f.feature_a]).cross(edge_axis(poses[f.b].R, edges[f.feature_b])).norm();
   return crossing >= kCrossingEdges && supported(std::max(cone, kFaceEdgeCone));
 }
 
