@@ -2,8 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace wysiwyf::haptics {
+namespace {
+
+// Pivots below these fractions of the largest end the factorisations (psd_pseudo_inverse.hpp):
+// a touching contact whose row depends on the others' within the LCP's own test of a dependent
+// row (1e-10 of A's scale), and round-off in the sticking rows' Schur complement.
+constexpr double kTouchingRank = 1e-9;
+constexpr double kStickRank = 1e-12;
+
+}  // namespace
 
 FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn,
                                      const Eigen::VectorXd& bt, const Eigen::VectorXd& mu, const Eigen::VectorXd& vt,
@@ -32,13 +42,16 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     if (v.norm() > sliding_speed) against[static_cast<std::size_t>(i)] = -v.normalized();
   }
   // Convergence is judged on what the forces do, A [fn; ft] (contact-space accelerations or
-  // velocity changes): with redundant contacts the forces themselves are not unique.
+  // velocity changes).
   Eigen::VectorXd f(3 * m), effect(3 * m), effect_prev = Eigen::VectorXd::Zero(3 * m);
   const double load = std::max({1e-12, bn.cwiseAbs().maxCoeff(), bt.cwiseAbs().maxCoeff()});
   std::vector<Eigen::Index> stick_rows;
   Eigen::MatrixXd Akk;
   Eigen::VectorXd rhs, weight;
   LcpIndices clamped;  // each round's normal LCP starts from the last one's clamped set
+  double best_change = std::numeric_limits<double>::infinity();
+  int best_round = 1;
+  touching_.clear();  // (a new Ann: no factor kept from another solve)
   for (r.iterations = 1; r.iterations <= max_rounds; ++r.iterations) {
     // Normal forces, friction as a known load.
     bn_eff_ = bn + Ant * r.ft;
@@ -47,29 +60,28 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     clamped = normal.clamped;
     r.ok = true;
     r.fn = normal.f;
-    // The friction step sees the tangential rows as the clamped normal contacts will answer them:
-    // a friction force tilts the body, and the clamped contacts' forces change to stop the tilt.
-    // With the Schur complement S = Att - Atn_C Ann_CC^-1 Ant_C in place of Att (and the load
+    const bool same_touching = spread_normal_forces(normal, load, r.fn) && r.iterations > 1;
+    // The friction step sees the tangential rows as the touching normal contacts will answer them:
+    // a friction force tilts the body, and the touching contacts' forces change to stop the tilt.
+    // With the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T in place of Att (and the load
     // moved to match), the friction found is already the one that holds after the next normal
-    // solve, as long as the clamped set stays: the rounds settle in two or three, not the
-    // twenty-odd of plain alternation (which converges by about 0.6 a round).
-    S_ = Att;
-    c_ = bt + Atn * r.fn;  // the tangential rows' load at the current forces, less Att ft
-    if (const Eigen::Index nc = clamped.size(); nc > 0) {
-      AntC_.resize(nc, 2 * m);
-      Acc_.resize(nc, nc);
-      for (Eigen::Index i = 0; i < nc; ++i) {
-        AntC_.row(i) = Ant.row(clamped[i]);
-        for (Eigen::Index j = 0; j < nc; ++j) Acc_(i, j) = Ann_(clamped[i], clamped[j]);
-      }
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(Acc_);
-      const auto d = ldlt.vectorD().cwiseAbs();
-      if (ldlt.info() == Eigen::Success && d.minCoeff() > 1e-12 * d.maxCoeff()) {  // (C is kept regular)
-        X_ = ldlt.solve(AntC_);  // Ann_CC^-1 Ant_C: how the clamped forces answer a friction force
-        S_.noalias() -= AntC_.transpose() * X_;
-        c_.noalias() += AntC_.transpose() * (X_ * r.ft);
+    // solve, as long as the touching set stays: the rounds settle in two or three, not the
+    // twenty-odd of plain alternation (which converges by about 0.6 a round). (Ann_TT^+: the
+    // least forces that answer it; redundant contacts share the answer.) S and Z depend on the
+    // touching set only: kept while it stays.
+    const auto nt = static_cast<Eigen::Index>(touching_.size());
+    if (!same_touching) {
+      S_ = Att;
+      if (nt > 0) {
+        AntC_.resize(nt, 2 * m);
+        for (Eigen::Index i = 0; i < nt; ++i) AntC_.row(i) = Ant.row(touching_[static_cast<std::size_t>(i)]);
+        // Z^T Z = Atn_T Ann_TT^+ Ant_T; Z ft: how the touching forces answer a friction force.
+        touching_inverse_.half_solve(AntC_, Z_);
+        S_.noalias() -= Z_.transpose() * Z_;
       }
     }
+    c_ = bt + Atn * r.fn;  // the tangential rows' load at the current forces, less S ft
+    if (nt > 0) c_.noalias() += Z_.transpose() * (Z_ * r.ft);
     // Friction forces, normal forces fixed: sliders at the rim, stickers exact; a sticker beyond
     // its rim becomes a slider and the stickers are solved again.
     sliding = moving;
@@ -106,8 +118,10 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         const Eigen::Index i = stick_rows[static_cast<std::size_t>(a)] / 2;
         weight[a] = std::sqrt(std::max(0.0, mu[i] * r.fn[i]));
       }
-      cod_.compute(Akk * weight.asDiagonal());
-      const Eigen::VectorXd x = weight.cwiseProduct(cod_.solve(rhs));
+      // (Akk W y = rhs and W Akk W y = W rhs have the same solutions; the second is symmetric.)
+      stick_inverse_.compute(weight.asDiagonal() * Akk * weight.asDiagonal(), kStickRank);
+      stick_inverse_.solve(weight.cwiseProduct(rhs), y_);
+      const Eigen::VectorXd x = weight.cwiseProduct(y_);
       bool changed = false;
       for (Eigen::Index a = 0; a < k; a += 2) {
         const Eigen::Index i = stick_rows[static_cast<std::size_t>(a)] / 2;
@@ -133,11 +147,51 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       r.converged = true;
       return r;
     }
+    if (r.iterations > 1 && change < 0.5 * best_change) best_change = change, best_round = r.iterations;
+    if (r.iterations - best_round >= stall_rounds) break;
   }
-  r.iterations = max_rounds;
+  r.iterations = std::min(r.iterations, max_rounds);
   // Not settled within the rounds: the last normal solve is still exact for the friction it saw,
   // so non-penetration holds; the caller reports it.
   return r;
+}
+
+bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn) {
+  const auto m = static_cast<Eigen::Index>(fn.size());
+  // Touching: clamped, or without force at (round-off from) zero acceleration, a contact the
+  // pivoting kept out of C because its row depends on the clamped ones'.
+  touching_next_.clear();
+  const double at_zero = 1e-9 * std::max(load, normal.a.size() > 0 ? normal.a.cwiseAbs().maxCoeff() : 0.0);
+  for (Eigen::Index i = 0; i < m; ++i)
+    if (normal.f[i] > 0 || normal.a[i] <= at_zero) touching_next_.push_back(static_cast<int>(i));
+  const bool same = touching_next_ == touching_;
+  touching_.swap(touching_next_);
+  const auto nt = static_cast<Eigen::Index>(touching_.size());
+  if (nt == 0) return same;
+  f_touching_.resize(nt);
+  for (Eigen::Index i = 0; i < nt; ++i) f_touching_[i] = fn[touching_[static_cast<std::size_t>(i)]];
+  if (!same) {  // (Ann is the solve's: its factor stays with the set)
+    Ann_touching_.resize(nt, nt);
+    for (Eigen::Index i = 0; i < nt; ++i)
+      for (Eigen::Index j = 0; j < nt; ++j)
+        Ann_touching_(i, j) = Ann_(touching_[static_cast<std::size_t>(i)], touching_[static_cast<std::size_t>(j)]);
+    touching_inverse_.compute(Ann_touching_, kTouchingRank);
+  }
+  if (touching_inverse_.rank() == nt) return same;
+  // Redundant contacts: every f + v with Ann_TT v = 0 does what f does (v moves no body: J_T^T v
+  // = 0), so the choice among them is free; the pivoting picks a vertex (one of a face's four
+  // corners without force), and which vertex flips with the friction load, taking the friction
+  // of the corner it drops: staggered rounds cycled between two such sets without end. The
+  // least forces that do the same, Ann_TT^+ Ann_TT f, spread the load over every touching
+  // contact and move continuously with the load (as far towards them as keeps every force >= 0).
+  spread_.noalias() = Ann_touching_ * f_touching_;
+  touching_inverse_.solve(spread_, spread_);
+  double toward = 1.0;
+  for (Eigen::Index i = 0; i < nt; ++i)
+    if (spread_[i] < 0) toward = std::min(toward, f_touching_[i] / (f_touching_[i] - spread_[i]));
+  for (Eigen::Index i = 0; i < nt; ++i)
+    fn[touching_[static_cast<std::size_t>(i)]] = std::max(0.0, f_touching_[i] + toward * (spread_[i] - f_touching_[i]));
+  return same;
 }
 
 }  // namespace wysiwyf::haptics

@@ -5,30 +5,38 @@
 //  - the normal forces from Baraff's pivoting LCP (exact non-penetration) with the current
 //    friction forces as known loads, and
 //  - the friction forces with the normal forces' answer to them anticipated (the tangential rows
-//    through the Schur complement S = Att - Atn_C Ann_CC^-1 Ant_C over the normal LCP's clamped
-//    set C: a friction force tilts the body, the clamped contacts stop the tilt), by an active
-//    set over the contacts:
+//    through the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T over the touching set T, the
+//    normal LCP's clamped contacts and those at zero acceleration that it left without force
+//    because they are redundant: a friction force tilts the body, the touching contacts stop the
+//    tilt), by an active set over the contacts:
 //    every contact is first asked to stick: the minimum-norm forces that meet the targets exactly
-//    (no sliding by the horizon, or after the impact; a complete orthogonal decomposition, so
+//    (no sliding by the horizon, or after the impact; the least-norm solution, psd_pseudo_inverse.hpp, so
 //    the four coplanar corners of a face, a singular system, share the load evenly); a contact
 //    that needs more than mu f_n slides at mu f_n, against its velocity if it slides faster than
 //    sliding_speed (maximal dissipation), else along the force it needed, and the rest are
 //    solved again (isotropic Coulomb: a disc, no pyramid),
-// until what the forces do, A [f_n; f_t], stops changing.
+// until what the forces do, A [f_n; f_t], stops changing. The friction is bounded by normal forces
+// spread over redundant contacts (a face's four corners) as the least forces that do what the
+// LCP's do, the split four equal springs would carry: the LCP's own answer leaves one corner
+// without force, and which one flips with the friction load, so the rounds cycled.
 //
 // The rows: a_n = Ann f_n + Ant f_t + bn (>= 0, complementary to f_n >= 0) and
 // a_t = Atn f_n + Att f_t + bt (-> 0 for sticking contacts), contact i's tangent rows 2i, 2i+1.
 #include <Eigen/Dense>
 
+#include <vector>
+
 #include "rigid_body/lcp.hpp"
+#include "rigid_body/psd_pseudo_inverse.hpp"
 
 namespace wysiwyf::haptics {
 
 struct FrictionResult {
-  Eigen::VectorXd fn, ft;  // normal (m) and tangential (2m) forces or impulses
+  // Normal (m; spread over redundant contacts, see above) and tangential (2m) forces or impulses.
+  Eigen::VectorXd fn, ft;
   int iterations = 0;      // staggered rounds
   bool ok = false;         // every normal LCP solved (non-penetration holds for the friction applied)
-  bool converged = false;  // and the rounds settled within max_rounds
+  bool converged = false;  // and the rounds settled (not: max_rounds, or stall_rounds without progress)
 };
 
 class FrictionSolver {
@@ -59,12 +67,22 @@ class FrictionSolver {
   // the loads (1e-7 N on a 1 kg cube) is far below anything a hand could feel.
   int max_rounds = 40;
   double tolerance = 1e-8;  // change of A [fn; ft] between rounds, relative to the loads, that ends them
+  // Rounds without the change halving that end them unsettled: a cycle (the normal forces under
+  // fast sliders, whose friction mu f_n moves with them, switching between sets) goes on as long
+  // as it is let; a contraction halves it within two rounds.
+  int stall_rounds = 6;
 
  private:
-  Eigen::MatrixXd Ann_, S_, AntC_, Acc_, X_;
-  Eigen::VectorXd c_;
+  // The normal forces the friction is bounded by: the LCP's, spread over redundant touching
+  // contacts (the same motion, the least forces); sets touching_ and touching_inverse_ (of Ann_TT).
+  // Returns whether the touching set is the one of the last call (its factor kept).
+  bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
+
+  Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_;
+  Eigen::VectorXd c_, f_touching_, spread_, y_;
   Eigen::VectorXd bn_eff_;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;
+  std::vector<int> touching_, touching_next_;
+  PsdPseudoInverse stick_inverse_, touching_inverse_;
 };
 
 }  // namespace wysiwyf::haptics

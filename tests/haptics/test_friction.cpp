@@ -4,6 +4,7 @@
 // g (sin - mu cos); an oblique impact keeps no tangential velocity when friction suffices.
 // All on simulated time.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -190,6 +191,50 @@ TEST(FrictionSolver, TheNormalForcesStayExactAndTheFrictionStaysOnItsDisc) {
   const FrictionResult d = solver.solve(lcp, A, bn, bt, mu, sliding);
   EXPECT_NEAR(d.ft[0], 0.0, 1e-12);
   EXPECT_NEAR(d.ft[1], 0.4 * 9.81, 1e-12);
+}
+
+TEST(FrictionSolver, AFacesFourCornersShareTheNormalLoadAndTheFrictionIsBoundedByEachShare) {
+  // A 1 kg, 20 cm cube resting on its four bottom corners (a redundant set: three would hold it),
+  // pushed along x at 0.9 mu m g through a point 5 cm above its centre (the front corners carry
+  // more). Contact space rows: normal (z) then the tangents (x, y) of each corner; A = J M^-1 J^T.
+  const double m = 1.0, h = 0.1, inertia = m * (2 * h) * (2 * h) / 6, mu = 0.5;
+  const std::array<Vec3, 4> corners = {Vec3(h, h, -h), Vec3(-h, h, -h), Vec3(-h, -h, -h), Vec3(h, -h, -h)};
+  const std::array<Vec3, 3> dirs = {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
+  Eigen::MatrixXd J(12, 6);
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int row = k == 0 ? i : 4 + 2 * i + (k - 1);
+      J.row(row) << dirs[k].transpose(), corners[i].cross(dirs[k]).transpose();
+    }
+  Eigen::VectorXd inv_mass(6);
+  inv_mass << Vec3::Constant(1 / m), Vec3::Constant(1 / inertia);
+  const Eigen::MatrixXd A = J * inv_mass.asDiagonal() * J.transpose();
+  const Vec3 push(0.9 * mu * m * g, 0, 0), at_point(0, 0, 0.05);
+  Eigen::VectorXd load(6);  // the body's acceleration under gravity and the push
+  load << (push + Vec3(0, 0, -m * g)) / m, at_point.cross(push) / inertia;
+  const Eigen::VectorXd b = J * load;
+  LcpSolver lcp;
+  FrictionSolver solver;
+  const FrictionResult r =
+      solver.solve(lcp, A, b.head(4), b.tail(8), Eigen::VectorXd::Constant(4, mu), Eigen::VectorXd::Zero(8));
+  ASSERT_TRUE(r.ok);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LE(r.iterations, 3);
+  std::printf("[measured] normal forces %.4f %.4f %.4f %.4f N, |friction| %.4f %.4f %.4f %.4f N\n", r.fn[0], r.fn[1],
+              r.fn[2], r.fn[3], r.ft.segment<2>(0).norm(), r.ft.segment<2>(2).norm(), r.ft.segment<2>(4).norm(),
+              r.ft.segment<2>(6).norm());
+  // The pivoting alone leaves one corner without force (any split with the same sum and moments
+  // moves nothing); the friction solve bounds the friction by the least forces that do the same,
+  // the split four equal springs would carry: every corner a share.
+  EXPECT_NEAR(r.fn.sum(), m * g, 1e-9);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_GT(r.fn[i], 0.1 * m * g / 4) << "corner " << i;
+    EXPECT_LE(r.ft.segment<2>(2 * i).norm(), mu * r.fn[i] * (1 + 1e-9)) << "corner " << i;
+  }
+  EXPECT_NEAR(r.ft(Eigen::seq(0, 7, 2)).sum(), -push.x(), 1e-9) << "static friction holds the push";
+  EXPECT_NEAR(r.ft(Eigen::seq(1, 7, 2)).sum(), 0.0, 1e-9);
+  const Eigen::VectorXd front = (Eigen::VectorXd(2) << r.fn[0], r.fn[3]).finished();
+  EXPECT_GT(front.minCoeff(), r.fn[1]) << "the push tips the cube onto its front (+x) corners";
 }
 
 }  // namespace

@@ -379,7 +379,7 @@ TEST(ManyBodies, ABoxPushedIntoTheCubeDrivesItToTheWallWithoutPassingIntoIt) {
     holds += r.integration_failures;
     deepest = std::max(deepest, deepest_overlap(w));
     const double v_box = w.kinematics(box).v.y(), v_cube = w.kinematics(cube).v.y();
-    if (!impact_checked && v_cube > 0) {
+    if (!impact_checked && v_cube > 1e-6) {  // (the resting cube's round-off, 1e-14 m/s, is no impact)
       // The impact of the restitution law; the table's friction (2.94 N on each) and the push act
       // over the rest of the step (at most 7 mm/s).
       EXPECT_NEAR(v_box, (1 - e) / 2 * box_before, 7e-3);
