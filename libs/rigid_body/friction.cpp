@@ -27,8 +27,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   const auto Atn = A.bottomLeftCorner(2 * m, m);
   const auto Att = A.bottomRightCorner(2 * m, 2 * m);
   // Sliding contacts and the unit direction of their friction (in the tangent basis).
-  std::vector<bool> moving(static_cast<std::size_t>(m), false), sliding;
-  std::vector<Eigen::Vector2d> against(static_cast<std::size_t>(m), Eigen::Vector2d::Zero()), direction;
+  moving_.assign(static_cast<std::size_t>(m), false);
+  against_.assign(static_cast<std::size_t>(m), Eigen::Vector2d::Zero());
   // With stick_first every contact with friction is first asked to stick: to meet its target
   // (bt: stop sliding by the horizon) within its cone; one that cannot slides at the rim, against
   // its velocity if it slides (maximal dissipation), else along the force it needed. A sliding
@@ -38,16 +38,14 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   for (Eigen::Index i = 0; i < m; ++i) {
     const Eigen::Vector2d v = vt.segment<2>(2 * i);
     // (a frictionless contact: a slider with no force)
-    if (mu[i] <= 0.0 || (!stick_first && v.norm() > sliding_speed)) moving[static_cast<std::size_t>(i)] = true;
-    if (v.norm() > sliding_speed) against[static_cast<std::size_t>(i)] = -v.normalized();
+    if (mu[i] <= 0.0 || (!stick_first && v.norm() > sliding_speed)) moving_[static_cast<std::size_t>(i)] = true;
+    if (v.norm() > sliding_speed) against_[static_cast<std::size_t>(i)] = -v.normalized();
   }
   // Convergence is judged on what the forces do, A [fn; ft] (contact-space accelerations or
   // velocity changes).
-  Eigen::VectorXd f(3 * m), effect(3 * m), effect_prev = Eigen::VectorXd::Zero(3 * m);
+  f_.resize(3 * m);
+  effect_prev_.setZero(3 * m);
   const double load = std::max({1e-12, bn.cwiseAbs().maxCoeff(), bt.cwiseAbs().maxCoeff()});
-  std::vector<Eigen::Index> stick_rows;
-  Eigen::MatrixXd Akk;
-  Eigen::VectorXd rhs, weight;
   LcpIndices clamped;  // each round's normal LCP starts from the last one's clamped set
   double best_change = std::numeric_limits<double>::infinity();
   int best_round = 1;
@@ -84,65 +82,67 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     if (nt > 0) c_.noalias() += Z_.transpose() * (Z_ * r.ft);
     // Friction forces, normal forces fixed: sliders at the rim, stickers exact; a sticker beyond
     // its rim becomes a slider and the stickers are solved again.
-    sliding = moving;
-    direction = against;
+    sliding_ = moving_;
+    direction_ = against_;
     // A contact without normal force can hold no friction: it is free, not asked to stick (its
     // rows would otherwise ask the others' friction to stop its slip, in least squares where they
     // cannot: a corner lifting off).
     for (Eigen::Index i = 0; i < m; ++i)
-      if (!(r.fn[i] > 0)) sliding[static_cast<std::size_t>(i)] = true;
+      if (!(r.fn[i] > 0)) sliding_[static_cast<std::size_t>(i)] = true;
     for (;;) {
       for (Eigen::Index i = 0; i < m; ++i)
-        if (sliding[static_cast<std::size_t>(i)])
-          r.ft.segment<2>(2 * i) = mu[i] * r.fn[i] * direction[static_cast<std::size_t>(i)];
-      stick_rows.clear();
+        if (sliding_[static_cast<std::size_t>(i)])
+          r.ft.segment<2>(2 * i) = mu[i] * r.fn[i] * direction_[static_cast<std::size_t>(i)];
+      stick_rows_.clear();
       for (Eigen::Index i = 0; i < m; ++i)
-        if (!sliding[static_cast<std::size_t>(i)]) stick_rows.push_back(2 * i), stick_rows.push_back(2 * i + 1);
-      if (stick_rows.empty()) break;
-      const auto k = static_cast<Eigen::Index>(stick_rows.size());
-      Akk.resize(k, k);
-      rhs.resize(k);
+        if (!sliding_[static_cast<std::size_t>(i)]) stick_rows_.push_back(2 * i), stick_rows_.push_back(2 * i + 1);
+      if (stick_rows_.empty()) break;
+      const auto k = static_cast<Eigen::Index>(stick_rows_.size());
+      Akk_.resize(k, k);
+      rhs_.resize(k);
       for (Eigen::Index a = 0; a < k; ++a) {
-        const Eigen::Index row = stick_rows[static_cast<std::size_t>(a)];
+        const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
         double load_a = c_[row];
         for (Eigen::Index i = 0; i < m; ++i)
-          if (sliding[static_cast<std::size_t>(i)]) load_a += S_.row(row).segment<2>(2 * i).dot(r.ft.segment<2>(2 * i));
-        rhs[a] = -load_a;
-        for (Eigen::Index b = 0; b < k; ++b) Akk(a, b) = S_(row, stick_rows[static_cast<std::size_t>(b)]);
+          if (sliding_[static_cast<std::size_t>(i)])
+            load_a += S_.row(row).segment<2>(2 * i).dot(r.ft.segment<2>(2 * i));
+        rhs_[a] = -load_a;
+        for (Eigen::Index b = 0; b < k; ++b) Akk_(a, b) = S_(row, stick_rows_[static_cast<std::size_t>(b)]);
       }
       // The exact solution nearest zero in the metric sum |f_t,i|^2 / (mu f_n,i): each contact
       // carries friction in proportion to what it can hold (none without a normal force), so
       // they all reach their rims together, at the true breakaway.
-      weight.resize(k);
+      weight_.resize(k);
       for (Eigen::Index a = 0; a < k; ++a) {
-        const Eigen::Index i = stick_rows[static_cast<std::size_t>(a)] / 2;
-        weight[a] = std::sqrt(std::max(0.0, mu[i] * r.fn[i]));
+        const Eigen::Index i = stick_rows_[static_cast<std::size_t>(a)] / 2;
+        weight_[a] = std::sqrt(std::max(0.0, mu[i] * r.fn[i]));
       }
       // (Akk W y = rhs and W Akk W y = W rhs have the same solutions; the second is symmetric.)
-      stick_inverse_.compute(weight.asDiagonal() * Akk * weight.asDiagonal(), kStickRank);
-      stick_inverse_.solve(weight.cwiseProduct(rhs), y_);
-      const Eigen::VectorXd x = weight.cwiseProduct(y_);
+      Bkk_.noalias() = weight_.asDiagonal() * Akk_ * weight_.asDiagonal();
+      stick_inverse_.compute(Bkk_, kStickRank);
+      stick_inverse_.solve(weight_.cwiseProduct(rhs_), y_);
+      x_ = weight_.cwiseProduct(y_);
       bool changed = false;
       for (Eigen::Index a = 0; a < k; a += 2) {
-        const Eigen::Index i = stick_rows[static_cast<std::size_t>(a)] / 2;
-        const Eigen::Vector2d need = x.segment<2>(a);
+        const Eigen::Index i = stick_rows_[static_cast<std::size_t>(a)] / 2;
+        const Eigen::Vector2d need = x_.segment<2>(a);
         r.ft.segment<2>(2 * i) = need;
         const double bound = mu[i] * r.fn[i];
         if (need.norm() > bound * (1 + 1e-12) + 1e-300) {  // it cannot stick: it starts to slide
-          sliding[static_cast<std::size_t>(i)] = true;
-          const Eigen::Vector2d& slip = against[static_cast<std::size_t>(i)];
-          direction[static_cast<std::size_t>(i)] = !slip.isZero()      ? slip
-                                                   : need.norm() > 0.0 ? Eigen::Vector2d(need.normalized())
-                                                                       : Eigen::Vector2d::Zero();
+          sliding_[static_cast<std::size_t>(i)] = true;
+          const Eigen::Vector2d& slip = against_[static_cast<std::size_t>(i)];
+          direction_[static_cast<std::size_t>(i)] = !slip.isZero()      ? slip
+                                                    : need.norm() > 0.0 ? Eigen::Vector2d(need.normalized())
+                                                                        : Eigen::Vector2d::Zero();
           changed = true;
         }
       }
       if (!changed) break;
     }
-    f << r.fn, r.ft;
-    effect.noalias() = A * f;
-    const double change = (effect - effect_prev).cwiseAbs().maxCoeff();
-    effect_prev = effect;
+    f_ << r.fn, r.ft;
+    effect_.noalias() = A * f_;
+    const double change = (effect_ - effect_prev_).cwiseAbs().maxCoeff();
+    effect_prev_.swap(effect_);
     if (r.iterations > 1 && change <= tolerance * load) {
       r.converged = true;
       return r;

@@ -78,9 +78,13 @@ class FrictionSolver {
   // Returns whether the touching set is the one of the last call (its factor kept).
   bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
 
-  Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_;
-  Eigen::VectorXd c_, f_touching_, spread_, y_;
+  // Workspace, kept between solves (no allocation once the sizes have been seen).
+  Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Akk_, Bkk_;
+  Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_;
   Eigen::VectorXd bn_eff_;
+  std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
+  std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
+  std::vector<Eigen::Index> stick_rows_;
   std::vector<int> touching_, touching_next_;
   PsdPseudoInverse stick_inverse_, touching_inverse_;
 };

@@ -41,7 +41,10 @@ void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
   for (Eigen::Index j = 0; j < r; ++j) G_.col(j).head(j).setZero();  // (lower triangular)
   M_ = G_.bottomLeftCorner(q, r).transpose();
   G_.topLeftCorner(r, r).triangularView<Eigen::Lower>().transpose().solveInPlace(M_);
-  if (q > 0) null_gram_.compute(Eigen::MatrixXd::Identity(q, q) + M_.transpose() * M_);
+  if (q == 0) return;
+  gram_.setIdentity(q, q);
+  gram_.noalias() += M_.transpose() * M_;
+  null_gram_.compute(gram_);
 }
 
 }  // namespace wysiwyf::haptics

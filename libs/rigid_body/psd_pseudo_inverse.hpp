@@ -45,6 +45,7 @@ class PsdPseudoInverse {
   std::vector<Eigen::Index> order_;  // row i of G is B's row order_[i]
   Eigen::Index rank_ = 0;
   Eigen::MatrixXd M_;                      // G1^-T G2^T (r x (k - r))
+  Eigen::MatrixXd gram_;                   // N^T N
   Eigen::LLT<Eigen::MatrixXd> null_gram_;  // of N^T N = I + M^T M
   mutable Eigen::MatrixXd permuted_, t_;
   mutable Eigen::VectorXd t_column_;
