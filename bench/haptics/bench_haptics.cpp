@@ -72,14 +72,14 @@ void noisy_push_steps(benchmark::State& state, World w) {
   }
   state.counters["contacts"] = static_cast<double>(w.resting_contacts().size());
   state.counters["rhs"] = rhs / static_cast<double>(us.size());  // right-hand sides a haptic step
-  state.counters["cvode_steps"] = steps / static_cast<double>(us.size());
+  state.counters["integrator_steps"] = steps / static_cast<double>(us.size());
   if (rounds > 0) state.counters["friction_rounds"] = rounds / static_cast<double>(us.size());
   percentiles(state, us);
 }
 void BM_HapticStep_RestingCube_NoisyPush(benchmark::State& state) {
   noisy_push_steps(state, cube_on_table(std::pow(10.0, -static_cast<double>(state.range(0)))));
 }
-// Argument: -log10 of CVODE's relative tolerance (7: admittance_sim's default).
+// Argument: -log10 of the integrator's relative tolerance (7: admittance_sim's default).
 BENCHMARK(BM_HapticStep_RestingCube_NoisyPush)
     ->Arg(7)
     ->Arg(8)
@@ -98,7 +98,7 @@ BENCHMARK(BM_HapticStep_RestingCube_NoisyPush_Friction)
     ->Iterations(wysiwyf::bench::iterations(20000))
     ->Unit(benchmark::kMicrosecond);
 
-// The same push held constant: CVODE keeps its history across steps.
+// The same push held constant: no restart (the integrator keeps its history across steps).
 void BM_HapticStep_RestingCube_ConstantPush(benchmark::State& state) {
   World w = cube_on_table();
   w.set_external_wrench(0, Vec3(2, 0, 0), Vec3::Zero());

@@ -10,17 +10,19 @@
 
 namespace wysiwyf::haptics {
 
-CvodeIntegrator::CvodeIntegrator(int size, const CvodeOptions& options, void* system, CVRhsFn rhs, CVRootFn roots)
-    : options_(options), system_(system), rhs_(rhs), roots_(roots) {
+CvodeIntegrator::CvodeIntegrator(int size, const IntegratorOptions& options, void* system, CVRhsFn rhs, CVRootFn roots)
+    : OdeIntegrator(system), options_(options), rhs_(rhs), roots_(roots) {
+  rtol_ = options.rtol, atol_ = options.atol;
   if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
   y_ = N_VNew_Serial(size, ctx_);
   mem_ = CVodeCreate(CV_ADAMS, ctx_);  // non-stiff rigid-body dynamics: Adams-Moulton
   if (!y_ || !mem_) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
-  check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::keep_message, this), "CVodeSetErrHandlerFn");
+  check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::keep_message, static_cast<OdeIntegrator*>(this)),
+        "CVodeSetErrHandlerFn");
 }
 
 void CvodeIntegrator::keep_message(int, const char*, const char* function, char* msg, void* self) {
-  static_cast<CvodeIntegrator*>(self)->message_ = std::string(function) + ": " + msg;
+  static_cast<CvodeIntegrator*>(static_cast<OdeIntegrator*>(self))->message_ = std::string(function) + ": " + msg;
 }
 
 CvodeIntegrator::~CvodeIntegrator() {
@@ -30,23 +32,37 @@ CvodeIntegrator::~CvodeIntegrator() {
   if (ctx_) SUNContext_Free(&ctx_);
 }
 
-// CVODE's error weights 1 / (rtol |y_i| + atol), in one pass (its own scalar-tolerance
-// version takes five vector operations, at every step).
-int CvodeIntegrator::error_weights(N_Vector y, N_Vector ewt, void* self) {
-  const CvodeOptions& o = static_cast<CvodeIntegrator*>(self)->options_;
-  const double* yy = N_VGetArrayPointer(y);
-  double* w = N_VGetArrayPointer(ewt);
-  for (sunindextype i = 0, n = N_VGetLength(y); i < n; ++i) w[i] = 1.0 / (o.rtol * std::abs(yy[i]) + o.atol);
-  return 0;
+void CvodeIntegrator::restart(double t) {
+  if (!initialised_) {
+    initialise(t);
+    return;
+  }
+  check(CVodeReInit(mem_, t, y_), "CVodeReInit");
+  steps_seen_ = failures_seen_ = 0;
+}
+
+bool CvodeIntegrator::advance(double t_end, double& t_reached) {
+  const int flag = CVode(mem_, t_end, y_, &t_reached, CV_NORMAL);
+  check(flag, "CVode");
+  return flag == CV_ROOT_RETURN;
+}
+
+void CvodeIntegrator::count_work(int& steps, int& error_test_failures) {
+  long now_steps = 0, now_failures = 0;
+  CVodeGetNumSteps(mem_, &now_steps);
+  CVodeGetNumErrTestFails(mem_, &now_failures);
+  steps += static_cast<int>(now_steps - steps_seen_);
+  error_test_failures += static_cast<int>(now_failures - failures_seen_);
+  steps_seen_ = now_steps, failures_seen_ = now_failures;
 }
 
 void CvodeIntegrator::initialise(double t) {
   check(CVodeInit(mem_, rhs_, t, y_), "CVodeInit");
-  check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
+  check(CVodeSetUserData(mem_, static_cast<OdeIntegrator*>(this)), "CVodeSetUserData");
   nls_ = SUNNonlinSol_FixedPoint(y_, 0, ctx_);
   check(CVodeSetNonlinearSolver(mem_, nls_), "CVodeSetNonlinearSolver");
   check(CVodeSetMaxNumSteps(mem_, options_.max_steps), "CVodeSetMaxNumSteps");
-  check(CVodeWFtolerances(mem_, &CvodeIntegrator::error_weights), "CVodeWFtolerances");
+  check(CVodeWFtolerances(mem_, &OdeIntegrator::error_weights), "CVodeWFtolerances");
   // A restart (every new sensor sample) would otherwise begin with CVODE's own estimate of
   // the first step, which costs right-hand sides; a small fixed one grows within a few steps.
   if (options_.initial_step > 0) check(CVodeSetInitStep(mem_, options_.initial_step), "CVodeSetInitStep");
@@ -59,15 +75,6 @@ void CvodeIntegrator::watch_roots(int count) {
   std::vector<int> directions(static_cast<std::size_t>(count), -1);  // downward only
   check(CVodeRootInit(mem_, count, count == 0 ? nullptr : roots_), "CVodeRootInit");
   if (count != 0) check(CVodeSetRootDirection(mem_, directions.data()), "CVodeSetRootDirection");
-}
-
-void CvodeIntegrator::fail(int flag, const char* call) {
-  std::string what = std::string("CVODE ") + call + " failed: " + CVodeGetReturnFlagName(flag);
-  if (!message_.empty()) what += " (" + message_ + ")";
-  if (!callback_error_.empty()) what += "; the right-hand side or a root function threw: " + callback_error_;
-  message_.clear();
-  callback_error_.clear();
-  throw std::runtime_error(what);
 }
 
 }  // namespace wysiwyf::haptics

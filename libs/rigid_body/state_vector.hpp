@@ -1,5 +1,5 @@
 #pragma once
-// The flat state vector CVODE integrates: 13 numbers per dynamic body, in the order of the
+// The flat state vector the integrator integrates: 13 numbers per dynamic body, in the order of the
 // world's dynamic-body list: x(3) q(4: w x y z) P(3) L(3); and its time derivative, laid out
 // the same way.
 #include <vector>

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "rigid_body/contact_system.hpp"
+#include "rigid_body/arkode_integrator.hpp"
 #include "rigid_body/cvode_integrator.hpp"
 #include "rigid_body/state_vector.hpp"
 
@@ -26,10 +27,13 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial, Worl
     : model_(one_state_each(models, initial), params), state_(model_, std::move(initial)), contact_system_(model_) {
   impact_friction_.stick_first = false;
   const WorldParams& p = model_.params;
-  const CvodeOptions options{
+  const IntegratorOptions options{
       p.rtol, p.atol, p.initial_step, p.restart_growth, p.nonlinear_convergence, p.max_integrator_steps};
   const int size = std::max<int>(1, kStateSize * static_cast<int>(model_.dynamic.size()));
-  integrator_ = std::make_unique<CvodeIntegrator>(size, options, *this);
+  if (p.integrator == Integrator::kAdams)
+    integrator_ = std::make_unique<CvodeIntegrator>(size, options, *this);
+  else
+    integrator_ = std::make_unique<ArkodeIntegrator>(size, options, *this);
 }
 
 World::~World() = default;
@@ -369,7 +373,7 @@ void World::hold(double t, const std::string& why) {
 void World::integrate(double dt, bool friction) {
   classify_contacts(dt);
   if (friction) update_friction(dt);
-  CvodeIntegrator& cv = *integrator_;
+  OdeIntegrator& cv = *integrator_;
   double* y = cv.state();
   auto watch_roots = [&] {
     state_.roots_changed = false;

@@ -1,20 +1,20 @@
 #pragma once
 // The physically based simulation of the paper's section 4: rigid boxes under gravity, external
-// (user) wrenches and non-penetration constraints, integrated with SUNDIALS CVODE.
+// (user) wrenches and non-penetration constraints, integrated with SUNDIALS (ARKODE or CVODE).
 //
 // One step(dt) is the paper's section 4.3 cycle. The contacts found at its start (STEP 4 of the
 // previous cycle) that touch are resting contacts: their forces come from the LCP of eqs. (9)-(10)
 // at every right-hand-side evaluation, so the constraint holds in acceleration throughout the
-// step (STEP 2-3). Contacts that are near but apart are CVODE root functions on their gaps,
+// step (STEP 2-3). Contacts that are near but apart are root functions on their gaps,
 // approaching direction only: at a root the integration stops at the exact time of impact, the
 // impulses come from the LCP of eqs. (15)-(16) with the restitution of each contact, the momenta
-// are reset and CVODE is restarted (CVodeReInit) from there (STEP 4-6).
+// are reset and the integrator is restarted from there (STEP 4-6).
 //
 // Coulomb friction (a contact's coefficient is the larger of its two bodies', MuJoCo's rule)
 // comes from FrictionSolver (friction.hpp) together with the normal forces. For resting contacts
 // it is found at the start of each step, asking each contact to stop sliding by the step's end,
 // and held through the step like the user's wrench (an iterative solve inside the right-hand
-// side would put its round-off into CVODE's error test); a contact that needs more than mu f_n
+// side would put its round-off into the integrator's error test); a contact that needs more than mu f_n
 // slides with the full mu f_n against its motion. The normal forces stay exact at every
 // right-hand side with the held friction as a load. At impacts, the impulses make each contact's
 // tangential velocity zero within mu times its normal impulse. Without friction the frictionless
@@ -34,7 +34,7 @@
 
 namespace wysiwyf::haptics {
 
-// The haptic display's integration accuracy: CVODE's relative tolerance in admittance_sim (the
+// The haptic display's integration accuracy: the integrator's relative tolerance in admittance_sim (the
 // absolute one is 1e-2 of it). A cube pushed by a new noisy sample every 1 ms stays within 5 um
 // of its exact motion over 10 s (test_world), far below the robot's 0.1 mm repeatability and
 // the sensor noise's own effect; 1e-8 gives 0.5 um at about 1.4x the cost of a step.
@@ -43,18 +43,18 @@ constexpr double kHapticRtol = 1e-7;
 struct StepReport {
   int collisions = 0;  // impact events (roots) inside the step
   int rhs_evaluations = 0;
-  int integrator_steps = 0;     // CVODE's internal steps
-  int error_test_failures = 0;  // CVODE's rejected steps
+  int integrator_steps = 0;     // the integrator's internal steps
+  int error_test_failures = 0;  // the integrator's rejected steps
   int lcp_failures = 0;
   int friction_unconverged = 0;  // friction rounds that did not settle (forces still bounded)
   int friction_rounds = 0;       // staggered rounds of the step's friction solve
-  // The step could not be integrated (CVODE gave up, or an island outgrew the LCP): the bodies
+  // The step could not be integrated (the integrator gave up, or an island outgrew the LCP): the bodies
   // were put back where the step began, at rest (World::last_failure says why).
   int integration_failures = 0;
   int frictionless_retries = 0;  // the step failed with friction and was taken again without
 };
 
-class CvodeIntegrator;
+class OdeIntegrator;
 
 class World {
  public:
@@ -80,13 +80,13 @@ class World {
   double energy() const;
 
  private:
-  friend class CvodeIntegrator;  // calls rhs() and roots()
+  friend class OdeIntegrator;  // calls rhs() and roots()
   void rhs(const double* y, double* ydot);
   void roots(const double* y, double* g);
   // step's work (the resting contacts' friction held through it or none); throws where it
   // cannot go on.
   void integrate(double dt, bool friction);
-  // The bodies set to `bodies` at t, the contacts to be found again and CVODE started over.
+  // The bodies set to `bodies` at t, the contacts to be found again and the integrator started over.
   void restart_from(double t, const std::vector<BodyState>& bodies);
   void hold(double t, const std::string& why);
   void classify_contacts(double dt);  // (dt: the step ahead, over which an edge pair may turn to face)
@@ -113,7 +113,7 @@ class World {
   const WorldModel model_;
   WorldState state_;
   WorldWorkspace work_;
-  std::unique_ptr<CvodeIntegrator> integrator_;
+  std::unique_ptr<OdeIntegrator> integrator_;
   LcpSolver lcp_;
   FrictionSolver friction_;         // the resting contacts' friction for a step
   FrictionSolver impact_friction_;  // at impacts

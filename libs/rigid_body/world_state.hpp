@@ -49,7 +49,7 @@ struct WorldState {
   std::vector<ActiveContact> resting;       // their last normal forces and the friction held for the step
   std::vector<ContactIsland> islands;       // the resting contacts, grouped (contiguous) by island
   std::vector<ContactFeature> watched;      // root functions
-  bool restart = true;                      // CVODE must be (re)initialised before integrating
+  bool restart = true;                      // the integrator must be (re)started before integrating
   bool roots_changed = true;                // CVodeRootInit must be called again
 };
 

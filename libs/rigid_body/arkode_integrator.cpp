@@ -1,0 +1,71 @@
+#include "rigid_body/arkode_integrator.hpp"
+
+#include <nvector/nvector_serial.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace wysiwyf::haptics {
+
+ArkodeIntegrator::ArkodeIntegrator(int size, const IntegratorOptions& options, void* system, ARKRhsFn rhs,
+                                   ARKRootFn roots)
+    : OdeIntegrator(system), options_(options), rhs_(rhs), roots_(roots) {
+  rtol_ = options.rtol, atol_ = options.atol;
+  if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
+  y_ = N_VNew_Serial(size, ctx_);
+  if (!y_) throw std::runtime_error("SUNDIALS: cannot create the state vector");
+  N_VConst(0.0, y_);
+}
+
+void ArkodeIntegrator::keep_message(int, const char*, const char* function, char* msg, void* self) {
+  static_cast<ArkodeIntegrator*>(static_cast<OdeIntegrator*>(self))->message_ = std::string(function) + ": " + msg;
+}
+
+ArkodeIntegrator::~ArkodeIntegrator() {
+  if (mem_) ARKStepFree(&mem_);
+  if (y_) N_VDestroy(y_);
+  if (ctx_) SUNContext_Free(&ctx_);
+}
+
+void ArkodeIntegrator::restart(double t) {
+  if (!mem_) {
+    initialise(t);
+    return;
+  }
+  check(ARKStepReset(mem_, t, y_), "ARKStepReset");
+}
+
+bool ArkodeIntegrator::advance(double t_end, double& t_reached) {
+  const int flag = ARKStepEvolve(mem_, t_end, y_, &t_reached, ARK_NORMAL);
+  check(flag, "ARKStepEvolve");
+  return flag == ARK_ROOT_RETURN;
+}
+
+void ArkodeIntegrator::count_work(int& steps, int& error_test_failures) {
+  long now_steps = 0, now_failures = 0;
+  ARKStepGetNumSteps(mem_, &now_steps);
+  ARKStepGetNumErrTestFails(mem_, &now_failures);
+  steps += static_cast<int>(now_steps - steps_seen_);
+  error_test_failures += static_cast<int>(now_failures - failures_seen_);
+  steps_seen_ = now_steps, failures_seen_ = now_failures;
+}
+
+void ArkodeIntegrator::initialise(double t) {
+  mem_ = ARKStepCreate(rhs_, nullptr, t, y_, ctx_);  // explicit only: non-stiff dynamics
+  if (!mem_) throw std::runtime_error("SUNDIALS: cannot create the ARKODE integrator");
+  check(ARKStepSetErrHandlerFn(mem_, &ArkodeIntegrator::keep_message, static_cast<OdeIntegrator*>(this)),
+        "ARKStepSetErrHandlerFn");
+  check(ARKStepSetUserData(mem_, static_cast<OdeIntegrator*>(this)), "ARKStepSetUserData");
+  check(ARKStepSetTableNum(mem_, ARKODE_DIRK_NONE, ARKODE_BOGACKI_SHAMPINE_4_2_3), "ARKStepSetTableNum");
+  check(ARKStepSetMaxNumSteps(mem_, options_.max_steps), "ARKStepSetMaxNumSteps");
+  check(ARKStepWFtolerances(mem_, &OdeIntegrator::error_weights), "ARKStepWFtolerances");
+}
+
+void ArkodeIntegrator::watch_roots(int count) {
+  std::vector<int> directions(static_cast<std::size_t>(count), -1);  // downward only
+  check(ARKStepRootInit(mem_, count, count == 0 ? nullptr : roots_), "ARKStepRootInit");
+  if (count != 0) check(ARKStepSetRootDirection(mem_, directions.data()), "ARKStepSetRootDirection");
+}
+
+}  // namespace wysiwyf::haptics

@@ -1,0 +1,90 @@
+#pragma once
+// What the rigid-body world needs of an ODE integrator (SUNDIALS behind it): the autonomous
+// y' = f(y) of a system called back on a flat vector, root functions watched in one direction,
+// restarts from a new state (every sensor sample, every impact). It knows nothing of physics.
+// Two are offered (WorldParams::integrator): CVODE's variable-order Adams (cvode_integrator.hpp)
+// and ARKODE's explicit Runge-Kutta (arkode_integrator.hpp).
+#include <sundials/sundials_nvector.h>
+#include <sundials/sundials_types.h>
+
+#include <exception>
+#include <stdexcept>
+#include <string>
+
+namespace wysiwyf::haptics {
+
+// Thrown by a right-hand side that cannot be evaluated at this state but might be at a nearer
+// one: the integrator is told so (a recoverable failure) and tries a smaller step.
+struct RetryWithSmallerStep : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct IntegratorOptions {
+  double rtol = 0, atol = 0;           // scalar tolerances of the local error test
+  double initial_step = 0;             // CVODE: first step after a (re)start; 0: CVODE estimates it
+  double max_early_growth = 10;        // CVODE: CVodeSetEtaMaxEarlyStep, growth of the first steps after a restart
+  double nonlinear_convergence = 0.1;  // CVODE: CVodeSetNonlinConvCoef, the corrector's stopping fraction
+  long max_steps = 100000;             // internal steps per call
+};
+
+class OdeIntegrator {
+ public:
+  virtual ~OdeIntegrator() = default;
+  // The state y: write it before restart(), read it after advance().
+  virtual double* state() = 0;
+  // Starts over from state() at time t (the first call initialises the integrator).
+  virtual void restart(double t) = 0;
+  // Watches the first `count` root functions, each for a downward crossing only.
+  virtual void watch_roots(int count) = 0;
+  virtual void set_stop_time(double t) = 0;
+  // Integrates towards t_end (stopping at the stop time); t_reached gets where it stopped.
+  // Returns true if it stopped at a root.
+  virtual bool advance(double t_end, double& t_reached) = 0;
+  // found[k] != 0 for each watched root function that crossed at the last stop.
+  virtual void root_info(int* found) = 0;
+  // Adds the internal steps and error test failures since the last count or restart.
+  virtual void count_work(int& steps, int& error_test_failures) = 0;
+
+ protected:
+  explicit OdeIntegrator(void* system) : system_(system) {}
+  // SUNDIALS' callbacks (the same signature for CVODE and ARKODE; user data: this). An exception
+  // must not cross SUNDIALS' C frames: it is kept, SUNDIALS is told the call failed, and the
+  // call that made it throws it again with its own failure.
+  template <class System>
+  static int call_rhs(sunrealtype, N_Vector y, N_Vector ydot, void* self) {
+    auto* me = static_cast<OdeIntegrator*>(self);
+    try {
+      static_cast<System*>(me->system_)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    } catch (const RetryWithSmallerStep& e) {
+      me->callback_error_ = e.what();
+      return 1;
+    } catch (const std::exception& e) {
+      me->callback_error_ = e.what();
+      return -1;
+    }
+    return 0;
+  }
+  template <class System>
+  static int call_roots(sunrealtype, N_Vector y, sunrealtype* g, void* self) {
+    auto* me = static_cast<OdeIntegrator*>(self);
+    try {
+      static_cast<System*>(me->system_)->roots(N_VGetArrayPointer(y), g);
+    } catch (const std::exception& e) {
+      me->callback_error_ = e.what();
+      return -1;
+    }
+    return 0;
+  }
+  // The error weights 1 / (rtol |y_i| + atol), in one pass (SUNDIALS' own scalar-tolerance
+  // version takes five vector operations, at every step); user data: this.
+  static int error_weights(N_Vector y, N_Vector ewt, void* self);
+  // Throws std::runtime_error naming the call, SUNDIALS' message and what a callback threw.
+  [[noreturn]] void fail(const std::string& what);
+
+  void* system_;
+  std::string message_;         // SUNDIALS' last error message
+  std::string callback_error_;  // what the system's callback threw
+  double rtol_ = 0, atol_ = 0;
+};
+
+}  // namespace wysiwyf::haptics
