@@ -52,6 +52,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   touching_.clear();  // (a new Ann: no factor kept from another solve)
   for (r.iterations = 1; r.iterations <= max_rounds; ++r.iterations) {
     // Normal forces, friction as a known load.
+    ft_seen_ = r.ft;
     bn_eff_ = bn + Ant * r.ft;
     const LcpResult normal = lcp.solve(Ann_, bn_eff_, clamped);
     if (!normal.ok) return r;
@@ -63,7 +64,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // a friction force tilts the body, and the touching contacts' forces change to stop the tilt.
     // With the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T in place of Att (and the load
     // moved to match), the friction found is already the one that holds after the next normal
-    // solve, as long as the touching set stays: the rounds settle in two or three, not the
+    // solve, as long as the touching set stays: the rounds settle in two, not the
     // twenty-odd of plain alternation (which converges by about 0.6 a round). (Ann_TT^+: the
     // least forces that answer it; redundant contacts share the answer.) S and Z depend on the
     // touching set only: kept while it stays.
@@ -139,7 +140,16 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       }
       if (!changed) break;
     }
+    // What the forces do, with the normal forces this round's friction will get from the touching
+    // set (f_n less Ann_TT^+ Ant_T times the friction's change; exact while the set stays): the
+    // rounds are done once that stops changing, a round before the normal forces have caught up.
     f_ << r.fn, r.ft;
+    if (const auto nt = static_cast<Eigen::Index>(touching_.size()); nt > 0) {
+      ft_seen_ = r.ft - ft_seen_;
+      answer_.noalias() = AntC_ * ft_seen_;
+      touching_inverse_.solve(answer_, answer_);
+      for (Eigen::Index i = 0; i < nt; ++i) f_[touching_[static_cast<std::size_t>(i)]] -= answer_[i];
+    }
     effect_.noalias() = A * f_;
     const double change = (effect_ - effect_prev_).cwiseAbs().maxCoeff();
     effect_prev_.swap(effect_);

@@ -45,7 +45,7 @@ class FrictionSolver {
   // vt: the contacts' tangential sliding velocities (2m), the direction a sliding contact's
   // friction opposes.
   // ft_start (2m, optional): friction forces to start the rounds from, such as the last step's
-  // answer; the rounds then settle in two or three instead of twenty-odd.
+  // answer; the rounds then settle in two instead of twenty-odd.
   FrictionResult solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn, const Eigen::VectorXd& bt,
                        const Eigen::VectorXd& mu, const Eigen::VectorXd& vt,
                        const Eigen::VectorXd& ft_start = Eigen::VectorXd());
@@ -60,10 +60,11 @@ class FrictionSolver {
   // to stick first, a falling pile drove a corner 2.9 mm into the table; not yet understood).
   bool stick_first = true;
 
-  // Staggered rounds. With the clamped set's answer anticipated, a round changes what the
+  // Staggered rounds. With the touching set's answer anticipated, a round changes what the
   // forces do only where an active set changed (a contact starts to slide, a normal force
-  // reaches zero): a sticking cube settles in 3 rounds (plain alternation, Att in place of S,
-  // took about 27, converging by 0.6 a round). The friction is held through a step, so 1e-8 of
+  // reaches zero): a sticking cube settles in 2 rounds, what the forces do judged with the
+  // normal forces the touching set will answer the round's friction with (plain alternation,
+  // Att in place of S, took about 27, converging by 0.6 a round). The friction is held through a step, so 1e-8 of
   // the loads (1e-7 N on a 1 kg cube) is far below anything a hand could feel.
   int max_rounds = 40;
   double tolerance = 1e-8;  // change of A [fn; ft] between rounds, relative to the loads, that ends them
@@ -80,7 +81,7 @@ class FrictionSolver {
 
   // Workspace, kept between solves (no allocation once the sizes have been seen).
   Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Akk_, Bkk_;
-  Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_;
+  Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
   Eigen::VectorXd bn_eff_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
