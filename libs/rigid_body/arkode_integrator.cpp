@@ -23,7 +23,7 @@ void ArkodeIntegrator::keep_message(int, const char*, const char* function, char
 }
 
 ArkodeIntegrator::~ArkodeIntegrator() {
-  if (mem_) ARKStepFree(&mem_);
+  if (mem_) ERKStepFree(&mem_);
   if (y_) N_VDestroy(y_);
   if (ctx_) SUNContext_Free(&ctx_);
 }
@@ -33,39 +33,39 @@ void ArkodeIntegrator::restart(double t) {
     initialise(t);
     return;
   }
-  check(ARKStepReset(mem_, t, y_), "ARKStepReset");
+  check(ERKStepReset(mem_, t, y_), "ERKStepReset");
 }
 
 bool ArkodeIntegrator::advance(double t_end, double& t_reached) {
-  const int flag = ARKStepEvolve(mem_, t_end, y_, &t_reached, ARK_NORMAL);
-  check(flag, "ARKStepEvolve");
+  const int flag = ERKStepEvolve(mem_, t_end, y_, &t_reached, ARK_NORMAL);
+  check(flag, "ERKStepEvolve");
   return flag == ARK_ROOT_RETURN;
 }
 
 void ArkodeIntegrator::count_work(int& steps, int& error_test_failures) {
   long now_steps = 0, now_failures = 0;
-  ARKStepGetNumSteps(mem_, &now_steps);
-  ARKStepGetNumErrTestFails(mem_, &now_failures);
+  ERKStepGetNumSteps(mem_, &now_steps);
+  ERKStepGetNumErrTestFails(mem_, &now_failures);
   steps += static_cast<int>(now_steps - steps_seen_);
   error_test_failures += static_cast<int>(now_failures - failures_seen_);
   steps_seen_ = now_steps, failures_seen_ = now_failures;
 }
 
 void ArkodeIntegrator::initialise(double t) {
-  mem_ = ARKStepCreate(rhs_, nullptr, t, y_, ctx_);  // explicit only: non-stiff dynamics
+  mem_ = ERKStepCreate(rhs_, t, y_, ctx_);  // explicit: non-stiff dynamics
   if (!mem_) throw std::runtime_error("SUNDIALS: cannot create the ARKODE integrator");
-  check(ARKStepSetErrHandlerFn(mem_, &ArkodeIntegrator::keep_message, static_cast<OdeIntegrator*>(this)),
-        "ARKStepSetErrHandlerFn");
-  check(ARKStepSetUserData(mem_, static_cast<OdeIntegrator*>(this)), "ARKStepSetUserData");
-  check(ARKStepSetTableNum(mem_, ARKODE_DIRK_NONE, ARKODE_BOGACKI_SHAMPINE_4_2_3), "ARKStepSetTableNum");
-  check(ARKStepSetMaxNumSteps(mem_, options_.max_steps), "ARKStepSetMaxNumSteps");
-  check(ARKStepWFtolerances(mem_, &OdeIntegrator::error_weights), "ARKStepWFtolerances");
+  check(ERKStepSetErrHandlerFn(mem_, &ArkodeIntegrator::keep_message, static_cast<OdeIntegrator*>(this)),
+        "ERKStepSetErrHandlerFn");
+  check(ERKStepSetUserData(mem_, static_cast<OdeIntegrator*>(this)), "ERKStepSetUserData");
+  check(ERKStepSetTableNum(mem_, ARKODE_BOGACKI_SHAMPINE_4_2_3), "ERKStepSetTableNum");
+  check(ERKStepSetMaxNumSteps(mem_, options_.max_steps), "ERKStepSetMaxNumSteps");
+  check(ERKStepWFtolerances(mem_, &OdeIntegrator::error_weights), "ERKStepWFtolerances");
 }
 
 void ArkodeIntegrator::watch_roots(int count) {
   std::vector<int> directions(static_cast<std::size_t>(count), -1);  // downward only
-  check(ARKStepRootInit(mem_, count, count == 0 ? nullptr : roots_), "ARKStepRootInit");
-  if (count != 0) check(ARKStepSetRootDirection(mem_, directions.data()), "ARKStepSetRootDirection");
+  check(ERKStepRootInit(mem_, count, count == 0 ? nullptr : roots_), "ERKStepRootInit");
+  if (count != 0) check(ERKStepSetRootDirection(mem_, directions.data()), "ERKStepSetRootDirection");
 }
 
 }  // namespace wysiwyf::haptics

@@ -1,12 +1,13 @@
 #pragma once
-// ARKODE's explicit Runge-Kutta, Bogacki-Shampine 3(2) (ARKStep, an embedded second-order error
+// ARKODE's explicit Runge-Kutta, Bogacki-Shampine 3(2) (ERKStep, an embedded second-order error
 // estimate), behind OdeIntegrator. One-step, so a restart (every new sensor sample) costs
-// nothing but its first stage: the step size history is kept (ARKStepReset). Under a push held
+// nothing but its first stage: the step size history is kept (ERKStepReset). Under a push held
 // for the step a resting or sliding box moves along a quadratic, which a third-order method
-// integrates exactly: a 1 ms haptic step is one step of four or five right-hand sides, where
-// CVODE's Adams, restarted at order 1, took 3.6 steps and 5.3 right-hand sides and was further
-// off the exact motion.
-#include <arkode/arkode_arkstep.h>
+// integrates exactly: a 1 ms haptic step is one step of four right-hand sides, where CVODE's
+// Adams, restarted at order 1, took 3.6 steps and 5.3 right-hand sides and was further off the
+// exact motion. (ERKStep rather than ARKStep, whose explicit path takes a fifth right-hand side
+// after each reset.)
+#include <arkode/arkode_erkstep.h>
 
 #include "rigid_body/ode_integrator.hpp"
 
@@ -23,13 +24,13 @@ class ArkodeIntegrator : public OdeIntegrator {
   ArkodeIntegrator& operator=(const ArkodeIntegrator&) = delete;
 
   double* state() override { return N_VGetArrayPointer(y_); }
-  // The first time ARKStepCreate with the options, later ARKStepReset (which keeps them, the
+  // The first time ERKStepCreate with the options, later ERKStepReset (which keeps them, the
   // counters and the step size history).
   void restart(double t) override;
   void watch_roots(int count) override;
-  void set_stop_time(double t) override { check(ARKStepSetStopTime(mem_, t), "ARKStepSetStopTime"); }
+  void set_stop_time(double t) override { check(ERKStepSetStopTime(mem_, t), "ERKStepSetStopTime"); }
   bool advance(double t_end, double& t_reached) override;
-  void root_info(int* found) override { check(ARKStepGetRootInfo(mem_, found), "ARKStepGetRootInfo"); }
+  void root_info(int* found) override { check(ERKStepGetRootInfo(mem_, found), "ERKStepGetRootInfo"); }
   void count_work(int& steps, int& error_test_failures) override;
 
  private:
@@ -37,7 +38,7 @@ class ArkodeIntegrator : public OdeIntegrator {
   static void keep_message(int code, const char* module, const char* function, char* msg, void* self);
   void initialise(double t);
   void check(int flag, const char* call) {
-    if (flag < 0) fail(std::string("ARKODE ") + call + " failed: " + ARKStepGetReturnFlagName(flag));
+    if (flag < 0) fail(std::string("ARKODE ") + call + " failed: " + ERKStepGetReturnFlagName(flag));
   }
 
   IntegratorOptions options_;

@@ -34,7 +34,7 @@ struct WorldParams {
   // How the bodies' motion is integrated between events (ode_integrator.hpp):
   //  - kRungeKutta: ARKODE's explicit Bogacki-Shampine 3(2). A restart (every sensor sample, every
   //    impact) costs it nothing, and a box under a push held for the step moves along a quadratic,
-  //    which it integrates exactly: the noisy-pushed cube's step is one step of 4-5 right-hand
+  //    which it integrates exactly: the noisy-pushed cube's step is one step of 4 right-hand
   //    sides (Adams: 3.6 steps, 5.3), its error over 10 s 2.4e-13 m (Adams: 4.4 um; test_world).
   //  - kAdams: CVODE's variable-order Adams-Moulton, orders up to 12: long smooth motion at tight
   //    tolerances (test_world's torque-free tumbling box, rtol 1e-9: 27 ms, Runge-Kutta 300).
