@@ -46,9 +46,7 @@ void ArkodeIntegrator::count_work(int& steps, int& error_test_failures) {
   long now_steps = 0, now_failures = 0;
   ERKStepGetNumSteps(mem_, &now_steps);
   ERKStepGetNumErrTestFails(mem_, &now_failures);
-  steps += static_cast<int>(now_steps - steps_seen_);
-  error_test_failures += static_cast<int>(now_failures - failures_seen_);
-  steps_seen_ = now_steps, failures_seen_ = now_failures;
+  add_work(now_steps, now_failures, steps, error_test_failures);
 }
 
 void ArkodeIntegrator::initialise(double t) {

@@ -47,7 +47,6 @@ class ArkodeIntegrator : public OdeIntegrator {
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr;
   void* mem_ = nullptr;
-  long steps_seen_ = 0, failures_seen_ = 0;  // ARKODE's counters at the last count
 };
 
 }  // namespace wysiwyf::haptics

@@ -38,7 +38,7 @@ void CvodeIntegrator::restart(double t) {
     return;
   }
   check(CVodeReInit(mem_, t, y_), "CVodeReInit");
-  steps_seen_ = failures_seen_ = 0;
+  counters_reset();
 }
 
 bool CvodeIntegrator::advance(double t_end, double& t_reached) {
@@ -51,9 +51,7 @@ void CvodeIntegrator::count_work(int& steps, int& error_test_failures) {
   long now_steps = 0, now_failures = 0;
   CVodeGetNumSteps(mem_, &now_steps);
   CVodeGetNumErrTestFails(mem_, &now_failures);
-  steps += static_cast<int>(now_steps - steps_seen_);
-  error_test_failures += static_cast<int>(now_failures - failures_seen_);
-  steps_seen_ = now_steps, failures_seen_ = now_failures;
+  add_work(now_steps, now_failures, steps, error_test_failures);
 }
 
 void CvodeIntegrator::initialise(double t) {

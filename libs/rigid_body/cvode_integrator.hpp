@@ -47,7 +47,6 @@ class CvodeIntegrator : public OdeIntegrator {
   void* mem_ = nullptr;
   SUNNonlinearSolver nls_ = nullptr;
   bool initialised_ = false;
-  long steps_seen_ = 0, failures_seen_ = 0;  // CVODE's counters at the last count (reset by CVodeReInit)
 };
 
 }  // namespace wysiwyf::haptics

@@ -12,6 +12,12 @@ int OdeIntegrator::error_weights(N_Vector y, N_Vector ewt, void* self) {
   return 0;
 }
 
+void OdeIntegrator::add_work(long now_steps, long now_failures, int& steps, int& error_test_failures) {
+  steps += static_cast<int>(now_steps - steps_seen_);
+  error_test_failures += static_cast<int>(now_failures - failures_seen_);
+  steps_seen_ = now_steps, failures_seen_ = now_failures;
+}
+
 void OdeIntegrator::fail(const std::string& what) {
   std::string why = what;
   if (!message_.empty()) why += " (" + message_ + ")";

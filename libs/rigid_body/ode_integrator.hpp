@@ -80,11 +80,16 @@ class OdeIntegrator {
   static int error_weights(N_Vector y, N_Vector ewt, void* self);
   // Throws std::runtime_error naming the call, SUNDIALS' message and what a callback threw.
   [[noreturn]] void fail(const std::string& what);
+  // Adds to steps and error_test_failures what SUNDIALS' counters gained since the last call
+  // (counters_reset(): they started again from zero).
+  void add_work(long now_steps, long now_failures, int& steps, int& error_test_failures);
+  void counters_reset() { steps_seen_ = failures_seen_ = 0; }
 
   void* system_;
   std::string message_;         // SUNDIALS' last error message
   std::string callback_error_;  // what the system's callback threw
   double rtol_ = 0, atol_ = 0;
+  long steps_seen_ = 0, failures_seen_ = 0;  // SUNDIALS' counters at the last count
 };
 
 }  // namespace wysiwyf::haptics
