@@ -44,7 +44,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   // Convergence is judged on what the forces do, A [fn; ft] (contact-space accelerations or
   // velocity changes).
   f_.resize(3 * m);
-  effect_prev_.setZero(3 * m);
+  effect_prev_.resize(3 * m);
   const double load = std::max({1e-12, bn.cwiseAbs().maxCoeff(), bt.cwiseAbs().maxCoeff()});
   LcpIndices clamped;  // each round's normal LCP starts from the last one's clamped set
   double best_change = std::numeric_limits<double>::infinity();
@@ -64,7 +64,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // a friction force tilts the body, and the touching contacts' forces change to stop the tilt.
     // With the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T in place of Att (and the load
     // moved to match), the friction found is already the one that holds after the next normal
-    // solve, as long as the touching set stays: the rounds settle in two, not the
+    // solve, as long as the touching set stays: the rounds settle in one or two, not the
     // twenty-odd of plain alternation (which converges by about 0.6 a round). (Ann_TT^+: the
     // least forces that answer it; redundant contacts share the answer.) S and Z depend on the
     // touching set only: kept while it stays.
@@ -78,6 +78,13 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         touching_inverse_.half_solve(AntC_, Z_);
         S_.noalias() -= Z_.transpose() * Z_;
       }
+    }
+    if (r.iterations == 1) {
+      // What the forces this LCP answered do: the friction it saw (the last step's, mostly) and its
+      // normal forces. A first round that keeps that friction has settled: a step of a resting
+      // stack takes one round, not two.
+      f_ << r.fn, ft_seen_;
+      effect_prev_.noalias() = A * f_;
     }
     c_ = bt + Atn * r.fn;  // the tangential rows' load at the current forces, less S ft
     if (nt > 0) c_.noalias() += Z_.transpose() * (Z_ * r.ft);
@@ -152,11 +159,15 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     }
     effect_.noalias() = A * f_;
     const double change = (effect_ - effect_prev_).cwiseAbs().maxCoeff();
-    effect_prev_.swap(effect_);
-    if (r.iterations > 1 && change <= tolerance * load) {
+    if (change <= tolerance * load) {
       r.converged = true;
       return r;
     }
+    if (anticipation_holds(bn, mu, load, r)) {
+      r.converged = true;
+      return r;
+    }
+    effect_prev_.swap(effect_);
     if (r.iterations > 1 && change < 0.5 * best_change) best_change = change, best_round = r.iterations;
     if (r.iterations - best_round >= stall_rounds) break;
   }
@@ -164,6 +175,32 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   // Not settled within the rounds: the last normal solve is still exact for the friction it saw,
   // so non-penetration holds; the caller reports it.
   return r;
+}
+
+bool FrictionSolver::anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load,
+                                        FrictionResult& r) {
+  const auto m = static_cast<Eigen::Index>(bn.size());
+  const auto fn = f_.head(m);  // the anticipated normal forces
+  // The touching contacts stay at zero acceleration (Ant_T dft is in the range of Ann_TT: the
+  // touching answer cancels it); they must stay in compression, the others must not close.
+  const double force_scale = std::max(1e-300, r.fn.cwiseAbs().maxCoeff());
+  touching_mask_.assign(static_cast<std::size_t>(m), false);
+  for (int i : touching_) touching_mask_[static_cast<std::size_t>(i)] = true;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    if (touching_mask_[u] ? fn[i] < -1e-9 * force_scale : effect_[i] + bn[i] < -tolerance * load) return false;
+    if (mu[i] <= 0) continue;
+    const double bound = mu[i] * std::max(0.0, fn[i]);
+    if (sliding_[u]) {
+      // A slider's friction is mu f_n: it moved with the normal force (a free contact, without
+      // force, stays free only if it stays without).
+      if (r.fn[i] > 0 || fn[i] > 1e-9 * force_scale) return false;
+    } else if (r.ft.segment<2>(2 * i).norm() > bound * (1 + 1e-12)) {
+      return false;  // a sticker whose cone the anticipated force narrowed below its friction
+    }
+  }
+  for (Eigen::Index i = 0; i < m; ++i) r.fn[i] = std::max(0.0, fn[i]);
+  return true;
 }
 
 bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn) {

@@ -45,7 +45,7 @@ class FrictionSolver {
   // vt: the contacts' tangential sliding velocities (2m), the direction a sliding contact's
   // friction opposes.
   // ft_start (2m, optional): friction forces to start the rounds from, such as the last step's
-  // answer; the rounds then settle in two instead of twenty-odd.
+  // answer; the rounds then settle in one or two instead of twenty-odd.
   FrictionResult solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn, const Eigen::VectorXd& bt,
                        const Eigen::VectorXd& mu, const Eigen::VectorXd& vt,
                        const Eigen::VectorXd& ft_start = Eigen::VectorXd());
@@ -62,10 +62,13 @@ class FrictionSolver {
 
   // Staggered rounds. With the touching set's answer anticipated, a round changes what the
   // forces do only where an active set changed (a contact starts to slide, a normal force
-  // reaches zero): a sticking cube settles in 2 rounds, what the forces do judged with the
-  // normal forces the touching set will answer the round's friction with (plain alternation,
-  // Att in place of S, took about 27, converging by 0.6 a round). The friction is held through a step, so 1e-8 of
-  // the loads (1e-7 N on a 1 kg cube) is far below anything a hand could feel.
+  // reaches zero): what the forces do is judged with the normal forces the touching set will
+  // answer the round's friction with, and a round whose friction is within every cone of those
+  // (which then solve the normal LCP for it) is the answer: a sticking cube, or a pushed stack,
+  // started from the last step's friction settles in 1 round, a cold start in 2 (plain
+  // alternation, Att in place of S, took about 27, converging by 0.6 a round). The friction is
+  // held through a step, so 1e-8 of the loads (1e-7 N on a 1 kg cube) is far below anything a
+  // hand could feel.
   int max_rounds = 40;
   double tolerance = 1e-8;  // change of A [fn; ft] between rounds, relative to the loads, that ends them
   // Rounds without the change halving that end them unsettled: a cycle (the normal forces under
@@ -79,11 +82,20 @@ class FrictionSolver {
   // Returns whether the touching set is the one of the last call (its factor kept).
   bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
 
+  // Whether the round's friction r.ft with the normal forces the touching set answers it with
+  // (f_'s head; effect_ = A f_) is already the answer: those forces solve the normal LCP for this
+  // friction (the touching contacts in compression at zero acceleration, the others not closing;
+  // what the next round's LCP would find, its A f being unique) and every contact is within its
+  // cone of them, no slider's friction moving with them. If so, sets r.fn to them: the next
+  // round, an LCP and a stick solve, would only repeat this one (a pushed stack: 1 round, not 2).
+  bool anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load, FrictionResult& r);
+
   // Workspace, kept between solves (no allocation once the sizes have been seen).
   Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Akk_, Bkk_;
   Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
   Eigen::VectorXd bn_eff_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
+  std::vector<bool> touching_mask_;                   // per contact: in touching_
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
   std::vector<Eigen::Index> stick_rows_;
   std::vector<int> touching_, touching_next_;
