@@ -223,8 +223,8 @@ TEST(FrictionSolver, AFacesFourCornersShareTheNormalLoadAndTheFrictionIsBoundedB
   // The next step, started from this friction (World): the first round's friction with the normal
   // forces the corners answer it with is already the answer (friction.hpp), no second round to
   // confirm it, and those forces are exact for it: every corner at zero normal acceleration.
-  const FrictionResult next = solver.solve(lcp, A, b.head(4), b.tail(8), Eigen::VectorXd::Constant(4, mu),
-                                           Eigen::VectorXd::Zero(8), r.ft);
+  const FrictionResult next =
+      solver.solve(lcp, A, b.head(4), b.tail(8), Eigen::VectorXd::Constant(4, mu), Eigen::VectorXd::Zero(8), r.ft);
   EXPECT_TRUE(next.converged);
   EXPECT_EQ(next.iterations, 1);
   const Eigen::VectorXd forces = (Eigen::VectorXd(12) << next.fn, next.ft).finished();
