@@ -38,31 +38,54 @@ ContactPoint vertex_face(const ContactFeature& f, const BodyModel& ma, const Pos
   return c;
 }
 
-ContactPoint edge_edge(const ContactFeature& f, const BodyModel& ma, const Pose& sa, const BodyModel& mb,
-                       const Pose& sb, double slack) {
+// The closest points of two edges (a0 + s da, b0 + t db) and the contact there, normal
+// f_sign e_a x e_b; s and t are left for the caller to judge (within the edges, by how much).
+struct EdgePair {
   ContactPoint c;
-  const auto& ea = BoxTopology::edges()[f.feature_a];
-  const auto& eb = BoxTopology::edges()[f.feature_b];
-  const Vec3 a0 = corner_world(ma, sa, ea[0]), da = corner_world(ma, sa, ea[1]) - a0;
-  const Vec3 b0 = corner_world(mb, sb, eb[0]), db = corner_world(mb, sb, eb[1]) - b0;
+  double s = 0, t = 0;
+  double unit = 0;        // the parameter of 1 m along the shorter edge
+  bool crossing = false;  // false: parallel, no normal (vertex-face contacts cover it)
+};
+
+EdgePair edge_pair(int sign, const Vec3& a0, const Vec3& da, const Vec3& b0, const Vec3& db, const Vec3& omega_a,
+                   const Vec3& omega_b) {
+  EdgePair e;
   const Vec3 u = da.cross(db);
   const double un = u.norm();
-  if (un < 1e-9 * da.norm() * db.norm()) return c;  // parallel: vertex-face contacts cover it
-  // Closest points of the two lines.
+  const double aa = da.dot(da), bb = db.dot(db);
+  if (un < 1e-9 * std::sqrt(aa * bb)) return e;
+  e.crossing = true;
   const Vec3 w = a0 - b0;
-  const double aa = da.dot(da), ab = da.dot(db), bb = db.dot(db), aw = da.dot(w), bw = db.dot(w);
+  const double ab = da.dot(db), aw = da.dot(w), bw = db.dot(w);
   const double den = aa * bb - ab * ab;
-  const double s = (ab * bw - bb * aw) / den, t = (aa * bw - ab * aw) / den;
-  const double rel = slack / std::sqrt(std::min(aa, bb));
-  c.valid = s >= -rel && s <= 1 + rel && t >= -rel && t <= 1 + rel;
-  const Vec3 pa = a0 + s * da, pb = b0 + t * db;
-  c.n = f.sign * u / un;
+  e.s = (ab * bw - bb * aw) / den, e.t = (aa * bw - ab * aw) / den;
+  e.unit = 1 / std::sqrt(std::min(aa, bb));
+  const Vec3 pa = a0 + e.s * da, pb = b0 + e.t * db;
+  ContactPoint& c = e.c;
+  c.n = sign * u / un;
   c.gap = c.n.dot(pa - pb);
   c.p = 0.5 * (pa + pb);
-  const Vec3 udot = sa.omega.cross(da).cross(db) + da.cross(sb.omega.cross(db));
+  const Vec3 udot = omega_a.cross(da).cross(db) + da.cross(omega_b.cross(db));
   const Vec3 nu = u / un;
-  c.ndot = f.sign * (udot - nu * nu.dot(udot)) / un;
-  return c;
+  c.ndot = sign * (udot - nu * nu.dot(udot)) / un;
+  return e;
+}
+
+// Whether the closest points lie within both edges, to slack (m; negative: strictly inside).
+bool within_edges(const EdgePair& e, double slack) {
+  const double rel = slack * e.unit;
+  return e.crossing && e.s >= -rel && e.s <= 1 + rel && e.t >= -rel && e.t <= 1 + rel;
+}
+
+ContactPoint edge_edge(const ContactFeature& f, const BodyModel& ma, const Pose& sa, const BodyModel& mb,
+                       const Pose& sb, double slack) {
+  const auto& ea = BoxTopology::edges()[f.feature_a];
+  const auto& eb = BoxTopology::edges()[f.feature_b];
+  const Vec3 a0 = corner_world(ma, sa, ea[0]), b0 = corner_world(mb, sb, eb[0]);
+  EdgePair e =
+      edge_pair(f.sign, a0, corner_world(ma, sa, ea[1]) - a0, b0, corner_world(mb, sb, eb[1]) - b0, sa.omega, sb.omega);
+  e.c.valid = within_edges(e, slack);
+  return e.c;
 }
 
 // Whether direction d (world) lies in the quadrant of the outward normals of the two faces that
@@ -196,9 +219,11 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       // Strictly inside both edges: a contact at an edge's end is a vertex-face contact. Apart,
       // the lines' closest points may still be beyond an end by up to the margin and come inside
       // within the step (measured: 1.7 mm deep unseen): watched, a root only once inside (World).
-      ContactPoint c = evaluate(f, models, poses, -1e-6);
+      const EdgePair pair = edge_pair(f.sign, a0, da, b0, db, poses[a].omega, poses[b].omega);
+      ContactPoint c = pair.c;
+      c.valid = within_edges(pair, -1e-6);
       if (!c.valid) {
-        c = evaluate(f, models, poses, margin);
+        c.valid = within_edges(pair, margin);
         if (!c.valid || std::abs(c.gap) <= rim) continue;
       }
       if (std::abs(c.gap) > margin) continue;

@@ -10,7 +10,7 @@ namespace wysiwyf::haptics {
 void ContactSystem::build(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
                           bool with_tangents) {
   const std::size_t row_count = with_tangents ? 3 * count : count;
-  rows.resize(row_count);
+  if (rows.size() < row_count) rows.resize(row_count);  // (never shrunk: right-hand sides and friction alternate)
   if (with_tangents) {
     tangents.resize(count);
     for (std::size_t i = 0; i < count; ++i) {

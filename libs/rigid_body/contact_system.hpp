@@ -75,7 +75,7 @@ struct ContactSystem {
     int slot[2];
     Eigen::Matrix<double, 6, 1> j[2], minv_j[2];
   };
-  std::vector<JacobianRow> rows;
+  std::vector<JacobianRow> rows;              // the first `count` (3 `count` with tangents) of the last build
   std::vector<std::array<Vec3, 2>> tangents;  // per contact: the orthonormal pair of its tangent rows
   Eigen::MatrixXd A;
   Eigen::VectorXd b, b_free;        // with and without the gap feedback
