@@ -17,7 +17,7 @@ constexpr double kStickRank = 1e-12;
 
 FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn,
                                      const Eigen::VectorXd& bt, const Eigen::VectorXd& mu, const Eigen::VectorXd& vt,
-                                     const Eigen::VectorXd& ft_start) {
+                                     const Eigen::VectorXd& ft_start, const LcpIndices& clamped_start) {
   const Eigen::Index m = bn.size();
   FrictionResult r;
   r.fn = Eigen::VectorXd::Zero(m);
@@ -46,7 +46,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   f_.resize(3 * m);
   effect_prev_.resize(3 * m);
   const double load = std::max({1e-12, bn.cwiseAbs().maxCoeff(), bt.cwiseAbs().maxCoeff()});
-  LcpIndices clamped;  // each round's normal LCP starts from the last one's clamped set
+  LcpIndices clamped = clamped_start;  // each round's normal LCP starts from the last one's clamped set
   double best_change = std::numeric_limits<double>::infinity();
   int best_round = 1;
   touching_.clear();  // (a new Ann: no factor kept from another solve)

@@ -101,7 +101,7 @@ void World::update_friction(double dt) {
     // (before solving: no failed solve leaves it applied)
     for (std::size_t i = island.begin; i < island.end; ++i) resting[i].friction.setZero();
     if (!friction) continue;
-    FrictionResult r = friction_.solve(lcp_, cs.A, cs.b, cs.bt, cs.mu, cs.vt, work_.ft_start);
+    FrictionResult r = friction_.solve(lcp_, cs.A, cs.b, cs.bt, cs.mu, cs.vt, work_.ft_start, island.clamped);
     if (!r.ok) r = friction_.solve(lcp_, cs.A, cs.b_free, cs.bt, cs.mu, cs.vt);
     report_.friction_rounds += r.iterations;
     if (!r.ok) continue;  // frictionless this step; the normal LCP of the right-hand side reports it
