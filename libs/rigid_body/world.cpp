@@ -295,6 +295,11 @@ void World::classify_contacts(double dt) {
   touching.clear();
   watched.clear();
   bool colliding = false;
+  // A touching contact still open by g closes under the gap feedback (critically damped at ws)
+  // without passing zero if it approaches no faster than ws g: that approach is the feedback's
+  // own, not an impact (taken as one, the contacts of a pushed pile, made at a few um, each took
+  // an impulse at every step while the feedback closed them: an impact a step for seconds).
+  const double closing_allowed = 2 * M_PI * model_.params.stabilisation_hz;
   for (const auto& f : work_.candidates) {
     const ContactPoint c = point_of(f, poses);
     if (!c.valid || c.gap > model_.params.contact_tolerance) {  // apart, or not yet over its face: watched
@@ -304,7 +309,9 @@ void World::classify_contacts(double dt) {
     if (!separates(f, c, poses, kContactCone)) continue;  // (watched in a wider cone; touching only within)
     if (twin_of_touching(f, c)) continue;
     touching.push_back(ActiveContact{f, c, 0});
-    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) < -model_.params.settle_speed) colliding = true;
+    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) <
+        -(model_.params.settle_speed + closing_allowed * std::max(0.0, c.gap)))
+      colliding = true;
   }
   work_.grouping.group(touching, model_.slot, state_.islands);
   if (colliding) {  // still approaching: an impact at the start of the step

@@ -25,8 +25,9 @@ struct WorldParams {
   // As the contact tolerance: a corner that near a face touches it.
   double rim_slack = 1e-5;
   double resting_speed = 0.01;  // approach slower than this: inelastic (ends bounce sequences)
-  // A touching contact approaching faster than this takes an (inelastic) impulse at the step's
-  // start. Left to the gap feedback, an approach at v overshoots by v / (e ws) (ws the
+  // A touching contact approaching faster than this, plus ws times its gap (what the gap feedback
+  // closes it at without overshoot), takes an (inelastic) impulse at the step's start. Left to
+  // the gap feedback, an approach at v beyond that overshoots by v / (e ws) (ws the
   // stabilisation's 2 pi 20 Hz): 26 um for a box that caught up at 8.8 mm/s, past the rim, where
   // its corners went over to the faces beside. 0.1 mm/s overshoots by 0.3 um.
   double settle_speed = 1e-4;
