@@ -5,46 +5,108 @@
 #include <utility>
 
 namespace wysiwyf::haptics {
+namespace {
+
+// The dot product of n entries from a and b (Eigen's, vectorised: a plain loop may not be
+// reordered).
+double dot(const double* a, const double* b, Eigen::Index n) {
+  return Eigen::Map<const Eigen::VectorXd>(a, n).dot(Eigen::Map<const Eigen::VectorXd>(b, n));
+}
+
+// U^T z = y, then U x = z, in place on y's first n entries: U (leading dimension ld) upper
+// triangular, read by columns (U's column i is the contiguous U(0..i, i)).
+void forward_upper_transposed(const double* U, Eigen::Index ld, Eigen::Index n, double* y) {
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double* u = U + i * ld;
+    y[i] = (y[i] - dot(u, y, i)) / u[i];
+  }
+}
+
+void backward_upper(const double* U, Eigen::Index ld, Eigen::Index n, double* y) {
+  for (Eigen::Index i = n - 1; i >= 0; --i) {
+    const double* u = U + i * ld;
+    const double x = y[i] /= u[i];
+    for (Eigen::Index l = 0; l < i; ++l) y[l] -= u[l] * x;
+  }
+}
+
+}  // namespace
 
 void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
   const Eigen::Index k = B.rows();
-  work_ = B;
   diagonal_ = B.diagonal();
   order_.resize(static_cast<std::size_t>(k));
   std::iota(order_.begin(), order_.end(), Eigen::Index{0});
-  G_.resize(k, k);
+  H_.resize(k, k);
   rank_ = 0;
   const double cutoff = threshold * (k > 0 ? diagonal_.maxCoeff() : 0.0);
-  // Column j of G: the largest remaining pivot first, so what is left when it falls below the
-  // cutoff is B less its rank-j part, all round-off.
+  // Row j of G (column j of H): the largest remaining pivot first, so what is left when it falls
+  // below the cutoff is B less its rank-j part, all round-off.
   for (Eigen::Index j = 0; j < k; ++j) {
     Eigen::Index p = 0;
     const double pivot = diagonal_.tail(k - j).maxCoeff(&p);
     p += j;
     if (!(pivot > cutoff)) break;
     if (p != j) {
-      work_.row(j).swap(work_.row(p));
-      work_.col(j).swap(work_.col(p));
       std::swap(diagonal_[j], diagonal_[p]);
       std::swap(order_[static_cast<std::size_t>(j)], order_[static_cast<std::size_t>(p)]);
-      G_.row(j).head(j).swap(G_.row(p).head(j));
+      H_.col(j).head(j).swap(H_.col(p).head(j));
     }
     const double g = std::sqrt(pivot);
-    G_(j, j) = g;
-    const Eigen::Index below = k - j - 1;
-    G_.col(j).tail(below) =
-        (work_.col(j).tail(below) - G_.bottomLeftCorner(below, j) * G_.row(j).head(j).transpose()) / g;
-    diagonal_.tail(below) -= G_.col(j).tail(below).cwiseAbs2();
+    double* hj = H_.col(j).data();
+    hj[j] = g;
+    const Eigen::Index bj = order_[static_cast<std::size_t>(j)];
+    for (Eigen::Index i = j + 1; i < k; ++i) {
+      double* hi = H_.col(i).data();
+      hi[j] = (B(order_[static_cast<std::size_t>(i)], bj) - dot(hi, hj, j)) / g;
+      diagonal_[i] -= hi[j] * hi[j];
+    }
     rank_ = j + 1;
   }
   const Eigen::Index r = rank_, q = k - r;
-  for (Eigen::Index j = 0; j < r; ++j) G_.col(j).head(j).setZero();  // (lower triangular)
-  M_ = G_.bottomLeftCorner(q, r).transpose();
-  G_.topLeftCorner(r, r).triangularView<Eigen::Lower>().transpose().solveInPlace(M_);
+  // M = G1^-T G2^T = H1^-1 H2, column by column.
+  M_.resize(r, q);
+  for (Eigen::Index c = 0; c < q; ++c) {
+    M_.col(c) = H_.col(r + c).head(r);
+    backward_upper(H_.data(), k, r, M_.col(c).data());
+  }
   if (q == 0) return;
-  gram_.setIdentity(q, q);
-  gram_.noalias() += M_.transpose() * M_;
-  null_gram_.compute(gram_);
+  // N^T N = I + M^T M, and its Cholesky factor U (upper, U^T U = N^T N), in place.
+  gram_.resize(q, q);
+  for (Eigen::Index i = 0; i < q; ++i)
+    for (Eigen::Index j = 0; j <= i; ++j)
+      gram_(j, i) = (i == j ? 1.0 : 0.0) + dot(M_.col(j).data(), M_.col(i).data(), r);
+  for (Eigen::Index j = 0; j < q; ++j) {
+    double* uj = gram_.col(j).data();
+    uj[j] = std::sqrt(uj[j] - dot(uj, uj, j));  // >= 1: I + M^T M
+    for (Eigen::Index i = j + 1; i < q; ++i) {
+      double* ui = gram_.col(i).data();
+      ui[j] = (ui[j] - dot(uj, ui, j)) / uj[j];
+    }
+  }
+}
+
+void PsdPseudoInverse::project_off_null_space(double* y) const {
+  const Eigen::Index r = rank_, q = static_cast<Eigen::Index>(order_.size()) - r;
+  if (q == 0) return;
+  t_.resize(q);
+  double* t = t_.data();
+  for (Eigen::Index c = 0; c < q; ++c) t[c] = y[r + c] - dot(M_.col(c).data(), y, r);  // N^T y
+  forward_upper_transposed(gram_.data(), q, q, t);
+  backward_upper(gram_.data(), q, q, t);
+  for (Eigen::Index c = 0; c < q; ++c) {  // y -= N t
+    const double* m = M_.col(c).data();
+    for (Eigen::Index l = 0; l < r; ++l) y[l] += m[l] * t[c];
+    y[r + c] -= t[c];
+  }
+}
+
+void PsdPseudoInverse::forward(double* y) const { forward_upper_transposed(H_.data(), H_.rows(), rank_, y); }
+
+void PsdPseudoInverse::solve_permuted(double* y) const {
+  forward_upper_transposed(H_.data(), H_.rows(), rank_, y);
+  backward_upper(H_.data(), H_.rows(), rank_, y);
+  for (Eigen::Index i = rank_; i < static_cast<Eigen::Index>(order_.size()); ++i) y[i] = 0;
 }
 
 }  // namespace wysiwyf::haptics
