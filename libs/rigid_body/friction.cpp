@@ -147,6 +147,9 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       }
       if (!changed) break;
     }
+    // Without stickers (a pile pushed along, every contact sliding) the sliders' friction is
+    // mu f_n with f_n what the touching set answers that very friction with: solved for at once.
+    if (stick_rows_.empty() && nt > 0) anticipate_sliders(mu, r);
     // What the forces do, with the normal forces this round's friction will get from the touching
     // set (f_n less Ann_TT^+ Ant_T times the friction's change; exact while the set stays): the
     // rounds are done once that stops changing, a round before the normal forces have caught up.
@@ -177,6 +180,45 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   return r;
 }
 
+void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r) {
+  const auto nt = static_cast<Eigen::Index>(touching_.size());
+  sliders_.clear();  // (contact, its place in the touching set)
+  for (Eigen::Index t = 0; t < nt; ++t) {
+    const int i = touching_[static_cast<std::size_t>(t)];
+    if (mu[i] > 0 && r.fn[i] > 0 && !direction_[static_cast<std::size_t>(i)].isZero()) sliders_.push_back({i, t});
+  }
+  const auto ns = static_cast<Eigen::Index>(sliders_.size());
+  if (ns == 0) return;
+  // The touching forces f_T' = g - W ft: g = f_T + Ann_TT^+ Ant_T ft_seen (what they were, less
+  // their answer to the friction the LCP saw), W = Ann_TT^+ Ant_T. With ft_s = lambda_s d_s:
+  // lambda = mu (g - W D lambda) over the sliders, (I + mu W D) lambda = mu g.
+  answer_.noalias() = AntC_ * ft_seen_;
+  touching_inverse_.solve(answer_, answer_);
+  slider_cols_.resize(nt, ns);
+  for (Eigen::Index j = 0; j < ns; ++j) {
+    const auto [i, t] = sliders_[static_cast<std::size_t>(j)];
+    const Eigen::Vector2d& d = direction_[static_cast<std::size_t>(i)];
+    slider_cols_.col(j) = AntC_.col(2 * i) * d.x() + AntC_.col(2 * i + 1) * d.y();
+  }
+  touching_inverse_.solve(slider_cols_, slider_cols_);
+  slider_system_.resize(ns, ns);
+  slider_rhs_.resize(ns);
+  for (Eigen::Index j = 0; j < ns; ++j) {
+    const auto [i, t] = sliders_[static_cast<std::size_t>(j)];
+    slider_system_.row(j) = mu[i] * slider_cols_.row(t);
+    slider_system_(j, j) += 1;
+    slider_rhs_[j] = mu[i] * (r.fn[i] + answer_[t]);
+  }
+  slider_lu_.compute(slider_system_);
+  const Eigen::VectorXd lambda = slider_lu_.solve(slider_rhs_);
+  // A slider pressed off (a negative magnitude) or a singular answer: the round's own friction.
+  if (!lambda.allFinite() || lambda.minCoeff() < 0) return;
+  for (Eigen::Index j = 0; j < ns; ++j) {
+    const int i = sliders_[static_cast<std::size_t>(j)].first;
+    r.ft.segment<2>(2 * i) = lambda[j] * direction_[static_cast<std::size_t>(i)];
+  }
+}
+
 bool FrictionSolver::anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load,
                                         FrictionResult& r) {
   const auto m = static_cast<Eigen::Index>(bn.size());
@@ -192,9 +234,9 @@ bool FrictionSolver::anticipation_holds(const Eigen::VectorXd& bn, const Eigen::
     if (mu[i] <= 0) continue;
     const double bound = mu[i] * std::max(0.0, fn[i]);
     if (sliding_[u]) {
-      // A slider's friction is mu f_n: it moved with the normal force (a free contact, without
-      // force, stays free only if it stays without).
-      if (r.fn[i] > 0 || fn[i] > 1e-9 * force_scale) return false;
+      // A slider's friction must be mu f_n of these forces (anticipate_sliders' answer; a free
+      // contact, without force, stays free only if it stays without).
+      if (std::abs(r.ft.segment<2>(2 * i).norm() - bound) > 1e-9 * mu[i] * force_scale) return false;
     } else if (r.ft.segment<2>(2 * i).norm() > bound * (1 + 1e-12)) {
       return false;  // a sticker whose cone the anticipated force narrowed below its friction
     }

@@ -24,6 +24,7 @@
 // a_t = Atn f_n + Att f_t + bt (-> 0 for sticking contacts), contact i's tangent rows 2i, 2i+1.
 #include <Eigen/Dense>
 
+#include <utility>
 #include <vector>
 
 #include "rigid_body/lcp.hpp"
@@ -88,6 +89,12 @@ class FrictionSolver {
   // Returns whether the touching set is the one of the last call (its factor kept).
   bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
 
+  // Without stickers: the sliders' magnitudes lambda = mu f_n' with f_n' the touching set's answer
+  // to the friction lambda d itself (a linear system over the sliders, where rounds converged by
+  // 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft unless a slider would be
+  // pressed off. Needs the round's touching set (touching_inverse_, AntC_) and ft_seen_.
+  void anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r);
+
   // Whether the round's friction r.ft with the normal forces the touching set answers it with
   // (f_'s head; effect_ = A f_) is already the answer: those forces solve the normal LCP for this
   // friction (the touching contacts in compression at zero acceleration, the others not closing;
@@ -105,6 +112,10 @@ class FrictionSolver {
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
   std::vector<Eigen::Index> stick_rows_;
   std::vector<int> touching_, touching_next_;
+  std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
+  Eigen::MatrixXd slider_cols_, slider_system_;
+  Eigen::VectorXd slider_rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
   PsdPseudoInverse stick_inverse_, touching_inverse_;
 };
 
