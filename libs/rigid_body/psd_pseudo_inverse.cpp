@@ -101,6 +101,23 @@ void PsdPseudoInverse::project_off_null_space(double* y) const {
   }
 }
 
+void PsdPseudoInverse::project_off_null_space_all() const {
+  const Eigen::Index r = rank_, q = static_cast<Eigen::Index>(order_.size()) - r;
+  if (q == 0) return;
+  Eigen::MatrixXd& y = permuted_;
+  t_matrix_.noalias() = y.bottomRows(q);
+  t_matrix_.noalias() -= M_.transpose() * y.topRows(r);  // N^T y
+  const auto U = gram_.triangularView<Eigen::Upper>();
+  U.transpose().solveInPlace(t_matrix_);
+  U.solveInPlace(t_matrix_);
+  y.topRows(r).noalias() += M_ * t_matrix_;  // y -= N t
+  y.bottomRows(q) -= t_matrix_;
+}
+
+void PsdPseudoInverse::forward_all() const {
+  H_.topLeftCorner(rank_, rank_).triangularView<Eigen::Upper>().transpose().solveInPlace(permuted_.topRows(rank_));
+}
+
 void PsdPseudoInverse::forward(double* y) const { forward_upper_transposed(H_.data(), H_.rows(), rank_, y); }
 
 void PsdPseudoInverse::solve_permuted(double* y) const {

@@ -19,6 +19,8 @@
 namespace wysiwyf::haptics {
 
 class PsdPseudoInverse {
+  static constexpr Eigen::Index kManyColumns = 8;  // half_solve: Eigen's matrix kernels from here
+
  public:
   // B: symmetric positive semi-definite (both triangles are read). A pivot below threshold
   // times B's largest diagonal entry ends the factorisation: the rest of B is round-off.
@@ -35,8 +37,12 @@ class PsdPseudoInverse {
  private:
   // On one column y (k entries, in the factor's order):
   void project_off_null_space(double* y) const;  // y less its part in B's null space
-  void forward(double* y) const;                 // y's first r entries := G1^-1 y
-  void solve_permuted(double* y) const;          // the first r := (G1 G1^T)^-1 y, the rest 0
+  // The same on every column of permuted_ (Eigen's blocked kernels: worth setting up for many
+  // columns, such as the friction solve's Ant_T), and the forward solve.
+  void project_off_null_space_all() const;
+  void forward_all() const;
+  void forward(double* y) const;         // y's first r entries := G1^-1 y
+  void solve_permuted(double* y) const;  // the first r := (G1 G1^T)^-1 y, the rest 0
   template <typename Rhs>
   void permute_in(const Eigen::MatrixBase<Rhs>& c) const;
 
@@ -46,7 +52,7 @@ class PsdPseudoInverse {
   Eigen::Index rank_ = 0;
   Eigen::MatrixXd M_;     // G1^-T G2^T (r x (k - r))
   Eigen::MatrixXd gram_;  // the Cholesky factor (lower) of N^T N = I + M^T M
-  mutable Eigen::MatrixXd permuted_;
+  mutable Eigen::MatrixXd permuted_, t_matrix_;
   mutable Eigen::VectorXd t_;
 };
 
@@ -74,10 +80,15 @@ void PsdPseudoInverse::solve(const Eigen::MatrixBase<Rhs>& c, Eigen::PlainObject
 template <typename Rhs>
 void PsdPseudoInverse::half_solve(const Eigen::MatrixBase<Rhs>& C, Eigen::MatrixXd& Z) const {
   permute_in(C);
-  for (Eigen::Index j = 0; j < permuted_.cols(); ++j) {
-    double* y = permuted_.col(j).data();
-    project_off_null_space(y);
-    forward(y);
+  if (permuted_.cols() >= kManyColumns) {
+    project_off_null_space_all();
+    forward_all();
+  } else {
+    for (Eigen::Index j = 0; j < permuted_.cols(); ++j) {
+      double* y = permuted_.col(j).data();
+      project_off_null_space(y);
+      forward(y);
+    }
   }
   Z = permuted_.topRows(rank_);
 }
