@@ -105,8 +105,9 @@ class World {
   bool stop_approach(const ActiveContact* contacts, std::size_t count);
   static constexpr double kStillApproaching = 1e-9;  // m/s
   // Evaluates the resting contacts at `poses` and moves those still facing to the front of their
-  // island; returns how many they are.
-  std::size_t evaluate_resting(const std::vector<Pose>& poses);
+  // island; returns how many they are. within_step (a right-hand side): one that has left its
+  // face or edge since the step began, by less than the margin, still faces (see the .cpp).
+  std::size_t evaluate_resting(const std::vector<Pose>& poses, bool within_step);
   // The resting contacts' friction for the next step of dt (held through it).
   void update_friction(double dt);
 
