@@ -130,12 +130,23 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       stick_inverse_.compute(Bkk_, kStickRank);
       stick_inverse_.solve(weight_.cwiseProduct(rhs_), y_);
       x_ = weight_.cwiseProduct(y_);
+      // Contacts that slide fast and cannot stick start to slide first: the forces that would
+      // stop them within the step load the contacts around them beyond their cones too (a box
+      // sliding over a resting one took the lower box's table friction to its rim, twice what
+      // held it, dragging it backwards); those are asked again once the fast ones slide.
+      bool fast_beyond = false;
+      for (Eigen::Index a = 0; a < k && !fast_beyond; a += 2) {
+        const Eigen::Index i = stick_rows_[static_cast<std::size_t>(a)] / 2;
+        fast_beyond = !against_[static_cast<std::size_t>(i)].isZero() &&
+                      x_.segment<2>(a).norm() > mu[i] * r.fn[i] * (1 + 1e-12) + 1e-300;
+      }
       bool changed = false;
       for (Eigen::Index a = 0; a < k; a += 2) {
         const Eigen::Index i = stick_rows_[static_cast<std::size_t>(a)] / 2;
         const Eigen::Vector2d need = x_.segment<2>(a);
         r.ft.segment<2>(2 * i) = need;
         const double bound = mu[i] * r.fn[i];
+        if (fast_beyond && against_[static_cast<std::size_t>(i)].isZero()) continue;
         if (need.norm() > bound * (1 + 1e-12) + 1e-300) {  // it cannot stick: it starts to slide
           sliding_[static_cast<std::size_t>(i)] = true;
           const Eigen::Vector2d& slip = against_[static_cast<std::size_t>(i)];
@@ -147,9 +158,9 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       }
       if (!changed) break;
     }
-    // Without stickers (a pile pushed along, every contact sliding) the sliders' friction is
-    // mu f_n with f_n what the touching set answers that very friction with: solved for at once.
-    if (stick_rows_.empty() && nt > 0) anticipate_sliders(mu, r);
+    // The sliders' friction is mu f_n with f_n what the touching set answers that very friction
+    // (and the stickers' answer to it) with: solved for at once.
+    if (nt > 0) anticipate_sliders(mu, r);
     // What the forces do, with the normal forces this round's friction will get from the touching
     // set (f_n less Ann_TT^+ Ant_T times the friction's change; exact while the set stays): the
     // rounds are done once that stops changing, a round before the normal forces have caught up.
@@ -185,21 +196,50 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   sliders_.clear();  // (contact, its place in the touching set)
   for (Eigen::Index t = 0; t < nt; ++t) {
     const int i = touching_[static_cast<std::size_t>(t)];
-    if (mu[i] > 0 && r.fn[i] > 0 && !direction_[static_cast<std::size_t>(i)].isZero()) sliders_.push_back({i, t});
+    const auto u = static_cast<std::size_t>(i);
+    if (sliding_[u] && mu[i] > 0 && r.fn[i] > 0 && !direction_[u].isZero()) sliders_.push_back({i, t});
   }
   const auto ns = static_cast<Eigen::Index>(sliders_.size());
   if (ns == 0) return;
+  const auto k = static_cast<Eigen::Index>(stick_rows_.size());
   // The touching forces f_T' = g - W ft: g = f_T + Ann_TT^+ Ant_T ft_seen (what they were, less
-  // their answer to the friction the LCP saw), W = Ann_TT^+ Ant_T. With ft_s = lambda_s d_s:
-  // lambda = mu (g - W D lambda) over the sliders, (I + mu W D) lambda = mu g.
+  // their answer to the friction the LCP saw), W = Ann_TT^+ Ant_T. The sliders' friction is
+  // lambda D, the stickers' what the stick solve gives for it: ft_K = a - G lambda (G = K S_KS D,
+  // K the stick solve's linear map, a its answer without the sliders). Over the sliders:
+  // lambda = mu (g - W_K a + (W_K G - W_S D) lambda), a linear system of their number.
   answer_.noalias() = AntC_ * ft_seen_;
-  touching_inverse_.solve(answer_, answer_);
   slider_cols_.resize(nt, ns);
   for (Eigen::Index j = 0; j < ns; ++j) {
     const auto [i, t] = sliders_[static_cast<std::size_t>(j)];
     const Eigen::Vector2d& d = direction_[static_cast<std::size_t>(i)];
     slider_cols_.col(j) = AntC_.col(2 * i) * d.x() + AntC_.col(2 * i + 1) * d.y();
   }
+  if (k > 0) {
+    // G, column j: K (S_K,j d_j), K = W B^+ W as the stick solve applies it.
+    stick_cols_.resize(k, ns);
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      const auto [i, t] = sliders_[static_cast<std::size_t>(j)];
+      const Eigen::Vector2d& d = direction_[static_cast<std::size_t>(i)];
+      for (Eigen::Index a = 0; a < k; ++a) {
+        const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
+        stick_cols_(a, j) = weight_[a] * (S_(row, 2 * i) * d.x() + S_(row, 2 * i + 1) * d.y());
+      }
+    }
+    stick_inverse_.solve(stick_cols_, stick_cols_);
+    stick_cols_ = weight_.asDiagonal() * stick_cols_;
+    stick_free_ = x_;  // a = the stickers' answer + G lambda_now
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      const int i = sliders_[static_cast<std::size_t>(j)].first;
+      stick_free_.noalias() += stick_cols_.col(j) * (mu[i] * r.fn[i]);
+    }
+    // Ant_T over the stickers' columns: into answer_ (with g's term) and slider_cols_.
+    for (Eigen::Index a = 0; a < k; ++a) {
+      const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
+      answer_.noalias() -= AntC_.col(row) * stick_free_[a];
+      slider_cols_.noalias() -= AntC_.col(row) * stick_cols_.row(a);
+    }
+  }
+  touching_inverse_.solve(answer_, answer_);
   touching_inverse_.solve(slider_cols_, slider_cols_);
   slider_system_.resize(ns, ns);
   slider_rhs_.resize(ns);
@@ -216,6 +256,10 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   for (Eigen::Index j = 0; j < ns; ++j) {
     const int i = sliders_[static_cast<std::size_t>(j)].first;
     r.ft.segment<2>(2 * i) = lambda[j] * direction_[static_cast<std::size_t>(i)];
+  }
+  if (k > 0) {
+    stick_free_.noalias() -= stick_cols_ * lambda;
+    for (Eigen::Index a = 0; a < k; ++a) r.ft[stick_rows_[static_cast<std::size_t>(a)]] = stick_free_[a];
   }
 }
 

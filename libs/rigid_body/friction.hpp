@@ -89,10 +89,12 @@ class FrictionSolver {
   // Returns whether the touching set is the one of the last call (its factor kept).
   bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
 
-  // Without stickers: the sliders' magnitudes lambda = mu f_n' with f_n' the touching set's answer
-  // to the friction lambda d itself (a linear system over the sliders, where rounds converged by
-  // 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft unless a slider would be
-  // pressed off. Needs the round's touching set (touching_inverse_, AntC_) and ft_seen_.
+  // The sliders' magnitudes lambda = mu f_n' with f_n' the touching set's answer to the friction
+  // lambda d itself and to the stickers' answer to it (a linear system over the sliders, where
+  // rounds converged by 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft,
+  // the stickers' friction with them, unless a slider would be pressed off. Needs the round's
+  // touching set (touching_inverse_, AntC_), ft_seen_ and the last stick solve (stick_rows_,
+  // weight_, stick_inverse_, x_).
   void anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r);
 
   // Whether the round's friction r.ft with the normal forces the touching set answers it with
@@ -113,8 +115,8 @@ class FrictionSolver {
   std::vector<Eigen::Index> stick_rows_;
   std::vector<int> touching_, touching_next_;
   std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
-  Eigen::MatrixXd slider_cols_, slider_system_;
-  Eigen::VectorXd slider_rhs_;
+  Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_;
+  Eigen::VectorXd slider_rhs_, stick_free_;
   Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
   PsdPseudoInverse stick_inverse_, touching_inverse_;
 };

@@ -293,5 +293,64 @@ TEST(FrictionSolver, ASlidingCubesFrictionIsMuTimesTheNormalForcesItsOwnMomentLe
   EXPECT_NEAR((front - back) * h, mu * m * g * h, 1e-9) << "friction tips it onto its front corners";
 }
 
+TEST(FrictionSolver, ABoxSlidingOnARestingBoxIsHeldBackByMuFnWhileTheTableHoldsTheLowerOne) {
+  // Two 1 kg, 20 cm cubes stacked on a table; the upper slides along +x at 1 m/s over the lower,
+  // which rests. The upper's four corners slide (mu f_n against the motion), the lower's stick:
+  // their friction answers the drag of the upper, and the normal forces of both answer the
+  // moments of all of it. The sliders' magnitudes and the stickers' friction are solved together
+  // with the normal forces' answer (before: rounds converging by a constant factor each).
+  const double m = 1.0, h = 0.1, inertia = m * (2 * h) * (2 * h) / 6, mu = 0.3;
+  const std::array<Vec3, 4> corners = {Vec3(h, h, -h), Vec3(-h, h, -h), Vec3(-h, -h, -h), Vec3(h, -h, -h)};
+  const std::array<Vec3, 3> dirs = {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
+  // Contacts 0-3: the lower cube's bottom corners on the table; 4-7: the upper cube's bottom
+  // corners on the lower's top face (a: upper, b: lower, normal +z). Columns: lower, then upper.
+  const int n = 8;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3 * n, 12);
+  for (int c = 0; c < n; ++c)
+    for (int k = 0; k < 3; ++k) {
+      const int row = k == 0 ? c : n + 2 * c + (k - 1);
+      const Vec3& r = corners[c % 4];
+      if (c < 4) {
+        J.block<1, 6>(row, 0) << dirs[k].transpose(), r.cross(dirs[k]).transpose();
+      } else {  // on the upper at r, on the lower at r + (0, 0, 2h), opposite
+        J.block<1, 6>(row, 6) << dirs[k].transpose(), r.cross(dirs[k]).transpose();
+        J.block<1, 6>(row, 0) << -dirs[k].transpose(), -(r + Vec3(0, 0, 2 * h)).cross(dirs[k]).transpose();
+      }
+    }
+  Eigen::VectorXd inv_mass(12);
+  inv_mass << Vec3::Constant(1 / m), Vec3::Constant(1 / inertia), Vec3::Constant(1 / m), Vec3::Constant(1 / inertia);
+  const Eigen::MatrixXd A = J * inv_mass.asDiagonal() * J.transpose();
+  Eigen::VectorXd load(12);  // gravity on both
+  load << Vec3(0, 0, -g), Vec3::Zero(), Vec3(0, 0, -g), Vec3::Zero();
+  const Eigen::VectorXd b = J * load;
+  Eigen::VectorXd vt = Eigen::VectorXd::Zero(2 * n);
+  for (int c = 4; c < n; ++c) vt[2 * c] = 1.0;           // the upper slides over the lower
+  const Eigen::VectorXd bt = b.tail(2 * n) + vt / 1e-3;  // World's target: no sliding 1 ms on
+  LcpSolver lcp;
+  FrictionSolver solver;
+  const FrictionResult r = solver.solve(lcp, A, b.head(n), bt, Eigen::VectorXd::Constant(n, mu), vt);
+  ASSERT_TRUE(r.ok);
+  EXPECT_TRUE(r.converged);
+  std::printf("[measured] upper corners %.4f %.4f %.4f %.4f N, lower %.4f %.4f %.4f %.4f N, %d round(s)\n", r.fn[4],
+              r.fn[5], r.fn[6], r.fn[7], r.fn[0], r.fn[1], r.fn[2], r.fn[3], r.iterations);
+  EXPECT_LE(r.iterations, 2);
+  const Eigen::VectorXd forces = (Eigen::VectorXd(3 * n) << r.fn, r.ft).finished();
+  EXPECT_LT((A.topRows(n) * forces + b.head(n)).cwiseAbs().maxCoeff(), 1e-9 * g) << "the normal forces hold";
+  double drag = 0, held = 0;
+  for (int c = 0; c < n; ++c) {
+    if (c >= 4) {
+      EXPECT_NEAR(r.ft[2 * c], -mu * r.fn[c], 1e-9) << "upper corner " << c << ": mu f_n against the motion";
+      drag += r.ft[2 * c];
+    } else {
+      EXPECT_LE(r.ft.segment<2>(2 * c).norm(), mu * r.fn[c] * (1 + 1e-9)) << "lower corner " << c << " sticks";
+      held += r.ft[2 * c];
+    }
+  }
+  EXPECT_NEAR(drag, -mu * m * g, 1e-9) << "the upper is dragged back by mu m g";
+  EXPECT_NEAR(held, drag, 1e-9) << "the table holds the lower back as the lower holds back the upper";
+  // The lower cube's corners do not slide on the table (its friction holds it exactly).
+  EXPECT_LT((A.bottomRows(2 * n) * forces + bt).head(8).cwiseAbs().maxCoeff(), 1e-9 * g);
+}
+
 }  // namespace
 }  // namespace wysiwyf::haptics
