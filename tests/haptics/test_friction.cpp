@@ -149,6 +149,23 @@ TEST(Friction, AnObliqueLandingKeepsNoTangentialVelocityWhenFrictionSuffices) {
   EXPECT_NEAR(w.state(0).x.z(), 0.1, 1e-4);
 }
 
+TEST(Friction, ACubeSlidingOverARestingCubeSlowsByMuGAndLeavesItWhereItWas) {
+  // Two 20 cm cubes stacked on a table (mu 0.5 under the lower, 0.3 between them); the upper is
+  // launched along +x at 0.5 m/s. It slows at mu g; the lower, whose table can hold twice the
+  // drag, stays put.
+  const double m = 1.0, mu = 0.3, v0 = 0.5;
+  World w({cube(m, mu), cube(m, mu), floor_box(0.5)},
+          {at(Vec3(0, 0, 0.1)), at(Vec3(0, 0, 0.3), Vec3(v0, 0, 0)), at(Vec3(0, 0, -0.05))});
+  const Vec3 lower0 = w.state(0).x;
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  const double v = w.kinematics(1).v.x();
+  const double moved = (w.state(0).x - lower0).norm();
+  std::printf("[measured] after 0.1 s: upper at %.6f m/s (expected %.6f), lower moved %.3g m\n", v, v0 - mu * g * 0.1,
+              moved);
+  EXPECT_NEAR(v, v0 - mu * g * 0.1, 2e-3) << "the upper slows at mu g";
+  EXPECT_LT(moved, 1e-5) << "the lower stays where it was";
+}
+
 TEST(Friction, ASpinningCubeStopsAndStaysStopped) {
   // A 0.5 kg, 10 cm cube spinning at 1 rad/s about the vertical and sliding at 2.3 mm/s on a
   // mu = 0.4 floor: its corners' friction stops it within 10 ms. Held at mu f_n against the
