@@ -37,6 +37,27 @@ BodyModel floor_box(double mu = 0.0) {
   return m;
 }
 
+// The contact rows of a cube of half-size h on its four bottom corners, on its six velocities:
+// each corner's normal (z) in rows 0-3, then its tangents (x, y) in rows 4 + 2i and 4 + 2i + 1.
+Eigen::MatrixXd corner_jacobian(double h) {
+  const std::array<Vec3, 4> corners = {Vec3(h, h, -h), Vec3(-h, h, -h), Vec3(-h, -h, -h), Vec3(h, -h, -h)};
+  const std::array<Vec3, 3> dirs = {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
+  Eigen::MatrixXd J(12, 6);
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int row = k == 0 ? i : 4 + 2 * i + (k - 1);
+      J.row(row) << dirs[k].transpose(), corners[i].cross(dirs[k]).transpose();
+    }
+  return J;
+}
+
+// A = J M^-1 J^T for one body of mass m and inertia (a cube's: the same about every axis).
+Eigen::MatrixXd contact_matrix(const Eigen::MatrixXd& J, double m, double inertia) {
+  Eigen::VectorXd inv_mass(6);
+  inv_mass << Vec3::Constant(1 / m), Vec3::Constant(1 / inertia);
+  return J * inv_mass.asDiagonal() * J.transpose();
+}
+
 BodyState at(const Vec3& x, const Vec3& v = Vec3::Zero(), double mass = 1.0, const Quat& q = Quat::Identity()) {
   BodyState s;
   s.x = x;
@@ -215,17 +236,8 @@ TEST(FrictionSolver, AFacesFourCornersShareTheNormalLoadAndTheFrictionIsBoundedB
   // pushed along x at 0.9 mu m g through a point 5 cm above its centre (the front corners carry
   // more). Contact space rows: normal (z) then the tangents (x, y) of each corner; A = J M^-1 J^T.
   const double m = 1.0, h = 0.1, inertia = m * (2 * h) * (2 * h) / 6, mu = 0.5;
-  const std::array<Vec3, 4> corners = {Vec3(h, h, -h), Vec3(-h, h, -h), Vec3(-h, -h, -h), Vec3(h, -h, -h)};
-  const std::array<Vec3, 3> dirs = {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
-  Eigen::MatrixXd J(12, 6);
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const int row = k == 0 ? i : 4 + 2 * i + (k - 1);
-      J.row(row) << dirs[k].transpose(), corners[i].cross(dirs[k]).transpose();
-    }
-  Eigen::VectorXd inv_mass(6);
-  inv_mass << Vec3::Constant(1 / m), Vec3::Constant(1 / inertia);
-  const Eigen::MatrixXd A = J * inv_mass.asDiagonal() * J.transpose();
+  const Eigen::MatrixXd J = corner_jacobian(h);
+  const Eigen::MatrixXd A = contact_matrix(J, m, inertia);
   const Vec3 push(0.9 * mu * m * g, 0, 0), at_point(0, 0, 0.05);
   Eigen::VectorXd load(6);  // the body's acceleration under gravity and the push
   load << (push + Vec3(0, 0, -m * g)) / m, at_point.cross(push) / inertia;
@@ -272,17 +284,8 @@ TEST(FrictionSolver, ASlidingCubesFrictionIsMuTimesTheNormalForcesItsOwnMomentLe
   // converged by a constant factor each (a pile pushed along: 15-26 rounds a step). The sliders'
   // magnitudes are solved with the normal forces' answer to them: 1 round, then exact.
   const double m = 1.0, h = 0.1, inertia = m * (2 * h) * (2 * h) / 6, mu = 0.5;
-  const std::array<Vec3, 4> corners = {Vec3(h, h, -h), Vec3(-h, h, -h), Vec3(-h, -h, -h), Vec3(h, -h, -h)};
-  const std::array<Vec3, 3> dirs = {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
-  Eigen::MatrixXd J(12, 6);
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const int row = k == 0 ? i : 4 + 2 * i + (k - 1);
-      J.row(row) << dirs[k].transpose(), corners[i].cross(dirs[k]).transpose();
-    }
-  Eigen::VectorXd inv_mass(6);
-  inv_mass << Vec3::Constant(1 / m), Vec3::Constant(1 / inertia);
-  const Eigen::MatrixXd A = J * inv_mass.asDiagonal() * J.transpose();
+  const Eigen::MatrixXd J = corner_jacobian(h);
+  const Eigen::MatrixXd A = contact_matrix(J, m, inertia);
   Eigen::VectorXd load(6);  // gravity alone
   load << Vec3(0, 0, -g), Vec3::Zero();
   const Eigen::VectorXd b = J * load;
