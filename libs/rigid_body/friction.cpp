@@ -13,6 +13,9 @@ namespace {
 constexpr double kTouchingRank = 1e-9;
 constexpr double kStickRank = 1e-12;
 
+// Whether a sticking contact's needed friction lies beyond its cone (mu f_n; beyond round-off).
+bool beyond_cone(const Eigen::Vector2d& need, double bound) { return need.norm() > bound * (1 + 1e-12) + 1e-300; }
+
 }  // namespace
 
 FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn,
@@ -137,8 +140,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       bool fast_beyond = false;
       for (Eigen::Index a = 0; a < k && !fast_beyond; a += 2) {
         const Eigen::Index i = stick_rows_[static_cast<std::size_t>(a)] / 2;
-        fast_beyond = !against_[static_cast<std::size_t>(i)].isZero() &&
-                      x_.segment<2>(a).norm() > mu[i] * r.fn[i] * (1 + 1e-12) + 1e-300;
+        fast_beyond = !against_[static_cast<std::size_t>(i)].isZero() && beyond_cone(x_.segment<2>(a), mu[i] * r.fn[i]);
       }
       bool changed = false;
       for (Eigen::Index a = 0; a < k; a += 2) {
@@ -147,7 +149,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         r.ft.segment<2>(2 * i) = need;
         const double bound = mu[i] * r.fn[i];
         if (fast_beyond && against_[static_cast<std::size_t>(i)].isZero()) continue;
-        if (need.norm() > bound * (1 + 1e-12) + 1e-300) {  // it cannot stick: it starts to slide
+        if (beyond_cone(need, bound)) {  // it cannot stick: it starts to slide
           sliding_[static_cast<std::size_t>(i)] = true;
           const Eigen::Vector2d& slip = against_[static_cast<std::size_t>(i)];
           direction_[static_cast<std::size_t>(i)] = !slip.isZero()      ? slip
