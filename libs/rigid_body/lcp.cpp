@@ -215,8 +215,41 @@ LcpResult LcpSolver::solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, c
     factor_failed_ = false;
     factorise(As, scale_of(As));  // (or, where it cannot, A_CC factorised afresh for the solve)
     if (solve_on_clamped_set(As, bs, r)) return r;
+    // Not a solution: the pivoting goes on from what of the set still holds (from nothing, a
+    // pushed pile's 28 contacts took 47 pivots on average, 70 % of its solves).
+    if (start_from_clamped_set(As, bs, r)) return drive(As, bs, r);
   }
   return solve_small(As, bs);
+}
+
+bool LcpSolver::start_from_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r) {
+  if (factor_failed_) return false;  // (A_CC is not positive definite: no kept factor to go on with)
+  const Eigen::Index n = b.size();
+  // The clamped contacts whose forces come out negative leave the set until none does: then the
+  // clamped ones hold at zero acceleration with forces >= 0, the invariant the pivoting keeps.
+  for (bool dropped = true; dropped;) {
+    r.f = on_clamped_set(A, -b);
+    dropped = false;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (state_[static_cast<std::size_t>(i)] == kClamped && r.f[i] < 0) {
+        state_[static_cast<std::size_t>(i)] = kUnset;
+        release(static_cast<int>(i));
+        dropped = true;
+      }
+    if (factor_failed_) return false;
+  }
+  r.a = A * r.f + b;
+  const double tol = accel_tolerance(scale_of(A), scale_of(b), r.f);
+  // The others: satisfied where they do not close, else driven to complementarity as from nothing.
+  for (Eigen::Index i = 0; i < n; ++i) {
+    auto& s = state_[static_cast<std::size_t>(i)];
+    if (s == kClamped) {
+      if (std::abs(r.a[i]) > tol) return false;  // A_CC singular after all (a small set's fresh solve)
+      r.a[i] = 0;
+    } else
+      s = r.a[i] >= -tol ? kNotClamped : kUnset;
+  }
+  return true;
 }
 
 bool LcpSolver::solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r) {
@@ -252,6 +285,11 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
   factor_failed_ = false;
   column_of_ = -1;
   state_.assign(static_cast<std::size_t>(n), kUnset);
+  return drive(A, b, r);
+}
+
+LcpResult LcpSolver::drive(const LcpMatrix& A, const LcpVector& b, LcpResult& r) {
+  const Eigen::Index n = b.size();
   const double scale_A = scale_of(A);
   const double scale_b = scale_of(b);
   const int max_pivots = static_cast<int>(50 * n + 100);  // a guard against cycling
@@ -259,6 +297,7 @@ LcpResult LcpSolver::solve_small(const LcpMatrix& A, const LcpVector& b) {
   auto accel_tolerance = [&] { return this->accel_tolerance(scale_A, scale_b, r.f); };
 
   for (Eigen::Index d = 0; d < n; ++d) {
+    if (state_[d] != kUnset) continue;  // (a warm start's: clamped, or satisfied)
     if (r.a[d] >= -accel_tolerance()) {  // already satisfied with f_d = 0
       state_[d] = kNotClamped;
       continue;

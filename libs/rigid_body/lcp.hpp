@@ -38,12 +38,19 @@ class LcpSolver {
   // Warm start: the clamped set of a nearby problem (the previous right-hand side's, the previous
   // friction round's). If the forces that hold exactly those contacts at zero acceleration are a
   // solution (f_C >= 0, a elsewhere >= 0), they are returned without pivoting; otherwise the
-  // pivoting method runs as without it. Either way the result is an exact solution.
+  // pivoting method goes on from the part of the set that still holds. Either way the result is
+  // an exact solution.
   LcpResult solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const LcpIndices& warm_start);
 
  private:
   // Throws std::length_error beyond kMaxLcpSize contacts.
   LcpResult solve_small(const LcpMatrix& A, const LcpVector& b);
+  // Baraff's drive-to-zero of every contact still unset in state_, from r's forces, which keep
+  // the others complementary (clamped: f >= 0 at a = 0; not clamped: f = 0, a >= 0).
+  LcpResult drive(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
+  // From a warm start that is no solution: its clamped set less the contacts it would pull
+  // (negative forces), the rest marked satisfied or unset. False where its factor failed.
+  bool start_from_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
   // The solution with clamped set C (clamped_), if there is one.
   bool solve_on_clamped_set(const LcpMatrix& A, const LcpVector& b, LcpResult& r);
   LcpVector on_clamped_set(const LcpMatrix& A, const LcpVector& rhs) const;
