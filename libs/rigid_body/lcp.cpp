@@ -297,7 +297,7 @@ LcpResult LcpSolver::drive(const LcpMatrix& A, const LcpVector& b, LcpResult& r)
   auto accel_tolerance = [&] { return this->accel_tolerance(scale_A, scale_b, r.f); };
 
   for (Eigen::Index d = 0; d < n; ++d) {
-    if (state_[d] != kUnset) continue;  // (a warm start's: clamped, or satisfied)
+    if (state_[d] != kUnset) continue;   // (a warm start's: clamped, or satisfied)
     if (r.a[d] >= -accel_tolerance()) {  // already satisfied with f_d = 0
       state_[d] = kNotClamped;
       continue;

@@ -192,7 +192,8 @@ TEST(Lcp, AWarmStartThatNoLongerHoldsGoesOnPivotingFromWhatStillHolds) {
     ASSERT_TRUE(r.ok) << "trial " << trial;
     EXPECT_LE(r.residual(), 1e-9) << "trial " << trial;
     EXPECT_LE((p.A * r.f + b2 - r.a).cwiseAbs().maxCoeff(), 1e-9);
-    EXPECT_LE((r.a - cold.a).cwiseAbs().maxCoeff(), 1e-8 * std::max(1.0, b2.cwiseAbs().maxCoeff())) << "trial " << trial;
+    EXPECT_LE((r.a - cold.a).cwiseAbs().maxCoeff(), 1e-8 * std::max(1.0, b2.cwiseAbs().maxCoeff()))
+        << "trial " << trial;
     if (r.warm) continue;
     ++pivoted;
     warm_pivots += r.pivots, cold_pivots += cold.pivots;
