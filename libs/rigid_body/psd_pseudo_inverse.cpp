@@ -64,6 +64,29 @@ void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
     rank_ = j + 1;
   }
   const Eigen::Index r = rank_, q = k - r;
+  in_range_ = q >= r;
+  if (in_range_) {
+    // G^T G = sum over G's rows g_i g_i^T (H_'s columns' first r entries, G1^T's zeros filled in),
+    // then its Cholesky factor U (upper, U^T U = G^T G), in place.
+    for (Eigen::Index i = 0; i < r; ++i) H_.col(i).segment(i + 1, r - i - 1).setZero();
+    gram_.setZero(r, r);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const double* h = H_.col(i).data();
+      for (Eigen::Index c = 0; c < r; ++c) {
+        double* u = gram_.col(c).data();
+        for (Eigen::Index l = 0; l <= c; ++l) u[l] += h[l] * h[c];
+      }
+    }
+    for (Eigen::Index j = 0; j < r; ++j) {
+      double* uj = gram_.col(j).data();
+      uj[j] = std::sqrt(uj[j] - dot(uj, uj, j));  // > 0: G has full column rank
+      for (Eigen::Index i = j + 1; i < r; ++i) {
+        double* ui = gram_.col(i).data();
+        ui[j] = (ui[j] - dot(uj, ui, j)) / uj[j];
+      }
+    }
+    return;
+  }
   // M = G1^-T G2^T = H1^-1 H2, column by column.
   M_.resize(r, q);
   for (Eigen::Index c = 0; c < q; ++c) {
@@ -112,6 +135,40 @@ void PsdPseudoInverse::project_off_null_space_all() const {
   U.solveInPlace(t_matrix_);
   y.topRows(r).noalias() += M_ * t_matrix_;  // y -= N t
   y.bottomRows(q) -= t_matrix_;
+}
+
+void PsdPseudoInverse::range_half(const double* y, double* z) const {
+  const Eigen::Index r = rank_, k = static_cast<Eigen::Index>(order_.size());
+  for (Eigen::Index l = 0; l < r; ++l) z[l] = 0;
+  for (Eigen::Index i = 0; i < k; ++i) {  // G^T y
+    const double* h = H_.col(i).data();
+    for (Eigen::Index l = 0; l < r; ++l) z[l] += h[l] * y[i];
+  }
+  forward_upper_transposed(gram_.data(), r, r, z);
+  backward_upper(gram_.data(), r, r, z);
+}
+
+void PsdPseudoInverse::range_solve(double* y) const {
+  const Eigen::Index r = rank_, k = static_cast<Eigen::Index>(order_.size());
+  t_.resize(r);
+  double* z = t_.data();
+  range_half(y, z);
+  forward_upper_transposed(gram_.data(), r, r, z);
+  backward_upper(gram_.data(), r, r, z);
+  for (Eigen::Index i = 0; i < k; ++i) y[i] = dot(H_.col(i).data(), z, r);  // G z
+}
+
+void PsdPseudoInverse::range_half_all(Eigen::MatrixXd& Z) const {
+  const Eigen::Index r = rank_, k = static_cast<Eigen::Index>(order_.size()), n = permuted_.cols();
+  if (n < kManyColumns) {
+    Z.resize(r, n);
+    for (Eigen::Index j = 0; j < n; ++j) range_half(permuted_.col(j).data(), Z.col(j).data());
+    return;
+  }
+  Z.noalias() = H_.topLeftCorner(r, k) * permuted_;
+  const auto U = gram_.topLeftCorner(r, r).triangularView<Eigen::Upper>();
+  U.transpose().solveInPlace(Z);
+  U.solveInPlace(Z);
 }
 
 void PsdPseudoInverse::forward_all() const {

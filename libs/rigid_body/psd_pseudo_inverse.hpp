@@ -11,7 +11,10 @@
 // being the redundant rows, mostly few: no Householder reflections. The kernels are plain loops
 // over G^T's columns (G's rows, contiguous): the systems have 2-60 rows, where Eigen's blocked
 // triangular and product kernels spent more setting up than computing (a pile's friction: 24 %
-// of its steps in here).
+// of its steps in here). Where the redundant rows are at least as many as the rank (a box pushed
+// through a pile: 54 sticking rows of rank 11), the projections cost more than the answer itself;
+// there B^+ = P G (G^T G)^-2 G^T P^T (G has full column rank), one r x r Cholesky factor instead of
+// the projections' (k - r) x (k - r) one: 2kr + 2r^2 a column, not 4(k - r)r + 2(k - r)^2 + r^2.
 #include <Eigen/Dense>
 
 #include <vector>
@@ -30,7 +33,8 @@ class PsdPseudoInverse {
   template <typename Rhs, typename Out>
   void solve(const Eigen::MatrixBase<Rhs>& c, Eigen::PlainObjectBase<Out>& x) const;
   // Z (r x n) with C^T B^+ C = Z^T Z for C (k x n): Z = G1^-1 (P^T C projected off N)'s first r
-  // rows: one projection and one triangular solve where B^+ C takes two of each.
+  // rows: one projection and one triangular solve where B^+ C takes two of each (through G^T G:
+  // Z = (G^T G)^-1 G^T P^T C).
   template <typename Rhs>
   void half_solve(const Eigen::MatrixBase<Rhs>& C, Eigen::MatrixXd& Z) const;
 
@@ -43,6 +47,10 @@ class PsdPseudoInverse {
   void forward_all() const;
   void forward(double* y) const;         // y's first r entries := G1^-1 y
   void solve_permuted(double* y) const;  // the first r := (G1 G1^T)^-1 y, the rest 0
+  // Through G^T G (in_range_): z (r) := (G^T G)^-1 G^T y, and y := G (G^T G)^-1 z.
+  void range_half(const double* y, double* z) const;
+  void range_solve(double* y) const;
+  void range_half_all(Eigen::MatrixXd& Z) const;
   template <typename Rhs>
   void permute_in(const Eigen::MatrixBase<Rhs>& c) const;
 
@@ -51,7 +59,8 @@ class PsdPseudoInverse {
   std::vector<Eigen::Index> order_;  // row i of G is B's row order_[i]
   Eigen::Index rank_ = 0;
   Eigen::MatrixXd M_;     // G1^-T G2^T (r x (k - r))
-  Eigen::MatrixXd gram_;  // the Cholesky factor (lower) of N^T N = I + M^T M
+  Eigen::MatrixXd gram_;  // the Cholesky factor (upper) of N^T N = I + M^T M; in_range_: of G^T G
+  bool in_range_ = false;  // solved through G^T G (H_'s first r rows, below G1^T's diagonal zeroed)
   mutable Eigen::MatrixXd permuted_, t_matrix_;
   mutable Eigen::VectorXd t_;
 };
@@ -69,6 +78,10 @@ void PsdPseudoInverse::solve(const Eigen::MatrixBase<Rhs>& c, Eigen::PlainObject
   permute_in(c);  // (c is read here only: x may be c)
   for (Eigen::Index j = 0; j < permuted_.cols(); ++j) {
     double* y = permuted_.col(j).data();
+    if (in_range_) {
+      range_solve(y);
+      continue;
+    }
     project_off_null_space(y);
     solve_permuted(y);
     project_off_null_space(y);
@@ -80,6 +93,10 @@ void PsdPseudoInverse::solve(const Eigen::MatrixBase<Rhs>& c, Eigen::PlainObject
 template <typename Rhs>
 void PsdPseudoInverse::half_solve(const Eigen::MatrixBase<Rhs>& C, Eigen::MatrixXd& Z) const {
   permute_in(C);
+  if (in_range_) {
+    range_half_all(Z);
+    return;
+  }
   if (permuted_.cols() >= kManyColumns) {
     project_off_null_space_all();
     forward_all();
