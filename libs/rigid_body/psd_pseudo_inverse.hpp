@@ -58,8 +58,8 @@ class PsdPseudoInverse {
   Eigen::VectorXd diagonal_;
   std::vector<Eigen::Index> order_;  // row i of G is B's row order_[i]
   Eigen::Index rank_ = 0;
-  Eigen::MatrixXd M_;     // G1^-T G2^T (r x (k - r))
-  Eigen::MatrixXd gram_;  // the Cholesky factor (upper) of N^T N = I + M^T M; in_range_: of G^T G
+  Eigen::MatrixXd M_;      // G1^-T G2^T (r x (k - r))
+  Eigen::MatrixXd gram_;   // the Cholesky factor (upper) of N^T N = I + M^T M; in_range_: of G^T G
   bool in_range_ = false;  // solved through G^T G (H_'s first r rows, below G1^T's diagonal zeroed)
   mutable Eigen::MatrixXd permuted_, t_matrix_;
   mutable Eigen::VectorXd t_;
