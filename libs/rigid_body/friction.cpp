@@ -209,13 +209,23 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   // lambda D, the stickers' what the stick solve gives for it: ft_K = a - G lambda (G = K S_KS D,
   // K the stick solve's linear map, a its answer without the sliders). Over the sliders:
   // lambda = mu (g - W_K a + (W_K G - W_S D) lambda), a linear system of their number.
-  answer_.noalias() = AntC_ * ft_seen_;
-  slider_cols_.resize(nt, ns);
+  // Through the half inverse F (F^T F = Ann_TT^+, F Ant_T = Z): W x = F^T Z x, and only the
+  // sliders' rows of it are needed, F_S^T (Z x) (a solve with Ann_TT^+ for every slider, before:
+  // 18 % of a pushed pile's step).
+  if (!half_inverse_ready_) {
+    identity_.setIdentity(nt, nt);
+    touching_inverse_.half_solve(identity_, F_);
+    half_inverse_ready_ = true;
+  }
+  F_sliders_.resize(F_.rows(), ns);
+  slider_cols_.resize(Z_.rows(), ns);  // Z D, less Z_K G below
   for (Eigen::Index j = 0; j < ns; ++j) {
     const auto [i, t] = sliders_[static_cast<std::size_t>(j)];
     const Eigen::Vector2d& d = direction_[static_cast<std::size_t>(i)];
-    slider_cols_.col(j) = AntC_.col(2 * i) * d.x() + AntC_.col(2 * i + 1) * d.y();
+    F_sliders_.col(j) = F_.col(t);
+    slider_cols_.col(j) = Z_.col(2 * i) * d.x() + Z_.col(2 * i + 1) * d.y();
   }
+  answer_.noalias() = Z_ * ft_seen_;  // Z (ft_seen - scatter(a)) below
   if (k > 0) {
     // G, column j: K (S_K,j d_j), K = W B^+ W as the stick solve applies it.
     stick_cols_.resize(k, ns);
@@ -234,22 +244,19 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
       const int i = sliders_[static_cast<std::size_t>(j)].first;
       stick_free_.noalias() += stick_cols_.col(j) * (mu[i] * r.fn[i]);
     }
-    // Ant_T over the stickers' columns: into answer_ (with g's term) and slider_cols_.
-    for (Eigen::Index a = 0; a < k; ++a) {
-      const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
-      answer_.noalias() -= AntC_.col(row) * stick_free_[a];
-      slider_cols_.noalias() -= AntC_.col(row) * stick_cols_.row(a);
-    }
+    // Z over the stickers' columns: into answer_ (with g's term) and slider_cols_.
+    Z_sticking_.resize(Z_.rows(), k);
+    for (Eigen::Index a = 0; a < k; ++a) Z_sticking_.col(a) = Z_.col(stick_rows_[static_cast<std::size_t>(a)]);
+    answer_.noalias() -= Z_sticking_ * stick_free_;
+    slider_cols_.noalias() -= Z_sticking_ * stick_cols_;
   }
-  touching_inverse_.solve(answer_, answer_);
-  touching_inverse_.solve(slider_cols_, slider_cols_);
-  slider_system_.resize(ns, ns);
-  slider_rhs_.resize(ns);
+  slider_system_.noalias() = F_sliders_.transpose() * slider_cols_;
+  slider_rhs_.noalias() = F_sliders_.transpose() * answer_;
   for (Eigen::Index j = 0; j < ns; ++j) {
-    const auto [i, t] = sliders_[static_cast<std::size_t>(j)];
-    slider_system_.row(j) = mu[i] * slider_cols_.row(t);
+    const int i = sliders_[static_cast<std::size_t>(j)].first;
+    slider_system_.row(j) *= mu[i];
     slider_system_(j, j) += 1;
-    slider_rhs_[j] = mu[i] * (r.fn[i] + answer_[t]);
+    slider_rhs_[j] = mu[i] * (r.fn[i] + slider_rhs_[j]);
   }
   slider_lu_.compute(slider_system_);
   const Eigen::VectorXd lambda = slider_lu_.solve(slider_rhs_);
@@ -311,6 +318,7 @@ bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, 
       for (Eigen::Index j = 0; j < nt; ++j)
         Ann_touching_(i, j) = Ann_(touching_[static_cast<std::size_t>(i)], touching_[static_cast<std::size_t>(j)]);
     touching_inverse_.compute(Ann_touching_, kTouchingRank);
+    half_inverse_ready_ = false;
   }
   if (touching_inverse_.rank() == nt) return same;
   // Redundant contacts: every f + v with Ann_TT v = 0 does what f does (v moves no body: J_T^T v

@@ -93,7 +93,7 @@ class FrictionSolver {
   // lambda d itself and to the stickers' answer to it (a linear system over the sliders, where
   // rounds converged by 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft,
   // the stickers' friction with them, unless a slider would be pressed off. Needs the round's
-  // touching set (touching_inverse_, AntC_), ft_seen_ and the last stick solve (stick_rows_,
+  // touching set (touching_inverse_, Z_), ft_seen_ and the last stick solve (stick_rows_,
   // weight_, stick_inverse_, x_).
   void anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r);
 
@@ -115,7 +115,11 @@ class FrictionSolver {
   std::vector<Eigen::Index> stick_rows_;
   std::vector<int> touching_, touching_next_;
   std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
-  Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_;
+  Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_, Z_sticking_;
+  // The touching set's half inverse F (F^T F = Ann_TT^+; Z = F Ant_T), its sliders' columns:
+  // made by anticipate_sliders once per touching set.
+  Eigen::MatrixXd F_, F_sliders_, identity_;
+  bool half_inverse_ready_ = false;
   Eigen::VectorXd slider_rhs_, stick_free_;
   Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
   PsdPseudoInverse stick_inverse_, touching_inverse_;
