@@ -14,8 +14,19 @@ int IslandGrouping::root(int body) {
   return body;
 }
 
+namespace {
+
+// A contact's identity (ContactFeature's operator==) in one sortable number.
+std::uint64_t key_of(const ContactFeature& f) {
+  return (static_cast<std::uint64_t>(f.kind) << 60) | (static_cast<std::uint64_t>(f.a & 0xFFFFF) << 40) |
+         (static_cast<std::uint64_t>(f.b & 0xFFFFF) << 20) | (static_cast<std::uint64_t>(f.feature_a & 0x3FF) << 10) |
+         static_cast<std::uint64_t>(f.feature_b & 0x3FF);
+}
+
+}  // namespace
+
 void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vector<int>& slot,
-                           std::vector<ContactIsland>& islands) {
+                           std::vector<ContactIsland>& islands, const std::vector<ActiveContact>& previous) {
   parent_.resize(slot.size());
   std::iota(parent_.begin(), parent_.end(), 0);
   for (const auto& c : contacts)
@@ -33,20 +44,45 @@ void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vect
   for (const auto& [island, i] : order_) sorted_.push_back(contacts[i]);
   contacts.swap(sorted_);
 
-  // The islands, each with the warm start of the island in its place if that had as many contacts.
+  // The islands, each with its contacts' place in the previous islands' warm starts.
   previous_.swap(islands);
   islands.clear();
+  island_of_.resize(contacts.size());
   for (std::size_t i = 0; i < contacts.size();) {
     std::size_t end = i + 1;
     while (end < contacts.size() && order_[end].first == order_[i].first) ++end;
     ContactIsland island;
     island.begin = i, island.end = end, island.live = end - i;
+    std::fill(island_of_.begin() + static_cast<std::ptrdiff_t>(i),
+              island_of_.begin() + static_cast<std::ptrdiff_t>(end), islands.size());
     islands.push_back(island);
     i = end;
   }
-  for (std::size_t k = 0; k < islands.size() && k < previous_.size(); ++k)
-    if (previous_[k].end - previous_[k].begin == islands[k].end - islands[k].begin)
-      islands[k].clamped = previous_[k].clamped;
+  // The same contacts in the same places (a resting scene): the warm starts stay as they are.
+  const bool same = islands.size() == previous_.size() && contacts.size() == previous.size() &&
+                    std::equal(islands.begin(), islands.end(), previous_.begin(),
+                               [](const ContactIsland& x, const ContactIsland& y) { return x.end == y.end; }) &&
+                    std::equal(contacts.begin(), contacts.end(), previous.begin(),
+                               [](const ActiveContact& x, const ActiveContact& y) { return x.feature == y.feature; });
+  if (same) {
+    for (std::size_t k = 0; k < islands.size(); ++k) islands[k].clamped = previous_[k].clamped;
+    return;
+  }
+  by_feature_.clear();
+  for (std::size_t i = 0; i < contacts.size(); ++i) by_feature_.emplace_back(key_of(contacts[i].feature), i);
+  std::sort(by_feature_.begin(), by_feature_.end());
+  for (const ContactIsland& was : previous_)
+    for (const int c : was.clamped) {
+      const std::size_t at = was.begin + static_cast<std::size_t>(c);
+      if (c < 0 || at >= was.end || at >= previous.size()) continue;  // (not a set of those contacts)
+      const std::uint64_t key = key_of(previous[at].feature);
+      const auto found = std::lower_bound(by_feature_.begin(), by_feature_.end(), std::make_pair(key, std::size_t{0}));
+      if (found == by_feature_.end() || found->first != key) continue;  // no longer touching
+      ContactIsland& now = islands[island_of_[found->second]];
+      if (now.clamped.size() >= kMaxLcpSize) continue;  // (an island the LCP will refuse anyway)
+      now.clamped.conservativeResize(now.clamped.size() + 1);
+      now.clamped[now.clamped.size() - 1] = static_cast<int>(found->second - now.begin);
+    }
 }
 
 }  // namespace wysiwyf::haptics

@@ -323,7 +323,7 @@ void World::classify_contacts(double dt) {
         -(model_.params.settle_speed + closing_allowed * std::max(0.0, c.gap)))
       colliding = true;
   }
-  work_.grouping.group(touching, model_.slot, state_.islands);
+  work_.grouping.group(touching, model_.slot, state_.islands, state_.resting);
   if (colliding) {  // still approaching: an impact at the start of the step
     if (!collide(touching, state_.islands)) ++report_.lcp_failures;
     ++report_.collisions;
@@ -429,7 +429,7 @@ void World::integrate(double dt, bool friction) {
       else
         still_watched.push_back(state_.watched[k]);
     }
-    work_.grouping.group(contacts, model_.slot, state_.islands);  // (they rest from here on)
+    work_.grouping.group(contacts, model_.slot, state_.islands, state_.resting);  // (they rest from here on)
     if (!collide(contacts, state_.islands)) ++report_.lcp_failures;
     ++report_.collisions;
     state_.resting = std::move(contacts);

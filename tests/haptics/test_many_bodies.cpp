@@ -10,6 +10,7 @@
 #include <string>
 
 #include "rigid_body/broad_phase.hpp"
+#include "rigid_body/contact_islands.hpp"
 #include "rigid_body/world.hpp"
 #include "scene/scene.hpp"
 
@@ -256,6 +257,43 @@ TEST(ManyBodies, PushingARowOfThirtyTwoBoxesConservesMomentumThroughItsImpacts) 
 
 // The sweep finds exactly the pairs whose grown boxes overlap (every pair tested), however the
 // bodies move between calls (its kept order goes stale), static pairs never.
+// The warm start of an island follows its contacts: when contacts come and go (a box pushed
+// through a pile), each contact clamped before is clamped in its new island's warm start, at its
+// new place, and one that no longer touches drops out.
+TEST(IslandGrouping, AWarmStartFollowsItsContactsWhenTheIslandChanges) {
+  // Bodies 0 (the table, static), 1, 2, 3 (dynamic); contacts named by (a, b, vertex of a).
+  const std::vector<int> slot = {-1, 0, 1, 2};
+  auto contact = [](int a, int b, int vertex) {
+    ActiveContact c;
+    c.feature.a = a, c.feature.b = b, c.feature.feature_a = vertex, c.feature.feature_b = 5;
+    return c;
+  };
+  IslandGrouping grouping;
+  std::vector<ActiveContact> before = {contact(1, 0, 0), contact(1, 0, 1), contact(2, 1, 0), contact(2, 1, 3),
+                                       contact(3, 0, 2)};
+  std::vector<ContactIsland> islands;
+  grouping.group(before, slot, islands, {});
+  ASSERT_EQ(islands.size(), 2u);  // boxes 1 and 2 together, box 3 alone
+  ASSERT_EQ(islands[0].end - islands[0].begin, 4u);
+  islands[0].clamped = LcpIndices{{3, 0}};  // (2, 1, 3) and (1, 0, 0)
+  islands[1].clamped = LcpIndices{{0}};     // (3, 0, 2)
+  // (1, 0, 0) lifts off, a new corner of box 2 lands on box 1, box 3 touches box 2 (one island now).
+  std::vector<ActiveContact> after = {contact(1, 0, 1), contact(2, 1, 0), contact(2, 1, 3),
+                                      contact(2, 1, 6), contact(3, 0, 2), contact(3, 2, 4)};
+  grouping.group(after, slot, islands, before);
+  ASSERT_EQ(islands.size(), 1u);
+  std::vector<ContactFeature> warm;
+  for (const int i : islands[0].clamped) warm.push_back(after[islands[0].begin + static_cast<std::size_t>(i)].feature);
+  ASSERT_EQ(warm.size(), 2u);
+  EXPECT_TRUE(warm[0] == contact(2, 1, 3).feature);
+  EXPECT_TRUE(warm[1] == contact(3, 0, 2).feature);
+  // The same contacts again: the warm start stays as it is.
+  const LcpIndices kept = islands[0].clamped;
+  const std::vector<ActiveContact> again = after;
+  grouping.group(after, slot, islands, again);
+  EXPECT_EQ(islands[0].clamped, kept);
+}
+
 TEST(BroadPhase, SweepAndPruneFindsThePairsThatTestingEveryPairFinds) {
   std::mt19937 rng(16);
   std::uniform_real_distribution<double> unit(-1, 1), size(0.02, 0.3);
