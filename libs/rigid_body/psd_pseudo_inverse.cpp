@@ -77,15 +77,19 @@ void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
         for (Eigen::Index l = 0; l <= c; ++l) u[l] += h[l] * h[c];
       }
     }
-    for (Eigen::Index j = 0; j < r; ++j) {
+    bool positive = true;  // (G has full column rank; round-off could still defeat the factor)
+    for (Eigen::Index j = 0; j < r && positive; ++j) {
       double* uj = gram_.col(j).data();
-      uj[j] = std::sqrt(uj[j] - dot(uj, uj, j));  // > 0: G has full column rank
+      const double pivot = uj[j] - dot(uj, uj, j);
+      positive = pivot > 0;
+      uj[j] = std::sqrt(pivot);
       for (Eigen::Index i = j + 1; i < r; ++i) {
         double* ui = gram_.col(i).data();
         ui[j] = (ui[j] - dot(uj, ui, j)) / uj[j];
       }
     }
-    return;
+    if (positive) return;
+    in_range_ = false;  // the projections, whose factor (of I + M^T M) cannot fail
   }
   // M = G1^-T G2^T = H1^-1 H2, column by column.
   M_.resize(r, q);
