@@ -213,8 +213,7 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   // K the stick solve's linear map, a its answer without the sliders). Over the sliders:
   // lambda = mu (g - W_K a + (W_K G - W_S D) lambda), a linear system of their number.
   // Through the half inverse F (F^T F = Ann_TT^+, F Ant_T = Z): W x = F^T Z x, and only the
-  // sliders' rows of it are needed, F_S^T (Z x) (a solve with Ann_TT^+ for every slider, before:
-  // 18 % of a pushed pile's step).
+  // sliders' rows of it are needed, F_S^T (Z x) (before: a solve with Ann_TT^+ for every slider).
   if (!half_inverse_ready_) {
     identity_.setIdentity(nt, nt);
     touching_inverse_.half_solve(identity_, F_);
