@@ -66,6 +66,23 @@ Eigen::MatrixXd resting_cube_matrix(bool duplicate) {
   return J * Minv * J.transpose();
 }
 
+// A problem solved, then its loads moved (each by `by` times a draw from [-1, 1]) and solved
+// again, from nothing and from the first answer's clamped set (a warm start).
+struct NearbySolves {
+  LcpResult first, cold, warm;
+  Eigen::VectorXd b;  // the moved loads
+};
+NearbySolves solve_nearby(LcpSolver& solver, const Problem& p, double by, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  NearbySolves s;
+  s.first = solver.solve(p.A, p.b);
+  s.b = p.b;
+  for (Eigen::Index i = 0; i < s.b.size(); ++i) s.b[i] += by * u(rng);
+  s.cold = solver.solve(p.A, s.b);
+  s.warm = solver.solve(p.A, s.b, s.first.clamped);
+  return s;
+}
+
 TEST(Lcp, SolvesTenThousandRandomAndDegenerateProblemsToComplementarity) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -136,13 +153,11 @@ TEST(Lcp, WarmStartFromANearbyProblemSolvesWithoutPivotingAndNeverTrustsABadSet)
   for (int trial = 0; trial < 2000; ++trial) {
     Problem p = trial % 2 ? contact_problem(rng, 1 + trial % 12, 2) : Problem{resting_cube_matrix(trial % 4 == 0), {}};
     if (trial % 2 == 0) p.b = Eigen::VectorXd::Constant(p.A.rows(), -9.81 + u(rng));
-    const LcpResult first = solver.solve(p.A, p.b);
-    ASSERT_TRUE(first.ok);
     // The next right-hand side: the same contacts, slightly different loads.
-    Eigen::VectorXd b2 = p.b;
-    for (Eigen::Index i = 0; i < b2.size(); ++i) b2[i] += 1e-3 * u(rng);
-    const LcpResult cold = solver.solve(p.A, b2);
-    const LcpResult r = solver.solve(p.A, b2, first.clamped);
+    const NearbySolves next = solve_nearby(solver, p, 1e-3, rng);
+    ASSERT_TRUE(next.first.ok);
+    const Eigen::VectorXd& b2 = next.b;
+    const LcpResult &cold = next.cold, &r = next.warm;
     ASSERT_TRUE(r.ok);
     ++trials;
     if (r.warm) {
@@ -177,18 +192,15 @@ TEST(Lcp, WarmStartFromANearbyProblemSolvesWithoutPivotingAndNeverTrustsABadSet)
 // pivots where from nothing 62-76).
 TEST(Lcp, AWarmStartThatNoLongerHoldsGoesOnPivotingFromWhatStillHolds) {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1, 1);
   LcpSolver solver;
   long warm_pivots = 0, cold_pivots = 0;
   int pivoted = 0;
   for (int trial = 0; trial < 1000; ++trial) {
     const Problem p = contact_problem(rng, 16 + trial % 13, 4);  // 16-28 contacts, singular from 25
-    const LcpResult first = solver.solve(p.A, p.b);
-    ASSERT_TRUE(first.ok);
-    Eigen::VectorXd b2 = p.b;
-    for (Eigen::Index i = 0; i < b2.size(); ++i) b2[i] += 0.3 * p.b.cwiseAbs().maxCoeff() * u(rng);
-    const LcpResult cold = solver.solve(p.A, b2);
-    const LcpResult r = solver.solve(p.A, b2, first.clamped);
+    const NearbySolves next = solve_nearby(solver, p, 0.3 * p.b.cwiseAbs().maxCoeff(), rng);
+    ASSERT_TRUE(next.first.ok);
+    const Eigen::VectorXd& b2 = next.b;
+    const LcpResult &cold = next.cold, &r = next.warm;
     ASSERT_TRUE(r.ok) << "trial " << trial;
     EXPECT_LE(r.residual(), 1e-9) << "trial " << trial;
     EXPECT_LE((p.A * r.f + b2 - r.a).cwiseAbs().maxCoeff(), 1e-9);
