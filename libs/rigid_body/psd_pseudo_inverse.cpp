@@ -30,6 +30,22 @@ void backward_upper(const double* U, Eigen::Index ld, Eigen::Index n, double* y)
   }
 }
 
+// The Cholesky factor U (U^T U = S) of the symmetric S whose upper triangle U holds (columns
+// contiguous), in place; false where a pivot is not positive (round-off).
+bool cholesky_upper(Eigen::MatrixXd& U) {
+  for (Eigen::Index j = 0; j < U.cols(); ++j) {
+    double* uj = U.col(j).data();
+    const double pivot = uj[j] - dot(uj, uj, j);
+    if (!(pivot > 0)) return false;
+    uj[j] = std::sqrt(pivot);
+    for (Eigen::Index i = j + 1; i < U.cols(); ++i) {
+      double* ui = U.col(i).data();
+      ui[j] = (ui[j] - dot(uj, ui, j)) / uj[j];
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
@@ -77,18 +93,8 @@ void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
         for (Eigen::Index l = 0; l <= c; ++l) u[l] += h[l] * h[c];
       }
     }
-    bool positive = true;  // (G has full column rank; round-off could still defeat the factor)
-    for (Eigen::Index j = 0; j < r && positive; ++j) {
-      double* uj = gram_.col(j).data();
-      const double pivot = uj[j] - dot(uj, uj, j);
-      positive = pivot > 0;
-      uj[j] = std::sqrt(pivot);
-      for (Eigen::Index i = j + 1; i < r; ++i) {
-        double* ui = gram_.col(i).data();
-        ui[j] = (ui[j] - dot(uj, ui, j)) / uj[j];
-      }
-    }
-    if (positive) return;
+    // (G has full column rank; round-off could still defeat the factor)
+    if (cholesky_upper(gram_)) return;
     in_range_ = false;  // the projections, whose factor (of I + M^T M) cannot fail
   }
   // M = G1^-T G2^T = H1^-1 H2, column by column.
@@ -103,14 +109,7 @@ void PsdPseudoInverse::compute(const Eigen::MatrixXd& B, double threshold) {
   for (Eigen::Index i = 0; i < q; ++i)
     for (Eigen::Index j = 0; j <= i; ++j)
       gram_(j, i) = (i == j ? 1.0 : 0.0) + dot(M_.col(j).data(), M_.col(i).data(), r);
-  for (Eigen::Index j = 0; j < q; ++j) {
-    double* uj = gram_.col(j).data();
-    uj[j] = std::sqrt(uj[j] - dot(uj, uj, j));  // >= 1: I + M^T M
-    for (Eigen::Index i = j + 1; i < q; ++i) {
-      double* ui = gram_.col(i).data();
-      ui[j] = (ui[j] - dot(uj, ui, j)) / uj[j];
-    }
-  }
+  cholesky_upper(gram_);  // (every pivot >= 1: I + M^T M)
 }
 
 void PsdPseudoInverse::project_off_null_space(double* y) const {
