@@ -10,12 +10,14 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <random>
 #include <string>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
+#include "keyframes/keyframes.hpp"
 #include "rigid_body/world.hpp"
 #include "scene/scene.hpp"
 #include "../common/smoke.hpp"
@@ -26,14 +28,23 @@ namespace {
 constexpr int kPiles = 18;
 constexpr int kSteps = 6000;  // 1 ms each
 
-// haptics-pile.yaml's keyframes: N along box09's -x (into the pile), linear between them.
-double push_at(double t) {
-  static constexpr std::array<std::array<double, 2>, 10> k = {
-      {{0, 0}, {2.0, 0}, {2.2, 1}, {3.0, 1}, {3.2, 0}, {4.0, 0}, {4.2, -1}, {4.8, -1}, {5.0, 0}, {1e9, 0}}};
-  for (std::size_t i = 0; i + 1 < k.size(); ++i)
-    if (t < k[i + 1][0]) return k[i][1] + (k[i + 1][1] - k[i][1]) * (t - k[i][0]) / (k[i + 1][0] - k[i][0]);
-  return 0;
-}
+// The wrench script of haptics-pile.yaml ([t, fx, fy, fz, tx, ty, tz] in the sensor frame, whose
+// z leaves box09's +x face): the force along box09's x at time t, linear between keyframes.
+class Push {
+ public:
+  Push()
+      : keyframes_(YAML::LoadFile(std::string(WYSIWYF_CONFIG_DIR) +
+                                  "/pipelines/bench/haptics-pile.yaml")["components"]["push"]["params"]["keyframes"]
+                       .as<std::vector<double>>(),
+                   6) {}
+  double along_x(double t) const {
+    const io::Keyframes::Segment s = keyframes_.at(t);
+    return (1 - s.tau) * keyframes_.values(s.from)[2] + s.tau * keyframes_.values(s.to)[2];
+  }
+
+ private:
+  io::Keyframes keyframes_;
+};
 
 std::vector<BodyState> perturbed(const Scene& s, int seed) {
   std::vector<BodyState> initial = s.initial;
@@ -56,6 +67,7 @@ void BM_PushedPiles(benchmark::State& state) {
   p.rtol = kHapticRtol;  // admittance_sim's
   p.atol = kHapticRtol * 1e-2;
   const int box = s.body_index("box09");
+  const Push push;
   const int piles = bench::smoke() ? 1 : kPiles, steps = bench::smoke() ? 300 : kSteps;
   std::vector<double> step_us;
   step_us.reserve(static_cast<std::size_t>(piles * steps));
@@ -66,8 +78,8 @@ void BM_PushedPiles(benchmark::State& state) {
     for (int seed = 0; seed < piles; ++seed) {
       World w(s.models, perturbed(s, seed), p);
       for (int k = 0; k < steps; ++k) {
-        const Vec3 push(-push_at(k * 1e-3), 0, 0);
-        w.set_external_wrench(box, w.state(box).q.toRotationMatrix() * push, Vec3::Zero());
+        const Vec3 force(push.along_x(k * 1e-3), 0, 0);
+        w.set_external_wrench(box, w.state(box).q.toRotationMatrix() * force, Vec3::Zero());
         const auto start = std::chrono::steady_clock::now();
         failures += w.step(1e-3).integration_failures;
         const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
