@@ -57,6 +57,9 @@ void print_report(const RunResult& r, bool real) {
     std::cout << "  " << c.state << (c.state_reason.empty() ? "" : ": " + c.state_reason) << "\n";
   }
   for (const auto& line : r.dds_problems) std::cout << "dds: " << line << "\n";
+  if (r.dds_samples_sent > 0)
+    std::cout << "dds: " << r.dds_samples_sent << " samples sent to other processes in " << r.dds_publisher_wakes
+              << " wakes of the publisher thread\n";
 }
 
 }  // namespace

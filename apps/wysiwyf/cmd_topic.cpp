@@ -249,6 +249,9 @@ int topic_hz(Args& args, const std::string& topic) {
   std::cout << "# topic " << topic << " (" << info->type << ") in domain " << s.domain
             << (schema && schema->stamped ? "; 'stamps': the rate on the pipeline's clock (sim time on the sim clock)"
                                           : "; the type has no header: wall-clock rate only")
+            << (s.latency_budget.count() > 0 ? "; from a pipeline on the real clock samples arrive in batches "
+                                               "(min/max/std of arrivals: --prompt)"
+                                             : "")
             << "\n"
             << std::flush;
   const auto start = Clock::now();

@@ -31,6 +31,7 @@ DataReader* open_raw_reader(Session& s, Subscriber* subscriber, const std::strin
   DataReaderQos rq = dds::reader_qos(qos, info.keyed ? dds::kKeyedTopicInstances : 1);
   rq.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
   rq.data_sharing().off();  // samples of unknown size: no fixed-size shared buffers
+  dds::set_latency_budget(rq, s.latency_budget);
   DataReader* reader = t ? subscriber->create_datareader(t, rq, listener, mask) : nullptr;
   if (!reader) std::cerr << "cannot read topic '" << topic << "' (" << info.type << ")\n";
   return reader;
@@ -61,6 +62,7 @@ void open(Args& args, Session& s) {
     }
   }
   if (auto t = args.value("--transport")) transport = *t;
+  if (args.flag("--prompt")) s.latency_budget = std::chrono::nanoseconds(0);
   DomainParticipantQos qos;
   try {
     qos = dds::participant_qos(transport, "wysiwyf-cli");

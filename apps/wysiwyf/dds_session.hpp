@@ -18,6 +18,7 @@
 #include <string>
 
 #include "cli.hpp"
+#include "wysiwyf/dds.hpp"
 #include "wysiwyf/runtime.hpp"
 
 namespace wysiwyf::cli {
@@ -98,6 +99,10 @@ struct Session {
   int domain = 0;
   std::string transport = "default";
   std::string identity;  // DDS-Security identity, "" on a plain domain
+  // The latency budget its readers declare: dds::kMonitorLatencyBudget (a pipeline on the real
+  // clock sends to them in batches, and watching does not slow its loops), zero with --prompt
+  // (each sample as it is written).
+  std::chrono::nanoseconds latency_budget = dds::kMonitorLatencyBudget;
   eprosima::fastdds::dds::DomainParticipant* participant = nullptr;
   Discovery discovery;
   ~Session() {

@@ -98,6 +98,8 @@ const CommandHelp kCommands[] = {
         Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
         or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes. hz gives
         the wall-clock rate and, for stamped types, the rate on the pipeline's own clock.
+        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
+        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
         Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
@@ -106,6 +108,8 @@ const CommandHelp kCommands[] = {
         The component table of every process on the domain (state, achieved rate, tick p50/p99,
         overruns, dropped and rejected samples, warnings, the last problem) and the display mode,
         redrawn in place every --interval (0.5 s). --once prints one table and exits.
+        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
+        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
         Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
@@ -116,6 +120,8 @@ const CommandHelp kCommands[] = {
         dashboard at http://A:P/ (component table, display mode, live plots, the --video topic,
         default display/view). A topic is read only while someone subscribes to it.
         --address 0.0.0.0 serves other machines too (anyone who can reach the port can watch).
+        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
+        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
         Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
@@ -124,6 +130,8 @@ const CommandHelp kCommands[] = {
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
+        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
+        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
         Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},

@@ -2,6 +2,8 @@
 // 1 kHz admittance_sim with spin), run again and again with nothing attached and with each
 // monitor attached from another process (topic hz, topic echo, record --all, the Foxglove bridge
 // with a client subscribed to every topic), the conditions interleaved round by round in one run.
+// The monitors take samples in batches (their readers' latency budget, dds::kBatchingPeriod);
+// the `_prompt` conditions ask for each sample as it is written (--prompt), as before batching.
 // Reports admittance_sim's tick p50/p99 (the kernel's last 1024 ticks: the end of each run,
 // long after the monitor attached) as the median over the rounds, and checks that the monitor
 // really received samples.
@@ -63,6 +65,9 @@ std::vector<Condition> base_conditions() {
   return {
       {"nothing", {}, ""},
       {"topic_hz", {cli({"topic", "hz", "robot/setpoint", "--domain", domain, "--transport", "local"})}, "rate "},
+      {"topic_hz_prompt",
+       {cli({"topic", "hz", "robot/setpoint", "--domain", domain, "--transport", "local", "--prompt"})},
+       "rate "},
       {"topic_echo",
        {cli({"topic", "echo", "haptics/objects", "--domain", domain, "--transport", "local"})},
        "child_frame_id"},
@@ -72,6 +77,10 @@ std::vector<Condition> base_conditions() {
        "  haptics/objects: "},
       {"bridge_all",
        {cli({"bridge", "--domain", domain, "--transport", "local", "--port", kBridgePort}),
+        {WYSIWYF_FOXGLOVE_SINK, kBridgePort}},
+       "received "},
+      {"bridge_all_prompt",
+       {cli({"bridge", "--domain", domain, "--transport", "local", "--port", kBridgePort, "--prompt"}),
         {WYSIWYF_FOXGLOVE_SINK, kBridgePort}},
        "received "},
   };

@@ -60,18 +60,32 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
   ~WriterLink() override { channel.delete_sample(buffer); }
 
   bool wanted() const override { return always || matched.load(std::memory_order_relaxed) > 0; }
-  void queued() override {
+  void queued(std::size_t waiting, std::size_t capacity) override {
     pending.store(true, std::memory_order_release);
-    bridge.dirty_.store(true, std::memory_order_release);
+    // The publisher is woken after this tick unless every reader takes batches and the outbox
+    // has room for one: then after the tick that ends a batching period (flush_batch_if_due).
+    if (!bridge.batching_.load(std::memory_order_relaxed) || prompt.load(std::memory_order_relaxed) > 0 ||
+        2 * waiting > capacity)
+      bridge.dirty_.store(true, std::memory_order_release);
+    else
+      bridge.batched_.store(true, std::memory_order_release);
   }
-  // Publisher thread: sends what waits in the outbox.
-  void drain() {
-    if (!pending.exchange(false, std::memory_order_acq_rel)) return;
-    while (channel.take_outgoing(buffer)) writer->write(buffer);
+  // Publisher thread: sends what waits in the outbox; how many.
+  std::uint64_t drain() {
+    if (!pending.exchange(false, std::memory_order_acq_rel)) return 0;
+    std::uint64_t sent = 0;
+    for (; channel.take_outgoing(buffer); ++sent) writer->write(buffer);
+    return sent;
   }
 
   void on_publication_matched(DataWriter*, const PublicationMatchedStatus& status) override {
     matched.store(status.current_count, std::memory_order_relaxed);
+    std::lock_guard<std::mutex> lock(prompt_mutex);
+    if (status.current_count_change > 0 && !bridge.takes_batches(status.last_subscription_handle))
+      prompt_readers.insert(status.last_subscription_handle);
+    else if (status.current_count_change < 0)
+      prompt_readers.erase(status.last_subscription_handle);
+    prompt.store(static_cast<int>(prompt_readers.size()), std::memory_order_relaxed);
   }
   void on_offered_incompatible_qos(DataWriter*, const OfferedIncompatibleQosStatus& status) override {
     counters.incompatible.fetch_add(1);
@@ -87,6 +101,9 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
   DataWriter* writer = nullptr;
   std::atomic<int> matched{0};
   std::atomic<bool> pending{false};
+  std::mutex prompt_mutex;
+  std::set<InstanceHandle_t> prompt_readers;  // matched readers that want each sample as it is written
+  std::atomic<int> prompt{0};                 // their number
   Counters counters;
 };
 
@@ -212,11 +229,32 @@ struct DdsBridge::ParticipantNames final : public DomainParticipantListener {
     else if (info.status == S::REMOVED_PARTICIPANT)
       bridge.say("process '" + name + "' left the domain");
   }
+  // Readers that declared a latency budget of dds::kBatchingPeriod or more (Fast DDS announces a
+  // reader before it matches any writer of ours).
+  void on_subscriber_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
+    const auto& budget = info.info.m_qos.m_latencyBudget.duration;
+    const bool batches =
+        info.status != S::REMOVED_READER && budget.to_ns() >= std::chrono::nanoseconds(dds::kBatchingPeriod).count();
+    std::lock_guard<std::mutex> lock(mutex);
+    if (batches)
+      batch_readers.insert(info.info.guid());
+    else
+      batch_readers.erase(info.info.guid());
+  }
   DdsBridge& bridge;
   const std::string pipeline_prefix;
   std::mutex mutex;
   std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> names;
+  std::set<eprosima::fastrtps::rtps::GUID_t> batch_readers;
 };
+
+bool DdsBridge::takes_batches(const InstanceHandle_t& reader) const {
+  eprosima::fastrtps::rtps::GUID_t guid;
+  eprosima::fastrtps::rtps::iHandle2GUID(guid, reader);
+  std::lock_guard<std::mutex> lock(names_->mutex);
+  return names_->batch_readers.count(guid) != 0;
+}
 
 std::string DdsBridge::process_name(const InstanceHandle_t& handle) const {
   eprosima::fastrtps::rtps::GUID_t guid;
@@ -272,11 +310,14 @@ std::string DdsBridge::refused_by_permissions(const std::string& action) const {
          " it (its permissions document, made by scripts/security from the policy)";
 }
 
+void DdsBridge::stop_publishing() {
+  if (!publisher_thread_.joinable()) return;
+  bell_.stop();
+  publisher_thread_.join();  // it sends what is still waiting first
+}
+
 DdsBridge::~DdsBridge() {
-  if (publisher_thread_.joinable()) {
-    bell_.stop();
-    publisher_thread_.join();  // it sends what is still waiting first
-  }
+  stop_publishing();
   for (auto& w : writers_) w->channel.set_dds_writer(nullptr);  // a later write stays local
   if (!participant_) return;
   participant_->delete_contained_entities();  // readers stop calling their listeners here
@@ -285,15 +326,34 @@ DdsBridge::~DdsBridge() {
   writers_.clear();
 }
 
+void DdsBridge::flush_batch_if_due() {
+  const std::int64_t now =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Doorbell::Clock::now().time_since_epoch()).count();
+  std::int64_t due = next_batch_ns_.load(std::memory_order_relaxed);
+  if (now < due) return;
+  const std::int64_t next = now + std::chrono::nanoseconds(dds::kBatchingPeriod).count();
+  if (!next_batch_ns_.compare_exchange_strong(due, next, std::memory_order_relaxed)) return;  // another thread rang
+  batched_.store(false, std::memory_order_relaxed);
+  bell_.ring();
+}
+
 void DdsBridge::publish_loop() {
   using Wake = Doorbell::Wake;
   Doorbell::Clock::time_point rang;
   while (true) {
     const Wake w = bell_.wait(rang, Doorbell::Clock::now() + kIdleFlush);
-    if (w != Wake::kRang) dirty_.store(false, std::memory_order_relaxed);  // (drained below either way)
+    if (w != Wake::kRang) {  // (drained below either way)
+      dirty_.store(false, std::memory_order_relaxed);
+      batched_.store(false, std::memory_order_relaxed);
+    }
+    std::uint64_t sent = 0;
     {
       std::lock_guard<std::mutex> lock(writers_mutex_);
-      for (auto& link : writers_) link->drain();
+      for (auto& link : writers_) sent += link->drain();
+    }
+    if (sent > 0) {
+      samples_sent_.fetch_add(sent, std::memory_order_relaxed);
+      wakes_that_sent_.fetch_add(1, std::memory_order_relaxed);
     }
     if (w == Wake::kStopped) return;
   }

@@ -5,7 +5,10 @@
 //
 // Components never call Fast DDS while they tick: a written sample is copied into its channel's
 // outbox (when someone outside listens), and the bridge's publisher thread serialises and sends
-// it. The executor wakes that thread after the tick (flush_soon), outside the tick's timing.
+// it. The executor wakes that thread after the tick (flush_soon), outside the tick's timing,
+// unless every reader of the topic declared it takes batches (the monitoring tools, on the real
+// clock): then only after the tick that ends each dds::kBatchingPeriod, and the loop pays a
+// cross-CPU wake every few ticks instead of after each.
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
@@ -22,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "wysiwyf/dds.hpp"
 #include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/detail/doorbell.hpp"
 #include "wysiwyf/detail/topic_channel.hpp"
@@ -66,11 +70,26 @@ class DdsBridge {
   // futex call, so the executor calls it after a tick has been timed. Without it samples still
   // go out within kIdleFlush.
   void flush_soon() {
-    if (dirty_.load(std::memory_order_relaxed) && dirty_.exchange(false, std::memory_order_acq_rel)) bell_.ring();
+    if (dirty_.load(std::memory_order_relaxed) && dirty_.exchange(false, std::memory_order_acq_rel))
+      bell_.ring();
+    else if (batched_.load(std::memory_order_relaxed))
+      flush_batch_if_due();
   }
+  // Real clock: a writer whose matched readers all declared a latency budget of
+  // dds::kBatchingPeriod or more (monitors) does not wake the publisher after every tick, only
+  // after the first tick once a batching period has passed: its samples go out in batches, and
+  // still right after a tick, while the loop waits for its next one. Off (the sim clock): every
+  // sample wakes it.
+  void send_in_batches(bool on) { batching_.store(on, std::memory_order_relaxed); }
   std::vector<DdsTopicHealth> health() const;
+  // Sends what still waits and stops the publisher thread (the destructor does it too).
+  void stop_publishing();
+  // Samples sent to other processes, and the publisher thread's wakes that sent any.
+  std::uint64_t samples_sent() const { return samples_sent_.load(std::memory_order_relaxed); }
+  std::uint64_t wakes_that_sent() const { return wakes_that_sent_.load(std::memory_order_relaxed); }
 
-  static constexpr std::chrono::milliseconds kIdleFlush{5};
+  // What waits is sent at the latest this long after the last wake (samples written outside a tick).
+  static constexpr std::chrono::milliseconds kIdleFlush = 2 * dds::kBatchingPeriod;
 
  private:
   struct WriterLink;
@@ -80,7 +99,11 @@ class DdsBridge {
   std::string writer_name(const eprosima::fastdds::dds::InstanceHandle_t& writer) const;
   // The name of the writer's participant ("<pipeline>/<group>/<pid>"), empty while not discovered.
   std::string process_name(const eprosima::fastdds::dds::InstanceHandle_t& writer) const;
+  // Whether a matched reader declared it takes samples in batches (ParticipantNames saw it).
+  bool takes_batches(const eprosima::fastdds::dds::InstanceHandle_t& reader) const;
   void publish_loop();
+  // Rings the publisher if the batching period has passed since the last batch (one caller wins).
+  void flush_batch_if_due();
   // Why DDS may have refused an endpoint: "" without security.
   std::string refused_by_permissions(const std::string& action) const;
   void say(const std::string& line) const {
@@ -97,7 +120,11 @@ class DdsBridge {
   mutable std::mutex writers_mutex_;  // connect() adds while the publisher thread sends
   std::vector<std::unique_ptr<WriterLink>> writers_;
   std::vector<std::unique_ptr<ReaderLink>> readers_;
-  std::atomic<bool> dirty_{false};  // some writer's outbox has samples
+  std::atomic<bool> dirty_{false};              // some writer's outbox has samples and wants a wake
+  std::atomic<bool> batching_{false};           // send_in_batches
+  std::atomic<bool> batched_{false};            // some writer's outbox has samples for readers that take batches
+  std::atomic<std::int64_t> next_batch_ns_{0};  // steady clock: when the next batch is due
+  std::atomic<std::uint64_t> samples_sent_{0}, wakes_that_sent_{0};
   Doorbell bell_;
   std::thread publisher_thread_;
 };

@@ -98,6 +98,13 @@ DataWriterQos writer_qos(const Qos& q, int instances) { return endpoint_qos(DATA
 
 DataReaderQos reader_qos(const Qos& q, int instances) { return endpoint_qos(DATAREADER_QOS_DEFAULT, q, instances); }
 
+void set_latency_budget(DataReaderQos& qos, std::chrono::nanoseconds budget) {
+  const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(budget);
+  qos.latency_budget().duration = eprosima::fastrtps::Duration_t(
+      static_cast<std::int32_t>(seconds.count()), static_cast<std::uint32_t>((budget - seconds).count()));
+  qos.latency_budget().hasChanged = true;  // else discovery leaves it out and readers see zero
+}
+
 std::string qos_policy_name(int policy_id) {
   switch (policy_id) {
     case DURABILITY_QOS_POLICY_ID: return "DURABILITY";

@@ -494,6 +494,7 @@ void Runtime::Impl::run_sim(RunResult& result) {
 void Runtime::Impl::run_real(RunResult& result) {
   const auto start = Clock::now();
   flush_after_tick = true;
+  bridge->send_in_batches(true);  // to monitors: no wake of the publisher after every tick
   std::vector<std::thread> threads;
   for (auto& slot_ptr : slots) {
     Slot* slot = slot_ptr.get();
@@ -576,6 +577,9 @@ void Runtime::Impl::teardown(RunResult& result) {
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();
   feed_targets.clear();
   if (bridge) {
+    bridge->stop_publishing();
+    result.dds_samples_sent = bridge->samples_sent();
+    result.dds_publisher_wakes = bridge->wakes_that_sent();
     for (const auto& h : bridge->health()) {
       std::string line = "topic '" + h.topic + "':";
       if (h.incompatible_qos)

@@ -48,6 +48,10 @@ struct RunResult {
   // What DDS reported per topic over the run, a line each: QoS mismatches with other processes,
   // samples lost on the way in, samples the publisher thread had no time to send. Empty: none.
   std::vector<std::string> dds_problems;
+  // Samples the publisher thread sent to other processes, and its wakes that sent any: about one
+  // a tick for a reader that wants each sample as it is written, one per dds::kBatchingPeriod on
+  // the real clock where every reader declared that latency budget (the monitoring tools).
+  std::uint64_t dds_samples_sent = 0, dds_publisher_wakes = 0;
   // With a feed: samples handed to local readers, and those refused (a topic the run publishes
   // itself or nobody reads, or bytes that do not deserialise as the topic's type), per topic.
   std::uint64_t fed_samples = 0;

@@ -38,15 +38,15 @@ class SubscriberQueue final : public QueueCounters {
       : slots_(static_cast<std::size_t>(depth < 1 ? 1 : depth)), origins_(slots_.size(), nullptr) {}
 
   // `origin`: the process that wrote the sample (its DDS participant's name, kept by the channel
-  // for the run), or null for this process.
-  void push(const T& sample, const std::string* origin = nullptr) {
-    store([&](T& slot) { slot = sample; }, origin);
+  // for the run), or null for this process. Returns how many samples wait now, this one included.
+  std::size_t push(const T& sample, const std::string* origin = nullptr) {
+    return store([&](T& slot) { slot = sample; }, origin);
   }
 
   // Like push, but moves the sample in by swapping buffers with the slot it lands in: no copy.
   // `sample` is left holding that slot's previous contents.
   void push_swap(T& sample, const std::string* origin = nullptr) {
-    store(
+    (void)store(
         [&](T& slot) {
           using std::swap;
           swap(slot, sample);
@@ -86,6 +86,7 @@ class SubscriberQueue final : public QueueCounters {
     std::lock_guard<std::mutex> lock(mutex_);
     return count_;
   }
+  std::size_t capacity() const { return slots_.size(); }
   std::uint64_t received() const override {
     std::lock_guard<std::mutex> lock(mutex_);
     return received_;
@@ -97,9 +98,10 @@ class SubscriberQueue final : public QueueCounters {
 
  private:
   // `put` fills the slot the next sample lands in (keep-last: a full queue drops its oldest
-  // first); then the doorbell rings, outside the lock.
+  // first); then the doorbell rings, outside the lock. Returns the samples waiting.
   template <class Put>
-  void store(Put&& put, const std::string* origin) {
+  std::size_t store(Put&& put, const std::string* origin) {
+    std::size_t waiting = 0;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       const std::size_t n = slots_.size();
@@ -110,10 +112,11 @@ class SubscriberQueue final : public QueueCounters {
       }
       put(slots_[(head_ + count_) % n]);
       origins_[(head_ + count_) % n] = origin;
-      ++count_;
+      waiting = ++count_;
       ++received_;
     }
     ring();
+    return waiting;
   }
 
   mutable std::mutex mutex_;

@@ -25,8 +25,8 @@ class DdsWriterLink {
   // Whether a sample written now goes out: a reader is matched, or the topic is transient-local
   // (a late reader still gets the last samples). Unwatched topics cost no copy.
   virtual bool wanted() const = 0;
-  // A sample is waiting in the outbox.
-  virtual void queued() = 0;
+  // A sample is waiting in the outbox, `waiting` of them in all, room for `capacity`.
+  virtual void queued(std::size_t waiting, std::size_t capacity) = 0;
 };
 
 class TopicChannelBase {
@@ -137,8 +137,8 @@ class TopicChannel final : public TopicChannelBase {
   void publish(const T& sample) {
     for (auto& q : queues_) q->push(sample);
     if (dds_writer_ && dds_writer_->wanted()) {
-      outbox_->push(sample);  // a copy into a reused slot; DDS sends it from the publisher thread
-      dds_writer_->queued();
+      // A copy into a reused slot; DDS sends it from the publisher thread.
+      dds_writer_->queued(outbox_->push(sample), outbox_->capacity());
     }
   }
   bool take_outgoing(void* sample) override { return outbox_ && outbox_->take(*static_cast<T*>(sample)); }
