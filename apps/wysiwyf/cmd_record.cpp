@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
@@ -57,8 +58,13 @@ struct Recording {
       : writer(path, mcap::WriterOptions{"", "wysiwyf record"}), thread_([this] { write_loop(); }) {}
   ~Recording() { stop(); }
 
+  // The writer thread takes what came in this long in one go: a wake per batch, not per sample
+  // (at 1 kHz a topic, a futex wake per sample was most of the recorder's time, in task switches).
+  static constexpr std::chrono::milliseconds kWriteInterval{20};
+
   // From a listener: false if the queue is full (the sample is dropped and counted).
   bool enqueue(Pending&& p) {
+    bool first = false;
     {
       std::lock_guard<std::mutex> lock(queue_mutex_);
       if (queued_bytes_ + p.bytes.size() > kMaxQueuedBytes) {
@@ -66,9 +72,10 @@ struct Recording {
         return false;
       }
       queued_bytes_ += p.bytes.size();
+      first = queue_.empty();
       queue_.push_back(std::move(p));
     }
-    cv_.notify_one();
+    if (first) cv_.notify_one();  // (the writer waits only on an empty queue)
     return true;
   }
   // A buffer for the next sample: one the writer thread is done with, so a listener copying a
@@ -88,6 +95,7 @@ struct Recording {
       stopping_ = true;
     }
     cv_.notify_one();
+    stop_cv_.notify_one();
     thread_.join();
   }
 
@@ -109,15 +117,18 @@ struct Recording {
           bytes += p.bytes.size();
         }
       }
-      std::lock_guard<std::mutex> lock(queue_mutex_);
+      std::unique_lock<std::mutex> lock(queue_mutex_);
       queued_bytes_ -= bytes;
       for (auto& p : batch)  // keep up to 256 buffers for reuse
         if (free_.size() < 256) free_.push_back(std::move(p.bytes));
       batch.clear();
+      // Let the next batch gather (stop() cuts it short; a big backlog does not wait).
+      stop_cv_.wait_for(lock, kWriteInterval, [&] { return stopping_ || queued_bytes_ > kMaxQueuedBytes / 4; });
     }
   }
   std::mutex queue_mutex_;
-  std::condition_variable cv_;
+  std::condition_variable cv_;       // the queue has samples
+  std::condition_variable stop_cv_;  // stopping, or a backlog: write now
   std::deque<Pending> queue_;
   std::vector<std::vector<std::uint8_t>> free_;
   std::size_t queued_bytes_ = 0;
