@@ -222,6 +222,11 @@ void TickWithMonitor(benchmark::State& state, const std::string& name) {
     state.counters["p99_us"] = median(p99);
     state.counters["p50_vs_nothing"] = median(p50) / median(base50);
     state.counters["p99_vs_nothing"] = median(p99) / median(base99);
+    // Each round against the "nothing" of the same round, the median of those: steadier where
+    // the machine drifts over the run (rounds are minutes apart, conditions of a round seconds).
+    std::vector<double> paired;
+    for (std::size_t r = 0; r < p50.size() && r < base50.size(); ++r) paired.push_back(p50[r] / base50[r]);
+    state.counters["p50_vs_nothing_paired"] = median(paired);
     state.counters["rounds"] = static_cast<double>(p50.size());
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
