@@ -122,13 +122,13 @@ struct Recording {
       for (auto& p : batch)  // keep up to 256 buffers for reuse
         if (free_.size() < 256) free_.push_back(std::move(p.bytes));
       batch.clear();
-      // Let the next batch gather (stop() cuts it short; a big backlog does not wait).
+      // Let the next batch gather (stop() cuts it short; a backlog left after this batch skips it).
       stop_cv_.wait_for(lock, kWriteInterval, [&] { return stopping_ || queued_bytes_ > kMaxQueuedBytes / 4; });
     }
   }
   std::mutex queue_mutex_;
   std::condition_variable cv_;       // the queue has samples
-  std::condition_variable stop_cv_;  // stopping, or a backlog: write now
+  std::condition_variable stop_cv_;  // stopping: write what is queued now
   std::deque<Pending> queue_;
   std::vector<std::vector<std::uint8_t>> free_;
   std::size_t queued_bytes_ = 0;
