@@ -4,17 +4,16 @@
 
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 namespace wysiwyf::haptics {
 
-ArkodeIntegrator::ArkodeIntegrator(int size, const IntegratorOptions& options, void* system, ARKRhsFn rhs,
-                                   ARKRootFn roots)
-    : OdeIntegrator(system), options_(options), rhs_(rhs), roots_(roots) {
+ArkodeIntegrator::ArkodeIntegrator(int size, const IntegratorOptions& options, void* system, ARKRhsFn rhs)
+    : OdeIntegrator(system), options_(options), rhs_(rhs) {
   rtol_ = options.rtol, atol_ = options.atol;
   if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
   y_ = N_VNew_Serial(size, ctx_);
-  if (!y_) throw std::runtime_error("SUNDIALS: cannot create the state vector");
+  y_between_ = N_VNew_Serial(size, ctx_);
+  if (!y_ || !y_between_) throw std::runtime_error("SUNDIALS: cannot create the state vector");
   N_VConst(0.0, y_);
 }
 
@@ -25,6 +24,7 @@ void ArkodeIntegrator::keep_message(int, const char*, const char* function, char
 ArkodeIntegrator::~ArkodeIntegrator() {
   if (mem_) ERKStepFree(&mem_);
   if (y_) N_VDestroy(y_);
+  if (y_between_) N_VDestroy(y_between_);
   if (ctx_) SUNContext_Free(&ctx_);
 }
 
@@ -36,10 +36,13 @@ void ArkodeIntegrator::restart(double t) {
   check(ERKStepReset(mem_, t, y_), "ERKStepReset");
 }
 
-bool ArkodeIntegrator::advance(double t_end, double& t_reached) {
-  const int flag = ERKStepEvolve(mem_, t_end, y_, &t_reached, ARK_NORMAL);
-  check(flag, "ERKStepEvolve");
-  return flag == ARK_ROOT_RETURN;
+void ArkodeIntegrator::take_step(double t_end, double& t_reached) {
+  check(ERKStepEvolve(mem_, t_end, y_, &t_reached, ARK_ONE_STEP), "ERKStepEvolve");
+}
+
+const double* ArkodeIntegrator::state_at(double t) {
+  check(ERKStepGetDky(mem_, t, 0, y_between_), "ERKStepGetDky");
+  return N_VGetArrayPointer(y_between_);
 }
 
 void ArkodeIntegrator::count_work(int& steps, int& error_test_failures) {
@@ -58,12 +61,6 @@ void ArkodeIntegrator::initialise(double t) {
   check(ERKStepSetTableNum(mem_, ARKODE_BOGACKI_SHAMPINE_4_2_3), "ERKStepSetTableNum");
   check(ERKStepSetMaxNumSteps(mem_, options_.max_steps), "ERKStepSetMaxNumSteps");
   check(ERKStepWFtolerances(mem_, &OdeIntegrator::error_weights), "ERKStepWFtolerances");
-}
-
-void ArkodeIntegrator::watch_roots(int count) {
-  std::vector<int> directions(static_cast<std::size_t>(count), -1);  // downward only
-  check(ERKStepRootInit(mem_, count, count == 0 ? nullptr : roots_), "ERKStepRootInit");
-  if (count != 0) check(ERKStepSetRootDirection(mem_, directions.data()), "ERKStepSetRootDirection");
 }
 
 }  // namespace wysiwyf::haptics

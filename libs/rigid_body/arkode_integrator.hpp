@@ -18,7 +18,7 @@ class ArkodeIntegrator : public OdeIntegrator {
   // As CvodeIntegrator's (IntegratorOptions: rtol, atol and max_steps apply).
   template <class System>
   ArkodeIntegrator(int size, const IntegratorOptions& options, System& system)
-      : ArkodeIntegrator(size, options, &system, &call_rhs<System>, &call_roots<System>) {}
+      : ArkodeIntegrator(size, options, &system, &call_rhs<System>) {}
   ~ArkodeIntegrator() override;
   ArkodeIntegrator(const ArkodeIntegrator&) = delete;
   ArkodeIntegrator& operator=(const ArkodeIntegrator&) = delete;
@@ -27,14 +27,13 @@ class ArkodeIntegrator : public OdeIntegrator {
   // The first time ERKStepCreate with the options, later ERKStepReset (which keeps them, the
   // counters and the step size history).
   void restart(double t) override;
-  void watch_roots(int count) override;
   void set_stop_time(double t) override { check(ERKStepSetStopTime(mem_, t), "ERKStepSetStopTime"); }
-  bool advance(double t_end, double& t_reached) override;
-  void root_info(int* found) override { check(ERKStepGetRootInfo(mem_, found), "ERKStepGetRootInfo"); }
+  void take_step(double t_end, double& t_reached) override;
+  const double* state_at(double t) override;  // (ERKStepGetDky: ARKODE's Hermite interpolant)
   void count_work(int& steps, int& error_test_failures) override;
 
  private:
-  ArkodeIntegrator(int size, const IntegratorOptions& options, void* system, ARKRhsFn rhs, ARKRootFn roots);
+  ArkodeIntegrator(int size, const IntegratorOptions& options, void* system, ARKRhsFn rhs);
   static void keep_message(int code, const char* module, const char* function, char* msg, void* self);
   void initialise(double t);
   void check(int flag, const char* call) {
@@ -43,9 +42,9 @@ class ArkodeIntegrator : public OdeIntegrator {
 
   IntegratorOptions options_;
   ARKRhsFn rhs_;
-  ARKRootFn roots_;
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr;
+  N_Vector y_between_ = nullptr;  // state_at's
   void* mem_ = nullptr;
 };
 

@@ -174,7 +174,7 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       if (best >= 0 || inside) continue;
       // Over no face: beside an edge or corner of the other box, above the planes of the faces
       // that meet there. Within a step it can come over one of them and into it, so those within
-      // the margin are watched too (World: a root function that counts only once the corner is
+      // the margin are watched too (World: an impact only once the corner is
       // over the face); a corner moving in from here went up to 0.5 mm deep unseen.
       for (int face = 0; face < 6; ++face) {
         const int axis = face / 2, j = (axis + 1) % 3, k = (axis + 2) % 3;
@@ -218,7 +218,7 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       ContactFeature f{ContactKind::kEdgeEdge, a, b, ea, eb, 1};
       // Strictly inside both edges: a contact at an edge's end is a vertex-face contact. Apart,
       // the lines' closest points may still be beyond an end by up to the margin and come inside
-      // within the step (measured: 1.7 mm deep unseen): watched, a root only once inside (World).
+      // within the step (measured: 1.7 mm deep unseen): watched, an impact only once inside (World).
       const EdgePair pair = edge_pair(f.sign, a0, da, b0, db, poses[a].omega, poses[b].omega);
       ContactPoint c = pair.c;
       c.valid = within_edges(pair, -1e-6);

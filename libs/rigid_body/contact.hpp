@@ -59,7 +59,7 @@ constexpr double kFaceEdgeCone = 0.02;
 // A feature watched while the boxes are apart: they turn within a step, and an edge pair outside
 // its cone at the step's start can be inside it, and crossing, by the step's end (measured in
 // landing piles: 0.0074 outside, 0.027 inside 1 ms later, 1 mm deep; 0.05 was not enough for
-// every one of 12 random piles, 0.2 was). Its root counts only inside kContactCone.
+// every one of 12 random piles, 0.2 was). Its gap closing counts as an impact only inside kContactCone.
 constexpr double kWatchedCone = 0.2;
 
 // Every feature pair between body a (dynamic) and body b closer than `margin`. A corner within

@@ -6,17 +6,17 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 namespace wysiwyf::haptics {
 
-CvodeIntegrator::CvodeIntegrator(int size, const IntegratorOptions& options, void* system, CVRhsFn rhs, CVRootFn roots)
-    : OdeIntegrator(system), options_(options), rhs_(rhs), roots_(roots) {
+CvodeIntegrator::CvodeIntegrator(int size, const IntegratorOptions& options, void* system, CVRhsFn rhs)
+    : OdeIntegrator(system), options_(options), rhs_(rhs) {
   rtol_ = options.rtol, atol_ = options.atol;
   if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNDIALS: cannot create a context");
   y_ = N_VNew_Serial(size, ctx_);
+  y_between_ = N_VNew_Serial(size, ctx_);
   mem_ = CVodeCreate(CV_ADAMS, ctx_);  // non-stiff rigid-body dynamics: Adams-Moulton
-  if (!y_ || !mem_) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
+  if (!y_ || !y_between_ || !mem_) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
   check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::keep_message, static_cast<OdeIntegrator*>(this)),
         "CVodeSetErrHandlerFn");
 }
@@ -29,6 +29,7 @@ CvodeIntegrator::~CvodeIntegrator() {
   if (mem_) CVodeFree(&mem_);
   if (nls_) SUNNonlinSolFree(nls_);
   if (y_) N_VDestroy(y_);
+  if (y_between_) N_VDestroy(y_between_);
   if (ctx_) SUNContext_Free(&ctx_);
 }
 
@@ -41,10 +42,13 @@ void CvodeIntegrator::restart(double t) {
   counters_reset();
 }
 
-bool CvodeIntegrator::advance(double t_end, double& t_reached) {
-  const int flag = CVode(mem_, t_end, y_, &t_reached, CV_NORMAL);
-  check(flag, "CVode");
-  return flag == CV_ROOT_RETURN;
+void CvodeIntegrator::take_step(double t_end, double& t_reached) {
+  check(CVode(mem_, t_end, y_, &t_reached, CV_ONE_STEP), "CVode");
+}
+
+const double* CvodeIntegrator::state_at(double t) {
+  check(CVodeGetDky(mem_, t, 0, y_between_), "CVodeGetDky");
+  return N_VGetArrayPointer(y_between_);
 }
 
 void CvodeIntegrator::count_work(int& steps, int& error_test_failures) {
@@ -67,12 +71,6 @@ void CvodeIntegrator::initialise(double t) {
   check(CVodeSetEtaMaxEarlyStep(mem_, options_.max_early_growth), "CVodeSetEtaMaxEarlyStep");
   check(CVodeSetNonlinConvCoef(mem_, options_.nonlinear_convergence), "CVodeSetNonlinConvCoef");
   initialised_ = true;  // (CVodeReInit keeps these options)
-}
-
-void CvodeIntegrator::watch_roots(int count) {
-  std::vector<int> directions(static_cast<std::size_t>(count), -1);  // downward only
-  check(CVodeRootInit(mem_, count, count == 0 ? nullptr : roots_), "CVodeRootInit");
-  if (count != 0) check(CVodeSetRootDirection(mem_, directions.data()), "CVodeSetRootDirection");
 }
 
 }  // namespace wysiwyf::haptics

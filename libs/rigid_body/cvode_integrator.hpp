@@ -11,11 +11,11 @@ namespace wysiwyf::haptics {
 class CvodeIntegrator : public OdeIntegrator {
  public:
   // Throws std::runtime_error if SUNDIALS cannot create its context, vector or integrator.
-  // System has rhs(const double* y, double* ydot) and roots(const double* y, double* g),
-  // reachable from here (a friend); it must outlive the integrator.
+  // System has rhs(const double* y, double* ydot), reachable from here (a friend); it must
+  // outlive the integrator.
   template <class System>
   CvodeIntegrator(int size, const IntegratorOptions& options, System& system)
-      : CvodeIntegrator(size, options, &system, &call_rhs<System>, &call_roots<System>) {}
+      : CvodeIntegrator(size, options, &system, &call_rhs<System>) {}
   ~CvodeIntegrator() override;
   CvodeIntegrator(const CvodeIntegrator&) = delete;
   CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
@@ -24,14 +24,13 @@ class CvodeIntegrator : public OdeIntegrator {
   // The first time CVodeInit with the options, later CVodeReInit (which keeps them, and resets
   // CVODE's counters).
   void restart(double t) override;
-  void watch_roots(int count) override;
   void set_stop_time(double t) override { check(CVodeSetStopTime(mem_, t), "CVodeSetStopTime"); }
-  bool advance(double t_end, double& t_reached) override;
-  void root_info(int* found) override { check(CVodeGetRootInfo(mem_, found), "CVodeGetRootInfo"); }
+  void take_step(double t_end, double& t_reached) override;
+  const double* state_at(double t) override;  // (CVodeGetDky: CVODE's interpolating polynomial)
   void count_work(int& steps, int& error_test_failures) override;
 
  private:
-  CvodeIntegrator(int size, const IntegratorOptions& options, void* system, CVRhsFn rhs, CVRootFn roots);
+  CvodeIntegrator(int size, const IntegratorOptions& options, void* system, CVRhsFn rhs);
   // CVODE's own account of a failure, kept for the exception instead of printed.
   static void keep_message(int code, const char* module, const char* function, char* msg, void* self);
   void initialise(double t);
@@ -41,9 +40,9 @@ class CvodeIntegrator : public OdeIntegrator {
 
   IntegratorOptions options_;
   CVRhsFn rhs_;
-  CVRootFn roots_;
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr;
+  N_Vector y_between_ = nullptr;  // state_at's
   void* mem_ = nullptr;
   SUNNonlinearSolver nls_ = nullptr;
   bool initialised_ = false;

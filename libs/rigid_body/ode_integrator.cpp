@@ -21,7 +21,7 @@ void OdeIntegrator::add_work(long now_steps, long now_failures, int& steps, int&
 void OdeIntegrator::fail(const std::string& what) {
   std::string why = what;
   if (!message_.empty()) why += " (" + message_ + ")";
-  if (!callback_error_.empty()) why += "; the right-hand side or a root function threw: " + callback_error_;
+  if (!callback_error_.empty()) why += "; the right-hand side threw: " + callback_error_;
   message_.clear();
   callback_error_.clear();
   throw std::runtime_error(why);

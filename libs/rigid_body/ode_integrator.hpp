@@ -1,7 +1,9 @@
 #pragma once
 // What the rigid-body world needs of an ODE integrator (SUNDIALS behind it): the autonomous
-// y' = f(y) of a system called back on a flat vector, root functions watched in one direction,
-// restarts from a new state (every sensor sample, every impact). It knows nothing of physics.
+// y' = f(y) of a system called back on a flat vector, taken one internal step at a time with the
+// state anywhere within the last step (the world looks for impacts between steps,
+// gap_closing.hpp), restarts from a new state (every sensor sample, every impact). It knows
+// nothing of physics.
 // Two are offered (WorldParams::integrator): CVODE's variable-order Adams (cvode_integrator.hpp)
 // and ARKODE's explicit Runge-Kutta (arkode_integrator.hpp).
 #include <sundials/sundials_nvector.h>
@@ -30,24 +32,24 @@ struct IntegratorOptions {
 class OdeIntegrator {
  public:
   virtual ~OdeIntegrator() = default;
-  // The state y: write it before restart(), read it after advance().
+  // The state y: write it before restart(), read it after take_step().
   virtual double* state() = 0;
-  // Starts over from state() at time t (the first call initialises the integrator).
+  // Starts over from state() at time t (the first call initialises the integrator); the stop
+  // time is cleared (SUNDIALS' reset clears it).
   virtual void restart(double t) = 0;
-  // Watches the first `count` root functions, each for a downward crossing only.
-  virtual void watch_roots(int count) = 0;
   virtual void set_stop_time(double t) = 0;
-  // Integrates towards t_end (stopping at the stop time); t_reached gets where it stopped.
-  // Returns true if it stopped at a root.
-  virtual bool advance(double t_end, double& t_reached) = 0;
-  // found[k] != 0 for each watched root function that crossed at the last stop.
-  virtual void root_info(int* found) = 0;
+  // One internal step towards t_end, never past the stop time; t_reached gets where it ended
+  // (state() holds the state there).
+  virtual void take_step(double t_end, double& t_reached) = 0;
+  // The state at t within the last step (its dense output), in a vector of the integrator's own
+  // that the next call overwrites.
+  virtual const double* state_at(double t) = 0;
   // Adds the internal steps and error test failures since the last count or restart.
   virtual void count_work(int& steps, int& error_test_failures) = 0;
 
  protected:
   explicit OdeIntegrator(void* system) : system_(system) {}
-  // SUNDIALS' callbacks (the same signature for CVODE and ARKODE; user data: this). An exception
+  // SUNDIALS' callback (the same signature for CVODE and ARKODE; user data: this). An exception
   // must not cross SUNDIALS' C frames: it is kept, SUNDIALS is told the call failed, and the
   // call that made it throws it again with its own failure.
   template <class System>
@@ -58,17 +60,6 @@ class OdeIntegrator {
     } catch (const RetryWithSmallerStep& e) {
       me->callback_error_ = e.what();
       return 1;
-    } catch (const std::exception& e) {
-      me->callback_error_ = e.what();
-      return -1;
-    }
-    return 0;
-  }
-  template <class System>
-  static int call_roots(sunrealtype, N_Vector y, sunrealtype* g, void* self) {
-    auto* me = static_cast<OdeIntegrator*>(self);
-    try {
-      static_cast<System*>(me->system_)->roots(N_VGetArrayPointer(y), g);
     } catch (const std::exception& e) {
       me->callback_error_ = e.what();
       return -1;

@@ -14,14 +14,7 @@ void pack_state(const std::vector<BodyState>& states, const std::vector<int>& dy
 }
 
 void unpack_state(const double* y, const std::vector<int>& dynamic, std::vector<BodyState>& states) {
-  for (std::size_t k = 0; k < dynamic.size(); ++k) {
-    const double* o = y + kStateSize * k;
-    BodyState& s = states[dynamic[k]];
-    s.x = Vec3(o[0], o[1], o[2]);
-    s.q = Quat(o[3], o[4], o[5], o[6]);
-    s.P = Vec3(o[7], o[8], o[9]);
-    s.L = Vec3(o[10], o[11], o[12]);
-  }
+  for (std::size_t k = 0; k < dynamic.size(); ++k) states[dynamic[k]] = unpack_body(y + kStateSize * k);
 }
 
 }  // namespace wysiwyf::haptics

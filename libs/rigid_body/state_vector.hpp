@@ -14,6 +14,11 @@ constexpr int kStateSize = 13;  // per dynamic body
 void pack_state(const std::vector<BodyState>& states, const std::vector<int>& dynamic, double* y);
 // Reads them back from y into `states`; the other bodies' entries are left as they are.
 void unpack_state(const double* y, const std::vector<int>& dynamic, std::vector<BodyState>& states);
+// One body's state from its 13 numbers at o.
+inline BodyState unpack_body(const double* o) {
+  return BodyState{Vec3(o[0], o[1], o[2]), Quat(o[3], o[4], o[5], o[6]), Vec3(o[7], o[8], o[9]),
+                   Vec3(o[10], o[11], o[12])};
+}
 
 // One body's 13 derivatives at d: velocity v, the quaternion's rate under angular velocity
 // omega, force and torque (the momenta's rates).

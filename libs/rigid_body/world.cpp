@@ -9,6 +9,7 @@
 #include "rigid_body/contact_system.hpp"
 #include "rigid_body/arkode_integrator.hpp"
 #include "rigid_body/cvode_integrator.hpp"
+#include "rigid_body/gap_closing.hpp"
 #include "rigid_body/state_vector.hpp"
 
 namespace wysiwyf::haptics {
@@ -180,14 +181,25 @@ void World::rhs(const double* y, double* ydot) {
   }
 }
 
-void World::roots(const double* y, double* g) {
-  work_.states = state_.bodies;
-  unpack_state(y, model_.dynamic, work_.states);
-  state_.poses_of(model_, work_.states, work_.poses);
-  for (std::size_t k = 0; k < state_.watched.size(); ++k) {
-    const ContactPoint c = point_of(state_.watched[k], work_.poses);
-    g[k] = c.valid ? c.gap : model_.params.margin;  // a feature that no longer faces the other cannot hit it
+void World::watched_gaps_at(const double* y, std::vector<double>& gaps) {
+  std::vector<Pose>& poses = work_.poses;
+  poses = state_.static_poses;
+  for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
+    const int i = model_.dynamic[k];
+    poses[i] = model_.pose_of(i, unpack_body(y + kStateSize * k));
   }
+  gaps.resize(state_.watched.size());
+  for (std::size_t k = 0; k < state_.watched.size(); ++k) gaps[k] = watched_gap(point_of(state_.watched[k], poses));
+}
+
+double World::watched_gap_at(const ContactFeature& f, const double* y) {
+  std::vector<Pose>& poses = work_.gap_poses;  // (only f's two bodies are set, and read)
+  poses.resize(state_.static_poses.size());
+  for (const int i : {f.a, f.b}) {
+    const int k = model_.slot[i];
+    poses[i] = k < 0 ? state_.static_poses[i] : model_.pose_of(i, unpack_body(y + kStateSize * k));
+  }
+  return watched_gap(point_of(f, poses));
 }
 
 bool World::collide(std::vector<ActiveContact>& contacts, const std::vector<ContactIsland>& islands) {
@@ -337,7 +349,7 @@ void World::classify_contacts(double dt) {
     for (std::size_t i = 0; i < touching.size(); ++i) touching[i].friction = state_.resting[i].friction;
   else
     state_.restart = true;
-  if (watched != state_.watched) state_.restart = state_.roots_changed = true;
+  if (watched != state_.watched) state_.restart = true;
   state_.resting.swap(touching);  // (the scratch vectors keep their capacity)
   state_.watched.swap(watched);
 }
@@ -374,7 +386,8 @@ void World::restart_from(double t, const std::vector<BodyState>& bodies) {
   state_.resting.clear();
   state_.islands.clear();
   state_.watched.clear();
-  state_.restart = state_.roots_changed = true;
+  state_.watched_gaps.clear();
+  state_.restart = true;
 }
 
 // The bodies go back to where the step began and stop there: no motion comes from a step that
@@ -390,56 +403,88 @@ void World::hold(double t, const std::string& why) {
 void World::integrate(double dt, bool friction) {
   classify_contacts(dt);
   if (friction) update_friction(dt);
-  OdeIntegrator& cv = *integrator_;
-  double* y = cv.state();
-  auto watch_roots = [&] {
-    state_.roots_changed = false;
-    cv.watch_roots(static_cast<int>(state_.watched.size()));  // approaching only
-  };
+  OdeIntegrator& ode = *integrator_;
+  double* y = ode.state();
   if (state_.restart) {
     for (int i : model_.dynamic) state_.bodies[i].q.normalize();
     pack_state(state_.bodies, model_.dynamic, y);
-    cv.restart(state_.t);
-    if (state_.roots_changed) watch_roots();
+    ode.restart(state_.t);
+    watched_gaps_at(y, state_.watched_gaps);
     state_.restart = false;
   }
   const double t_end = state_.t + dt;
-  cv.set_stop_time(t_end);
-  while (true) {
-    double t_reached = state_.t;
-    const bool at_root = cv.advance(t_end, t_reached);
-    cv.count_work(report_.integrator_steps, report_.error_test_failures);
+  ode.set_stop_time(t_end);
+  while (state_.t < t_end) {
+    const double t_start = state_.t;
+    double t_reached = t_start;
+    ode.take_step(t_end, t_reached);
+    ode.count_work(report_.integrator_steps, report_.error_test_failures);
+    std::size_t hit = 0;
+    double t_impact = t_reached;
+    if (first_closing(t_start, t_reached, hit, t_impact)) {
+      // The bodies where it hit; the integrator starts over from there after the impulses.
+      std::copy_n(ode.state_at(t_impact), kStateSize * model_.dynamic.size(), y);
+      unpack_state(y, model_.dynamic, state_.bodies);
+      state_.t = t_impact;
+      impact(hit);
+      pack_state(state_.bodies, model_.dynamic, y);
+      ode.restart(state_.t);
+      ode.set_stop_time(t_end);  // (a restart clears it)
+      continue;
+    }
     unpack_state(y, model_.dynamic, state_.bodies);
     state_.t = t_reached;
-    if (!at_root) break;
-    // An impact (STEP 4-6): impulses over every touching contact, then restart from here.
-    std::vector<int> found(state_.watched.size(), 0);
-    cv.root_info(found.data());
-    // Every watched feature that touches now takes part, flagged or not: the four corners of a
-    // cube landing flat hit together, whichever of them the root finder happened to report.
-    std::vector<ActiveContact> contacts = state_.resting;
-    std::vector<ContactFeature> still_watched;
-    std::vector<Pose> poses;
-    state_.poses_of(model_, state_.bodies, poses);
-    for (std::size_t k = 0; k < state_.watched.size(); ++k) {
-      const ContactPoint c = point_of(state_.watched[k], poses);
-      const bool meets = found[k] != 0 || (c.valid && c.gap <= model_.params.contact_tolerance);
-      if (meets && separates(state_.watched[k], c, poses, kContactCone))
-        contacts.push_back(ActiveContact{state_.watched[k], c, 0});
-      else
-        still_watched.push_back(state_.watched[k]);
+    state_.watched_gaps.swap(work_.gaps_at_step_end);
+  }
+}
+
+bool World::first_closing(double t_start, double t_reached, std::size_t& feature, double& t_impact) {
+  OdeIntegrator& ode = *integrator_;
+  std::vector<double>& at_end = work_.gaps_at_step_end;
+  if (state_.watched.empty()) {
+    at_end.clear();
+    return false;
+  }
+  watched_gaps_at(ode.state(), at_end);
+  bool found = false;
+  for (std::size_t k = 0; k < at_end.size(); ++k) {
+    const double before = state_.watched_gaps[k];
+    if (!(before > 0 && at_end[k] <= 0)) continue;  // (approaching only: open at the step's start)
+    const ContactFeature& f = state_.watched[k];
+    const GapClosing c = find_gap_closing([&](double t) { return watched_gap_at(f, ode.state_at(t)); }, t_start, before,
+                                          t_reached, at_end[k], model_.params.impact_tolerance);
+    if (!found || c.t < t_impact) t_impact = c.t, feature = k, found = true;
+  }
+  return found;
+}
+
+void World::impact(std::size_t hit) {
+  // Every watched feature that touches now takes part, the one that hit or not: the four corners
+  // of a cube landing flat hit together, whichever of them closed first.
+  std::vector<ActiveContact> contacts = state_.resting;
+  std::vector<ContactFeature> still_watched;
+  std::vector<double> still_watched_gaps;
+  std::vector<Pose> poses;
+  state_.poses_of(model_, state_.bodies, poses);
+  for (std::size_t k = 0; k < state_.watched.size(); ++k) {
+    const ContactPoint c = point_of(state_.watched[k], poses);
+    const bool meets = k == hit || (c.valid && c.gap <= model_.params.contact_tolerance);
+    if (meets && separates(state_.watched[k], c, poses, kContactCone)) {
+      contacts.push_back(ActiveContact{state_.watched[k], c, 0});
+    } else {
+      still_watched.push_back(state_.watched[k]);
+      still_watched_gaps.push_back(watched_gap(c));  // (the impulses move no body: the gaps stay)
     }
-    work_.grouping.group(contacts, model_.slot, state_.islands, state_.resting);  // (they rest from here on)
-    if (!collide(contacts, state_.islands)) ++report_.lcp_failures;
-    ++report_.collisions;
-    state_.resting = std::move(contacts);
-    state_.watched = std::move(still_watched);
-    if (report_.collisions >= model_.params.max_collisions_per_step)
-      state_.watched.clear();  // no more events this step
-    pack_state(state_.bodies, model_.dynamic, y);
-    cv.restart(state_.t);
-    watch_roots();
-    if (state_.t >= t_end) break;
+  }
+  work_.grouping.group(contacts, model_.slot, state_.islands, state_.resting);  // (they rest from here on)
+  if (!collide(contacts, state_.islands)) ++report_.lcp_failures;
+  ++report_.collisions;
+  state_.resting = std::move(contacts);
+  state_.watched = std::move(still_watched);
+  state_.watched_gaps = std::move(still_watched_gaps);
+  if (report_.collisions >= model_.params.max_collisions_per_step) {  // no more events this step
+    state_.watched.clear();
+    state_.watched_gaps.clear();
   }
 }
 

@@ -5,10 +5,11 @@
 // One step(dt) is the paper's section 4.3 cycle. The contacts found at its start (STEP 4 of the
 // previous cycle) that touch are resting contacts: their forces come from the LCP of eqs. (9)-(10)
 // at every right-hand-side evaluation, so the constraint holds in acceleration throughout the
-// step (STEP 2-3). Contacts that are near but apart are root functions on their gaps,
-// approaching direction only: at a root the integration stops at the exact time of impact, the
-// impulses come from the LCP of eqs. (15)-(16) with the restitution of each contact, the momenta
-// are reset and the integrator is restarted from there (STEP 4-6).
+// step (STEP 2-3). Contacts that are near but apart are watched: after each of the integrator's
+// steps their gaps are evaluated, and where one has closed (approaching direction only) the time of
+// impact is found in the step's dense output to WorldParams::impact_tolerance (gap_closing.hpp),
+// the impulses come from the LCP of eqs. (15)-(16) with the restitution of each contact, the
+// momenta are reset and the integrator is restarted from there (STEP 4-6).
 //
 // Coulomb friction (a contact's coefficient is the larger of its two bodies', MuJoCo's rule)
 // comes from FrictionSolver (friction.hpp) together with the normal forces. For resting contacts
@@ -41,7 +42,7 @@ namespace wysiwyf::haptics {
 constexpr double kHapticRtol = 1e-7;
 
 struct StepReport {
-  int collisions = 0;  // impact events (roots) inside the step
+  int collisions = 0;  // impacts inside the step (watched gaps that closed)
   int rhs_evaluations = 0;
   int integrator_steps = 0;     // the integrator's internal steps
   int error_test_failures = 0;  // the integrator's rejected steps
@@ -80,9 +81,19 @@ class World {
   double energy() const;
 
  private:
-  friend class OdeIntegrator;  // calls rhs() and roots()
+  friend class OdeIntegrator;  // calls rhs()
   void rhs(const double* y, double* ydot);
-  void roots(const double* y, double* g);
+  // The watched features' gaps at the state y (the margin for one that does not face its partner:
+  // it cannot hit it).
+  void watched_gaps_at(const double* y, std::vector<double>& gaps);
+  // One watched feature's, evaluating its two bodies only.
+  double watched_gap_at(const ContactFeature& f, const double* y);
+  double watched_gap(const ContactPoint& c) const { return c.valid ? c.gap : model_.params.margin; }
+  // After the integrator's step from t_start: the watched gap that closed first within it, at its
+  // time of impact (false: none closed).
+  bool first_closing(double t_start, double t_reached, std::size_t& feature, double& t_impact);
+  // The impact at the current state (STEP 4-6), feature `hit` of the watched having closed.
+  void impact(std::size_t hit);
   // step's work (the resting contacts' friction held through it or none); throws where it
   // cannot go on.
   void integrate(double dt, bool friction);
@@ -91,7 +102,7 @@ class World {
   void hold(double t, const std::string& why);
   void classify_contacts(double dt);  // (dt: the step ahead, over which an edge pair may turn to face)
   // Feature f at `poses`, a point within the rim of its face or edge still on it (every
-  // evaluation of the world's contacts: search, right-hand sides, roots and impacts).
+  // evaluation of the world's contacts: search, right-hand sides, watched gaps and impacts).
   ContactPoint point_of(const ContactFeature& f, const std::vector<Pose>& poses) const;
   // Impulse j (world frame, on body a) at the contact's point, added to both bodies' momenta.
   void apply_impulse(const ActiveContact& contact, const Vec3& j, const std::vector<Pose>& poses);

@@ -16,7 +16,7 @@ struct WorldParams {
   double rtol = 1e-9;
   double atol = 1e-11;
   double contact_tolerance = 1e-5;  // gap below this: touching (above the scale of integration error)
-  double margin = 0.01;             // features closer than this are watched (resting or root)
+  double margin = 0.01;             // features closer than this are watched (resting, or their gaps for impacts)
   // A corner within this of a face's rim counts as over the face, and a resting contact keeps its
   // force until its point leaves its face or edge by more. Equal boxes side by side put corners on
   // the rims of each other's faces, where integration error would switch a contact on and off at
@@ -50,6 +50,10 @@ struct WorldParams {
   // test (CVODE's default 0.1): with 0.2 one fixed-point iteration does more often; the global
   // error of the noisy push was unchanged to three digits.
   double nonlinear_convergence = 0.2;
+  // An impact's time is found to where the closing gap is within this of zero: far below the
+  // contact tolerance and the integration error of a position (rtol 1e-7 of a metre), so the
+  // bodies meet where they touch, not early or through.
+  double impact_tolerance = 1e-10;
   int max_collisions_per_step = 32;
   // The integrator's internal steps towards one stop (the step's end or an impact): a 1 ms haptic
   // step takes 1 to 50. Beyond this the step fails and the world holds (World::step).

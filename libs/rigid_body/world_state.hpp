@@ -48,9 +48,11 @@ struct WorldState {
   std::vector<Vec3> ext_force, ext_torque;  // the user's wrenches, held until changed
   std::vector<ActiveContact> resting;       // their last normal forces and the friction held for the step
   std::vector<ContactIsland> islands;       // the resting contacts, grouped (contiguous) by island
-  std::vector<ContactFeature> watched;      // root functions
-  bool restart = true;                      // the integrator must be (re)started before integrating
-  bool roots_changed = true;                // CVodeRootInit must be called again
+  std::vector<ContactFeature> watched;      // features that may hit: their gaps are watched for impacts
+  // Each watched feature's gap at the current state (the margin where it does not face its
+  // partner): what the next integrator step's gaps are compared with.
+  std::vector<double> watched_gaps;
+  bool restart = true;  // the integrator must be (re)started before integrating
 };
 
 }  // namespace wysiwyf::haptics

@@ -15,10 +15,10 @@
 namespace wysiwyf::haptics {
 
 struct WorldWorkspace {
-  std::vector<BodyState> states;  // the state a right-hand side or root function is evaluated at
+  std::vector<BodyState> states;  // the state a right-hand side is evaluated at
   std::vector<Pose> poses;        // the bodies' poses at it (or at the current state)
   // classify_contacts: the features near enough to look at, and the next resting contacts and
-  // root functions (swapped with the state's, so both keep their capacity).
+  // watched features (swapped with the state's, so both keep their capacity).
   SweepAndPrune broad_phase;    // (its sort order only speeds the next sort)
   std::vector<BodyPair> pairs;  // the broad phase's
   std::vector<ContactFeature> candidates;
@@ -29,6 +29,8 @@ struct WorldWorkspace {
   std::vector<Pose> impact_poses;        // collide: the bodies' poses at the impact
   std::vector<Pose> after_impact_poses;  // stop_approach: and after its impulses
   std::vector<BodyState> step_start;     // step: where the bodies were, to hold at if it fails
+  std::vector<double> gaps_at_step_end;  // the watched gaps after an integrator step
+  std::vector<Pose> gap_poses;           // watched_gap_at: the poses of the two bodies it evaluates
 };
 
 }  // namespace wysiwyf::haptics
