@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rigid_body/fast_serial_ops.hpp"
+
 namespace wysiwyf::haptics {
 
 ArkodeIntegrator::ArkodeIntegrator(int size, const IntegratorOptions& options, void* system, ARKRhsFn rhs)
@@ -14,6 +16,8 @@ ArkodeIntegrator::ArkodeIntegrator(int size, const IntegratorOptions& options, v
   y_ = N_VNew_Serial(size, ctx_);
   y_between_ = N_VNew_Serial(size, ctx_);
   if (!y_ || !y_between_) throw std::runtime_error("SUNDIALS: cannot create the state vector");
+  install_fast_serial_ops(y_);  // (before ERKStepCreate clones its vectors from y_)
+  install_fast_serial_ops(y_between_);
   N_VConst(0.0, y_);
 }
 

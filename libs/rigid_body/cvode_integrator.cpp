@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rigid_body/fast_serial_ops.hpp"
+
 namespace wysiwyf::haptics {
 
 CvodeIntegrator::CvodeIntegrator(int size, const IntegratorOptions& options, void* system, CVRhsFn rhs)
@@ -17,6 +19,8 @@ CvodeIntegrator::CvodeIntegrator(int size, const IntegratorOptions& options, voi
   y_between_ = N_VNew_Serial(size, ctx_);
   mem_ = CVodeCreate(CV_ADAMS, ctx_);  // non-stiff rigid-body dynamics: Adams-Moulton
   if (!y_ || !y_between_ || !mem_) throw std::runtime_error("SUNDIALS: cannot create the CVODE integrator");
+  install_fast_serial_ops(y_);  // (before CVodeInit clones its vectors from y_)
+  install_fast_serial_ops(y_between_);
   check(CVodeSetErrHandlerFn(mem_, &CvodeIntegrator::keep_message, static_cast<OdeIntegrator*>(this)),
         "CVodeSetErrHandlerFn");
 }
