@@ -62,6 +62,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     clamped = normal.clamped;
     r.ok = true;
     r.fn = normal.f;
+    if (r.iterations == 1 && without_friction_settles(A, normal, bt, mu, load, r)) return r;
     const bool same_touching = spread_normal_forces(normal, load, r.fn) && r.iterations > 1;
     // The friction step sees the tangential rows as the touching normal contacts will answer them:
     // a friction force tilts the body, and the touching contacts' forces change to stop the tilt.
@@ -194,6 +195,23 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   // Not settled within the rounds: the last normal solve is still exact for the friction it saw,
   // so non-penetration holds; the caller reports it.
   return r;
+}
+
+bool FrictionSolver::without_friction_settles(const Eigen::MatrixXd& A, const LcpResult& normal,
+                                              const Eigen::VectorXd& bt, const Eigen::VectorXd& mu, double load,
+                                              FrictionResult& r) {
+  if (!ft_seen_.isZero(0.0)) return false;  // (the LCP saw a friction load: not the frictionless one)
+  const auto m = static_cast<Eigen::Index>(mu.size());
+  for (Eigen::Index i = 0; i < m; ++i)
+    if (moving_[static_cast<std::size_t>(i)] && mu[i] > 0) return false;  // a slider has friction
+  // The tangential rows without friction: what the stick solve would cancel. (A f_n is the same for
+  // every normal force that does what the LCP's do, so the spread would not change it.)
+  c_.noalias() = A.bottomLeftCorner(2 * m, m) * normal.f;
+  c_ += bt;
+  if (c_.cwiseAbs().maxCoeff() > tolerance * load) return false;
+  r.ft.setZero();
+  r.converged = true;
+  return true;
 }
 
 void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r) {

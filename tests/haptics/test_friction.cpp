@@ -277,6 +277,36 @@ TEST(FrictionSolver, AFacesFourCornersShareTheNormalLoadAndTheFrictionIsBoundedB
   EXPECT_GT(front.minCoeff(), r.fn[1]) << "the push tips the cube onto its front (+x) corners";
 }
 
+// A cube resting alone (most boxes of a pile) takes no friction and no stick solve; the least push
+// whose effect is beyond the rounds' tolerance is held exactly, one within it is left to slide (at
+// most 1e-8 of the loads: 1e-10 m/s gained in a 1 ms step).
+TEST(FrictionSolver, ACubeUnderGravityAloneTakesNoFrictionAndAPushBeyondTheToleranceIsHeld) {
+  const double m = 1.0, h = 0.1, inertia = m * (2 * h) * (2 * h) / 6, mu = 0.5;
+  const Eigen::MatrixXd J = corner_jacobian(h);
+  const Eigen::MatrixXd A = contact_matrix(J, m, inertia);
+  LcpSolver lcp;
+  FrictionSolver solver;
+  const auto solve_pushed = [&](double push) {
+    Eigen::VectorXd load(6);
+    load << push / m, 0, -g, 0, 0, 0;
+    const Eigen::VectorXd b = J * load;
+    return solver.solve(lcp, A, b.head(4), b.tail(8), Eigen::VectorXd::Constant(4, mu), Eigen::VectorXd::Zero(8));
+  };
+  const FrictionResult resting = solve_pushed(0);
+  ASSERT_TRUE(resting.ok);
+  EXPECT_TRUE(resting.converged);
+  EXPECT_EQ(resting.iterations, 1);
+  EXPECT_TRUE(resting.ft.isZero(0.0)) << resting.ft.transpose();
+  EXPECT_NEAR(resting.fn.sum(), m * g, 1e-12);
+  const double beyond = 10 * solver.tolerance * m * g;  // 1e-7 of the weight
+  const FrictionResult held = solve_pushed(beyond);
+  ASSERT_TRUE(held.ok);
+  EXPECT_NEAR(held.ft(Eigen::seq(0, 7, 2)).sum(), -beyond, 1e-12 * m * g) << "static friction holds it";
+  const FrictionResult within = solve_pushed(0.1 * solver.tolerance * m * g);
+  EXPECT_TRUE(within.converged);
+  EXPECT_TRUE(within.ft.isZero(0.0)) << "a push within the tolerance: no friction";
+}
+
 TEST(FrictionSolver, ASlidingCubesFrictionIsMuTimesTheNormalForcesItsOwnMomentLeavesEachCorner) {
   // The same cube sliding along +x at 1 m/s: every corner slides, its friction mu f_n against the
   // motion, and that friction's moment about the centre presses the front corners and relieves
