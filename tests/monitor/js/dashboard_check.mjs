@@ -1,6 +1,9 @@
 // Loads the bridge's web dashboard in Debian's headless Chromium (driven by playwright-core),
-// waits until it shows live data (table rows, plot points, video frames), takes a screenshot and
-// prints what the page's DOM holds as JSON.
+// waits until it shows live data (table rows none of them silent, plot points, video frames),
+// takes a screenshot and prints what the page's DOM holds as JSON. (Under a loaded CI machine the
+// page once marked every row silent at the moment it was read, 3 s without a report, while the
+// plots and the video went on: a row is now waited for until it reports again, within the
+// timeout, not read in that moment.)
 //   node dashboard_check.mjs http://127.0.0.1:PORT/ SCREENSHOT.png SECONDS
 import { chromium } from "playwright-core";
 
@@ -19,6 +22,7 @@ try {
     await page.waitForFunction(
       () =>
         document.querySelectorAll("#components tbody tr").length > 0 &&
+        document.querySelectorAll("#components tbody td.state-silent").length === 0 &&
         [...document.querySelectorAll(".plot")].some((p) => Number(p.dataset.points) >= 20) &&
         Number(document.getElementById("video").dataset.frames) >= 3,
       null,
