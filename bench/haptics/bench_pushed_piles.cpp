@@ -7,8 +7,10 @@
 // small change of the code moves single piles by a factor of two either way: eighteen of them
 // are what a change is judged on. Reported: the wall time of every 1 ms step over all piles, its
 // p50 / p99 / p999 / longest, and the steps longer than 1 ms (a 1 kHz loop's overruns); and the
-// work a step does on average (right-hand sides, integrator steps, impacts, friction rounds), the
-// same at every run of a build where the wall time is not.
+// work a step does on average (right-hand sides, integrator steps, impacts, friction rounds, and
+// how many bodies sleep), the same at every run of a build where the wall time is not. The world
+// is admittance_sim's, the boxes at rest sleeping (WorldParams::sleep_after), and, beside it,
+// one that integrates every body at every step (sleeping:0).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -68,6 +70,7 @@ void BM_PushedPiles(benchmark::State& state) {
   p.gravity = s.gravity;
   p.rtol = kHapticRtol;  // admittance_sim's
   p.atol = kHapticRtol * 1e-2;
+  if (state.range(0) == 0) p.sleep_after = 0;  // (sleeping:0, every body integrated every step)
   const int box = s.body_index("box09");
   const Push push;
   const int piles = bench::smoke() ? 1 : kPiles, steps = bench::smoke() ? 300 : kSteps;
@@ -75,7 +78,7 @@ void BM_PushedPiles(benchmark::State& state) {
   step_us.reserve(static_cast<std::size_t>(piles * steps));
   long failures = 0;
   StepReport work;  // summed over every step
-  long unsettled_steps = 0;
+  long unsettled_steps = 0, asleep = 0;
   for (auto _ : state) {
     step_us.clear();
     double total = 0;
@@ -93,6 +96,7 @@ void BM_PushedPiles(benchmark::State& state) {
         work.rhs_evaluations += r.rhs_evaluations, work.integrator_steps += r.integrator_steps;
         work.collisions += r.collisions, work.friction_rounds += r.friction_rounds;
         unsettled_steps += r.friction_unconverged > 0;
+        asleep += r.bodies_asleep;
       }
     }
     state.SetIterationTime(total * 1e-6);
@@ -117,8 +121,15 @@ void BM_PushedPiles(benchmark::State& state) {
   state.counters["impacts_per_step"] = work.collisions / n;
   state.counters["friction_rounds_per_step"] = work.friction_rounds / n;  // (summed over its islands)
   state.counters["unsettled_friction_steps"] = static_cast<double>(unsettled_steps);
+  state.counters["asleep_per_step"] = asleep / n;  // bodies at rest, left out of the integration (of 16)
 }
-BENCHMARK(BM_PushedPiles)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_PushedPiles)
+    ->ArgName("sleeping")
+    ->Arg(0)
+    ->Arg(1)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace wysiwyf::haptics

@@ -7,6 +7,9 @@
 //    contacts (an island of its own).
 //  - Stack/N: N such cubes stacked, the device pushing the top one sideways (0.5 cos 2 pi t N
 //    plus noise, below what friction holds: mu 0.5). One island of 4 + 8 (N - 1) contacts.
+//  - GridSleeping/N: the grid as admittance_sim runs it, sleeping (WorldParams::sleep_after): the
+//    cubes the device does not push fall asleep and leave the integration. The rows above keep
+//    every body integrated every step, as MuJoCo (2.2: no sleeping) does.
 // Frictionless for the grid (the single-cube peer row's condim 1), friction for the stack (MuJoCo
 // condim 3, the same mu). Reported: our and MuJoCo's p50 / p99, their ratio, and each one's
 // deepest sink. The growth exponent is the slope of log p50 against log N (README).
@@ -80,7 +83,7 @@ Layout stack(int n) {
   return l;
 }
 
-World our_world(const Layout& l) {
+World our_world(const Layout& l, bool sleeping) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states;
   for (std::size_t i = 0; i < l.centres.size(); ++i) {
@@ -107,6 +110,7 @@ World our_world(const Layout& l) {
   WorldParams p;
   p.rtol = kHapticRtol;  // admittance_sim's
   p.atol = kHapticRtol * 1e-2;
+  if (!sleeping) p.sleep_after = 0;
   return World(models, states, p);
 }
 
@@ -131,8 +135,8 @@ double deepest_sink(const World& w, const Layout& l) {
 }
 
 void interleaved(benchmark::State& state, const std::string& name, const Layout& l, int pushed, double amplitude,
-                 const Vec3& along) {
-  World w = our_world(l);
+                 const Vec3& along, bool sleeping = false) {
+  World w = our_world(l, sleeping);
   for (int i = 0; i < 100; ++i) w.step(1e-3);
 #ifdef WYSIWYF_HAVE_MUJOCO
   MujocoScene mj(mujoco_xml(l));
@@ -193,6 +197,17 @@ void BM_Scale_Grid(benchmark::State& state) {
   interleaved(state, "Grid/" + std::to_string(n), grid(n), 0, 0.5, Vec3::UnitX());
 }
 BENCHMARK(BM_Scale_Grid)
+    ->RangeMultiplier(2)
+    ->Range(1, 32)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(5000))
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_Scale_GridSleeping(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  interleaved(state, "GridSleeping/" + std::to_string(n), grid(n), 0, 0.5, Vec3::UnitX(), true);
+}
+BENCHMARK(BM_Scale_GridSleeping)
     ->RangeMultiplier(2)
     ->Range(1, 32)
     ->UseManualTime()

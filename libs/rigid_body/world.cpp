@@ -61,6 +61,10 @@ std::size_t World::evaluate_resting(const std::vector<Pose>& poses, bool within_
   std::vector<ActiveContact>& resting = state_.resting;
   std::size_t total = 0;
   for (ContactIsland& island : state_.islands) {
+    if (island.asleep) {  // (nothing of it moves: its points stay as they were)
+      total += island.live;
+      continue;
+    }
     std::size_t live = island.begin;
     for (std::size_t i = island.begin; i < island.end; ++i) {
       ContactPoint& point = resting[i].point;
@@ -96,6 +100,7 @@ void World::update_friction(double dt) {
   }
   bool any = false;
   for (const ContactIsland& island : state_.islands) {
+    if (island.asleep) continue;  // (at rest: its friction stays as it was)
     ActiveContact* active = resting.data() + island.begin;
     const std::size_t n = island.live;
     const bool friction = n > 0 && cs.friction_coefficients(active, n);
@@ -145,6 +150,7 @@ void World::rhs(const double* y, double* ydot) {
   std::vector<Vec3>& torque = cs.torque;
   if (live > 0) cs.accelerations(states, poses);
   for (ContactIsland& island : state_.islands) {
+    if (island.asleep) continue;  // (its forces stay as they were)
     ActiveContact* active = resting.data() + island.begin;
     for (std::size_t i = island.live; i < island.end - island.begin; ++i) active[i].force = 0;
     if (island.live == 0) continue;
@@ -176,6 +182,10 @@ void World::rhs(const double* y, double* ydot) {
   }
   for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
     const int i = model_.dynamic[k];
+    if (state_.asleep[i]) {  // at rest: its state stays
+      std::fill_n(ydot + kStateSize * k, kStateSize, 0.0);
+      continue;
+    }
     const Pose& p = poses[i];
     write_derivative(p.v, p.omega, states[i].q, force[i], torque[i], ydot + kStateSize * k);
   }
@@ -310,12 +320,20 @@ void World::classify_contacts(double dt) {
   state_.poses_of(model_, state_.bodies, poses);
   work_.candidates.clear();
   work_.broad_phase.pairs(model_, poses, model_.params.margin, work_.pairs);
+  const auto sleeps = [&](int i) { return model_.slot[i] < 0 || state_.asleep[i]; };  // (static bodies too)
   for (const auto& [a, b] : work_.pairs)
-    find_candidates(a, b, model_.bodies, poses, model_.params.margin, model_.params.rim_slack, dt, work_.candidates);
+    if (!sleeps(a) || !sleeps(b))
+      find_candidates(a, b, model_.bodies, poses, model_.params.margin, model_.params.rim_slack, dt, work_.candidates);
   std::vector<ActiveContact>& touching = work_.touching;
   std::vector<ContactFeature>& watched = work_.watched_next;
   touching.clear();
   watched.clear();
+  // Between sleeping bodies nothing has moved: their contacts stay as they were, forces, friction
+  // and order included, and so do the features they watch.
+  for (const ActiveContact& c : state_.resting)
+    if (sleeps(c.feature.a) && sleeps(c.feature.b)) touching.push_back(c);
+  for (const ContactFeature& f : state_.watched)
+    if (sleeps(f.a) && sleeps(f.b)) watched.push_back(f);
   bool colliding = false;
   // A touching contact still open by g closes under the gap feedback (critically damped at ws)
   // without passing zero if it approaches no faster than ws g: that approach is the feedback's
@@ -364,19 +382,19 @@ StepReport World::step(double dt) {
   work_.step_start = state_.bodies;
   try {
     integrate(dt, true);
-    return report_;
   } catch (const std::exception& e) {
     last_failure_ = e.what();
+    // Held friction is a load the normal forces do not see change within the step; where it made
+    // the step fail, the step is taken again from its start without it.
+    ++report_.frictionless_retries;
+    restart_from(t_start, work_.step_start);
+    try {
+      integrate(dt, false);
+    } catch (const std::exception& e) {
+      hold(t_start + dt, e.what());
+    }
   }
-  // Held friction is a load the normal forces do not see change within the step; where it made
-  // the step fail, the step is taken again from its start without it.
-  ++report_.frictionless_retries;
-  restart_from(t_start, work_.step_start);
-  try {
-    integrate(dt, false);
-  } catch (const std::exception& e) {
-    hold(t_start + dt, e.what());
-  }
+  report_.bodies_asleep = static_cast<int>(std::count(state_.asleep.begin(), state_.asleep.end(), 1));
   return report_;
 }
 
@@ -396,12 +414,18 @@ void World::restart_from(double t, const std::vector<BodyState>& bodies) {
 void World::hold(double t, const std::string& why) {
   restart_from(t, work_.step_start);
   for (const int i : model_.dynamic) state_.bodies[i].P.setZero(), state_.bodies[i].L.setZero();
+  state_.wake_all();
   ++report_.integration_failures;
   last_failure_ = why;
 }
 
 void World::integrate(double dt, bool friction) {
   classify_contacts(dt);
+  if (settle_islands(false)) state_.restart = true;  // (pushed, hit, or joined to an awake body: awake)
+  if (all_asleep()) {                                // nothing moves (the integrator starts over when something wakes)
+    state_.t += dt;
+    return;
+  }
   if (friction) update_friction(dt);
   OdeIntegrator& ode = *integrator_;
   double* y = ode.state();
@@ -436,6 +460,9 @@ void World::integrate(double dt, bool friction) {
     state_.t = t_reached;
     state_.watched_gaps.swap(work_.gaps_at_step_end);
   }
+  // (at the step's end, where the last right-hand side left every contact's force: a sleeping
+  // island keeps them)
+  if (settle_islands(true)) state_.restart = true;
 }
 
 bool World::first_closing(double t_start, double t_reached, std::size_t& feature, double& t_impact) {
@@ -480,12 +507,58 @@ void World::impact(std::size_t hit) {
   if (!collide(contacts, state_.islands)) ++report_.lcp_failures;
   ++report_.collisions;
   state_.resting = std::move(contacts);
+  settle_islands(false);  // an island the impact joined to a sleeping one wakes it (the caller restarts)
   state_.watched = std::move(still_watched);
   state_.watched_gaps = std::move(still_watched_gaps);
   if (report_.collisions >= model_.params.max_collisions_per_step) {  // no more events this step
     state_.watched.clear();
     state_.watched_gaps.clear();
   }
+}
+
+bool World::settle_islands(bool may_sleep) {
+  const WorldParams& p = model_.params;
+  if (p.sleep_after <= 0) return false;
+  const double t = state_.t;
+  for (const int i : model_.dynamic) {  // who moves now: the fastest point of each body, and the user's wrenches
+    const BodyKinematics k(model_.bodies[i], state_.bodies[i], model_.inv_inertia_body[i]);
+    const bool pushed = !state_.ext_force[i].isZero() || !state_.ext_torque[i].isZero();
+    if (pushed || k.v.norm() + k.omega.norm() * model_.bodies[i].half_extents.norm() > p.sleep_speed)
+      state_.still_since[i] = t;
+  }
+  bool changed = false;
+  std::vector<char>& in_island = work_.in_island;
+  in_island.assign(model_.bodies.size(), 0);
+  std::vector<int>& bodies = work_.island_bodies;
+  for (ContactIsland& island : state_.islands) {
+    bodies.clear();
+    for (std::size_t c = island.begin; c < island.end; ++c)
+      for (const int i : {state_.resting[c].feature.a, state_.resting[c].feature.b})
+        if (model_.slot[i] >= 0 && !in_island[i]) in_island[i] = 1, bodies.push_back(i);
+    bool all_asleep = true, still = true;
+    for (const int i : bodies) {
+      all_asleep = all_asleep && state_.asleep[i];
+      still = still && t - state_.still_since[i] >= p.sleep_after - 1e-12;
+    }
+    island.asleep = still && (may_sleep || all_asleep);
+    for (const int i : bodies) {
+      if (island.asleep == (state_.asleep[i] != 0)) continue;
+      changed = true;
+      state_.asleep[i] = island.asleep;
+      if (island.asleep) {
+        state_.bodies[i].P.setZero(), state_.bodies[i].L.setZero();
+      } else {
+        state_.still_since[i] = t;
+      }
+    }
+  }
+  for (const int i : model_.dynamic)  // (a body touching nothing falls or floats: awake)
+    if (!in_island[i] && state_.asleep[i]) state_.asleep[i] = 0, state_.still_since[i] = t, changed = true;
+  return changed;
+}
+
+bool World::all_asleep() const {
+  return std::all_of(model_.dynamic.begin(), model_.dynamic.end(), [&](int i) { return state_.asleep[i] != 0; });
 }
 
 }  // namespace wysiwyf::haptics

@@ -53,6 +53,7 @@ struct StepReport {
   // were put back where the step began, at rest (World::last_failure says why).
   int integration_failures = 0;
   int frictionless_retries = 0;  // the step failed with friction and was taken again without
+  int bodies_asleep = 0;         // dynamic bodies at rest, left out of the integration, at the step's end
 };
 
 class OdeIntegrator;
@@ -77,6 +78,8 @@ class World {
   void set_state(int i, const BodyState& s);
   BodyKinematics kinematics(int i) const { return BodyKinematics(model_.bodies[i], state_.bodies[i]); }
   const std::vector<ActiveContact>& resting_contacts() const { return state_.resting; }
+  // Body i sleeps: at rest, left out of the integration (WorldParams::sleep_after).
+  bool asleep(int i) const { return state_.asleep[i] != 0; }
   // Kinetic plus gravitational potential energy of the dynamic bodies.
   double energy() const;
 
@@ -121,6 +124,11 @@ class World {
   std::size_t evaluate_resting(const std::vector<Pose>& poses, bool within_step);
   // The resting contacts' friction for the next step of dt (held through it).
   void update_friction(double dt);
+  // Wakes every sleeping body of an island with one that moves, is pushed or is awake (an impact
+  // or a new contact joined them), and, may_sleep (at a step's end), puts to sleep the islands
+  // whose bodies have all been still for sleep_after; returns whether any body changed.
+  bool settle_islands(bool may_sleep);
+  bool all_asleep() const;
 
   const WorldModel model_;
   WorldState state_;

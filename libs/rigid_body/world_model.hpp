@@ -55,6 +55,15 @@ struct WorldParams {
   // bodies meet where they touch, not early or through.
   double impact_tolerance = 1e-10;
   int max_collisions_per_step = 32;
+  // Sleeping, as islands sleep in Box2D and Bullet: an island of touching bodies none of which has
+  // moved faster than sleep_speed (at any of its points) at a step's start for sleep_after, and
+  // none under a user's wrench, is at rest. Its momenta are set to zero and it leaves the
+  // integration (no right-hand side, friction or contact solve of it) until an awake body touches
+  // it, a wrench is set on one of its bodies or a state is set. A pile at rest moves at 1e-14 to
+  // 5e-11 m/s; still at every step's start for sleep_after, a body accelerates at less than
+  // 2 sleep_speed / sleep_after (4e-8 m/s^2). sleep_after 0: nothing sleeps.
+  double sleep_speed = 1e-9;  // m/s
+  double sleep_after = 0.05;  // s
   // The integrator's internal steps towards one stop (the step's end or an impact): a 1 ms haptic
   // step takes 1 to 50. Beyond this the step fails and the world holds (World::step).
   long max_integrator_steps = 5000;

@@ -10,6 +10,8 @@ WorldState::WorldState(const WorldModel& model, std::vector<BodyState> initial) 
   for (std::size_t i = 0; i < bodies.size(); ++i) static_poses.push_back(model.pose_of(static_cast<int>(i), bodies[i]));
   ext_force.assign(bodies.size(), Vec3::Zero());
   ext_torque.assign(bodies.size(), Vec3::Zero());
+  still_since.assign(bodies.size(), 0.0);
+  asleep.assign(bodies.size(), 0);
 }
 
 void WorldState::set_wrench(int body, const Vec3& force, const Vec3& torque) {
@@ -25,6 +27,14 @@ void WorldState::set_body(const WorldModel& model, int i, const BodyState& s) {
   bodies[i] = s;
   bodies[i].q.normalize();
   static_poses[i] = model.pose_of(i, bodies[i]);
+  restart = true;
+  wake_all();
+}
+
+void WorldState::wake_all() {
+  std::fill(asleep.begin(), asleep.end(), 0);
+  std::fill(still_since.begin(), still_since.end(), t);
+  for (ContactIsland& island : islands) island.asleep = false;
   restart = true;
 }
 

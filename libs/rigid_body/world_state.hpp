@@ -28,6 +28,7 @@ struct ContactIsland {
   // The last right-hand side's clamped contacts (indices from begin): the next one's warm start.
   // It picks the LCP's solution path, so it belongs with the state that repeats a run.
   LcpIndices clamped;
+  bool asleep = false;  // its bodies sleep (WorldParams::sleep_after): not integrated, forces held
 };
 
 struct WorldState {
@@ -35,12 +36,14 @@ struct WorldState {
   WorldState(const WorldModel& model, std::vector<BodyState> initial);
   // The user's wrench on body i's centre of mass (world frame), held until changed.
   void set_wrench(int body, const Vec3& force, const Vec3& torque);
-  // Body i's state (orientation normalised), set from outside: the integrator starts over.
+  // Body i's state (orientation normalised), set from outside: the integrator starts over and
+  // every body wakes (a static body set elsewhere may have left a sleeping one unsupported).
   void set_body(const WorldModel& model, int i, const BodyState& s);
   // The bodies' poses at `states`; the static ones stay where they were last set.
   void poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
   // Kinetic plus gravitational potential energy of the dynamic bodies.
   double energy(const WorldModel& model) const;
+  void wake_all();
 
   double t = 0;
   std::vector<BodyState> bodies;
@@ -52,6 +55,10 @@ struct WorldState {
   // Each watched feature's gap at the current state (the margin where it does not face its
   // partner): what the next integrator step's gaps are compared with.
   std::vector<double> watched_gaps;
+  // Per body: the time it last moved (faster than WorldParams::sleep_speed, or pushed) at a
+  // step's start, and whether it sleeps (at rest, left out of the integration).
+  std::vector<double> still_since;
+  std::vector<char> asleep;
   bool restart = true;  // the integrator must be (re)started before integrating
 };
 

@@ -31,6 +31,8 @@ struct WorldWorkspace {
   std::vector<BodyState> step_start;     // step: where the bodies were, to hold at if it fails
   std::vector<double> gaps_at_step_end;  // the watched gaps after an integrator step
   std::vector<Pose> gap_poses;           // watched_gap_at: the poses of the two bodies it evaluates
+  std::vector<int> island_bodies;        // settle_islands: one island's dynamic bodies
+  std::vector<char> in_island;           // and, per body, whether one holds it
 };
 
 }  // namespace wysiwyf::haptics

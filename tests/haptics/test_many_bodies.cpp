@@ -88,9 +88,15 @@ Landing land(World& w, int steps) {
 
 }  // namespace
 
-TEST(ManyBodies, AStackOfFiveCubesStandsForAMinuteWithoutDriftOrPenetration) {
+// Integrated throughout (sleeping off: the integration's own rest), and as admittance_sim runs it
+// (the stack falls asleep once still and must still stand and carry its weight).
+class StackOfFive : public ::testing::TestWithParam<double> {};
+
+TEST_P(StackOfFive, StandsForAMinuteWithoutDriftOrPenetration) {
   const Scene s = scene("stack_5.yaml");
-  World w(s.models, s.initial, haptic_params(s));
+  WorldParams p = haptic_params(s);
+  p.sleep_after = GetParam();
+  World w(s.models, s.initial, p);
   const int table = s.body_index("table");
   double drift = 0, deepest = 0;
   int failures = 0;
@@ -117,7 +123,12 @@ TEST(ManyBodies, AStackOfFiveCubesStandsForAMinuteWithoutDriftOrPenetration) {
   EXPECT_LE(deepest, 1e-6);
   EXPECT_LE(weight_error, 1e-6 * weight);
   EXPECT_EQ(failures, 0);
+  if (p.sleep_after > 0) {
+    EXPECT_EQ(w.step(1e-3).bodies_asleep, 5) << "a stack still for a minute sleeps";
+  }
 }
+INSTANTIATE_TEST_SUITE_P(ManyBodies, StackOfFive, ::testing::Values(0.0, WorldParams{}.sleep_after),
+                         [](const auto& info) { return info.param > 0 ? "Sleeping" : "AlwaysIntegrated"; });
 
 TEST(ManyBodies, APileOfSixteenBoxesComesToRestWithoutPenetration) {
   const Scene s = scene("pile_16.yaml");

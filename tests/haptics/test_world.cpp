@@ -90,11 +90,14 @@ double lowest_corner(const World& w) {
   return z;
 }
 
+// (Sleeping off: the integration's own rest; test_sleeping.cpp has the cube asleep.)
 TEST(World, ACubeDropped5cmComesToRestWithoutSinkingOrDrifting) {
   // Slightly tilted so the corners land one after another.
   BodyState s = at(Vec3(0, 0, 0.1 + 0.05 + 0.02));
   s.q = Quat(Eigen::AngleAxisd(0.15, Vec3(1, 0.5, 0).normalized()));
-  World w({cube(1.0, 0.3), table()}, {s, at(Vec3(0, 0, -0.05))});
+  WorldParams p;
+  p.sleep_after = 0;
+  World w({cube(1.0, 0.3), table()}, {s, at(Vec3(0, 0, -0.05))}, p);
   double deepest = 0;
   for (int i = 0; i < 3000; ++i) {
     w.step(1e-3);
