@@ -71,13 +71,22 @@ void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vect
   by_feature_.clear();
   for (std::size_t i = 0; i < contacts.size(); ++i) by_feature_.emplace_back(key_of(contacts[i].feature), i);
   std::sort(by_feature_.begin(), by_feature_.end());
+  const auto now_at = [&](const ContactFeature& f) -> const std::pair<std::uint64_t, std::size_t>* {
+    const std::uint64_t key = key_of(f);
+    const auto found = std::lower_bound(by_feature_.begin(), by_feature_.end(), std::make_pair(key, std::size_t{0}));
+    return found == by_feature_.end() || found->first != key ? nullptr : &*found;
+  };
+  // Each contact still touching starts the step's friction rounds from the friction it held
+  // (update_friction takes it onto its new tangents).
+  for (const ActiveContact& was : previous)
+    if (!was.friction.isZero(0.0))
+      if (const auto* found = now_at(was.feature)) contacts[found->second].friction = was.friction;
   for (const ContactIsland& was : previous_)
     for (const int c : was.clamped) {
       const std::size_t at = was.begin + static_cast<std::size_t>(c);
       if (c < 0 || at >= was.end || at >= previous.size()) continue;  // (not a set of those contacts)
-      const std::uint64_t key = key_of(previous[at].feature);
-      const auto found = std::lower_bound(by_feature_.begin(), by_feature_.end(), std::make_pair(key, std::size_t{0}));
-      if (found == by_feature_.end() || found->first != key) continue;  // no longer touching
+      const auto* found = now_at(previous[at].feature);
+      if (found == nullptr) continue;  // no longer touching
       ContactIsland& now = islands[island_of_[found->second]];
       if (now.clamped.size() >= kMaxLcpSize) continue;  // (an island the LCP will refuse anyway)
       now.clamped.conservativeResize(now.clamped.size() + 1);

@@ -270,7 +270,7 @@ TEST(ManyBodies, PushingARowOfThirtyTwoBoxesConservesMomentumThroughItsImpacts) 
 // bodies move between calls (its kept order goes stale), static pairs never.
 // The warm start of an island follows its contacts: when contacts come and go (a box pushed
 // through a pile), each contact clamped before is clamped in its new island's warm start, at its
-// new place, and one that no longer touches drops out.
+// new place, and one that no longer touches drops out; each contact's friction goes with it.
 TEST(IslandGrouping, AWarmStartFollowsItsContactsWhenTheIslandChanges) {
   // Bodies 0 (the table, static), 1, 2, 3 (dynamic); contacts named by (a, b, vertex of a).
   const std::vector<int> slot = {-1, 0, 1, 2};
@@ -288,6 +288,7 @@ TEST(IslandGrouping, AWarmStartFollowsItsContactsWhenTheIslandChanges) {
   ASSERT_EQ(islands[0].end - islands[0].begin, 4u);
   islands[0].clamped = LcpIndices{{3, 0}};  // (2, 1, 3) and (1, 0, 0)
   islands[1].clamped = LcpIndices{{0}};     // (3, 0, 2)
+  for (std::size_t i = 0; i < before.size(); ++i) before[i].friction = Vec3(0.1 * static_cast<double>(i + 1), 0, 0);
   // (1, 0, 0) lifts off, a new corner of box 2 lands on box 1, box 3 touches box 2 (one island now).
   std::vector<ActiveContact> after = {contact(1, 0, 1), contact(2, 1, 0), contact(2, 1, 3),
                                       contact(2, 1, 6), contact(3, 0, 2), contact(3, 2, 4)};
@@ -298,6 +299,12 @@ TEST(IslandGrouping, AWarmStartFollowsItsContactsWhenTheIslandChanges) {
   ASSERT_EQ(warm.size(), 2u);
   EXPECT_TRUE(warm[0] == contact(2, 1, 3).feature);
   EXPECT_TRUE(warm[1] == contact(3, 0, 2).feature);
+  // And so does each contact's friction (a new contact has none).
+  for (const ActiveContact& c : after) {
+    const auto was =
+        std::find_if(before.begin(), before.end(), [&](const ActiveContact& b) { return b.feature == c.feature; });
+    EXPECT_EQ(c.friction, was == before.end() ? Vec3::Zero() : was->friction);
+  }
   // The same contacts again: the warm start stays as it is.
   const LcpIndices kept = islands[0].clamped;
   const std::vector<ActiveContact> again = after;
