@@ -406,6 +406,7 @@ void World::restart_from(double t, const std::vector<BodyState>& bodies) {
   state_.watched.clear();
   state_.watched_gaps.clear();
   state_.restart = true;
+  state_.wake_all();  // (the contacts are found again from nothing: the sleeping ones' too)
 }
 
 // The bodies go back to where the step began and stop there: no motion comes from a step that
@@ -414,7 +415,6 @@ void World::restart_from(double t, const std::vector<BodyState>& bodies) {
 void World::hold(double t, const std::string& why) {
   restart_from(t, work_.step_start);
   for (const int i : model_.dynamic) state_.bodies[i].P.setZero(), state_.bodies[i].L.setZero();
-  state_.wake_all();
   ++report_.integration_failures;
   last_failure_ = why;
 }
