@@ -3,6 +3,7 @@
 // against a face of another, or an edge against an edge. The normal points from body b to body a
 // (outward from b's surface, as in the paper's section 4.1); the gap is the signed distance along
 // it (negative: penetration).
+#include <cstdint>
 #include <vector>
 
 #include "scene/body.hpp"
@@ -21,6 +22,13 @@ struct ContactFeature {
     return kind == o.kind && a == o.a && b == o.b && feature_a == o.feature_a && feature_b == o.feature_b;
   }
 };
+
+// A feature's identity (ContactFeature's operator==) in one sortable number.
+inline std::uint64_t feature_key(const ContactFeature& f) {
+  return (static_cast<std::uint64_t>(f.kind) << 60) | (static_cast<std::uint64_t>(f.a & 0xFFFFF) << 40) |
+         (static_cast<std::uint64_t>(f.b & 0xFFFFF) << 20) | (static_cast<std::uint64_t>(f.feature_a & 0x3FF) << 10) |
+         static_cast<std::uint64_t>(f.feature_b & 0x3FF);
+}
 
 struct ContactPoint {
   Vec3 p = Vec3::Zero();     // world point where the forces act

@@ -14,17 +14,6 @@ int IslandGrouping::root(int body) {
   return body;
 }
 
-namespace {
-
-// A contact's identity (ContactFeature's operator==) in one sortable number.
-std::uint64_t key_of(const ContactFeature& f) {
-  return (static_cast<std::uint64_t>(f.kind) << 60) | (static_cast<std::uint64_t>(f.a & 0xFFFFF) << 40) |
-         (static_cast<std::uint64_t>(f.b & 0xFFFFF) << 20) | (static_cast<std::uint64_t>(f.feature_a & 0x3FF) << 10) |
-         static_cast<std::uint64_t>(f.feature_b & 0x3FF);
-}
-
-}  // namespace
-
 void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vector<int>& slot,
                            std::vector<ContactIsland>& islands, const std::vector<ActiveContact>& previous) {
   parent_.resize(slot.size());
@@ -69,10 +58,10 @@ void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vect
     return;
   }
   by_feature_.clear();
-  for (std::size_t i = 0; i < contacts.size(); ++i) by_feature_.emplace_back(key_of(contacts[i].feature), i);
+  for (std::size_t i = 0; i < contacts.size(); ++i) by_feature_.emplace_back(feature_key(contacts[i].feature), i);
   std::sort(by_feature_.begin(), by_feature_.end());
   const auto now_at = [&](const ContactFeature& f) -> const std::pair<std::uint64_t, std::size_t>* {
-    const std::uint64_t key = key_of(f);
+    const std::uint64_t key = feature_key(f);
     const auto found = std::lower_bound(by_feature_.begin(), by_feature_.end(), std::make_pair(key, std::size_t{0}));
     return found == by_feature_.end() || found->first != key ? nullptr : &*found;
   };

@@ -339,19 +339,31 @@ void World::classify_contacts(double dt) {
   // without passing zero if it approaches no faster than ws g: that approach is the feedback's
   // own, not an impact (taken as one, the contacts of a pushed pile, made at a few um, each took
   // an impulse at every step while the feedback closed them: an impact a step for seconds).
-  const double closing_allowed = 2 * M_PI * model_.params.stabilisation_hz;
+  const WorldParams& p = model_.params;
+  const double closing_allowed = 2 * M_PI * p.stabilisation_hz;
+  std::vector<std::uint64_t>& was_resting = work_.was_resting;  // (feature keys, sorted)
+  was_resting.clear();
+  for (const ActiveContact& c : state_.resting) was_resting.push_back(feature_key(c.feature));
+  std::sort(was_resting.begin(), was_resting.end());
   for (const auto& f : work_.candidates) {
     const ContactPoint c = point_of(f, poses);
-    if (!c.valid || c.gap > model_.params.contact_tolerance) {  // apart, or not yet over its face: watched
+    const double gap_allowed = std::binary_search(was_resting.begin(), was_resting.end(), feature_key(f))
+                                   ? p.contact_release
+                                   : p.contact_tolerance;
+    if (!c.valid || c.gap > gap_allowed) {  // apart, or not yet over its face: watched
+      watched.push_back(f);
+      continue;
+    }
+    const double opening = c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p));
+    const bool fast = opening < -(p.settle_speed + closing_allowed * std::max(0.0, c.gap));
+    if (fast && c.gap > p.contact_tolerance) {  // (held by the hysteresis only: it hits where it touches)
       watched.push_back(f);
       continue;
     }
     if (!separates(f, c, poses, kContactCone)) continue;  // (watched in a wider cone; touching only within)
     if (twin_of_touching(f, c)) continue;
     touching.push_back(ActiveContact{f, c, 0});
-    if (c.n.dot(relative_velocity(poses[f.a], poses[f.b], c.p)) <
-        -(model_.params.settle_speed + closing_allowed * std::max(0.0, c.gap)))
-      colliding = true;
+    if (fast) colliding = true;
   }
   work_.grouping.group(touching, model_.slot, state_.islands, state_.resting);
   if (colliding) {  // still approaching: an impact at the start of the step

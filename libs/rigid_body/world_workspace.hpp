@@ -4,6 +4,7 @@
 // Nothing here carries meaning from one use to the next.
 #include <Eigen/Dense>
 
+#include <cstdint>
 #include <vector>
 
 #include "scene/body.hpp"
@@ -22,6 +23,7 @@ struct WorldWorkspace {
   SweepAndPrune broad_phase;    // (its sort order only speeds the next sort)
   std::vector<BodyPair> pairs;  // the broad phase's
   std::vector<ContactFeature> candidates;
+  std::vector<std::uint64_t> was_resting;  // the last step's resting contacts' feature keys, sorted
   std::vector<ActiveContact> touching;
   std::vector<ContactFeature> watched_next;
   Eigen::VectorXd ft_start;  // update_friction: the last step's friction, in the tangent bases
