@@ -140,7 +140,7 @@ void World::rhs(const double* y, double* ydot) {
   std::vector<Pose>& poses = work_.poses;
   states = state_.bodies;
   unpack_state(y, model_.dynamic, states);
-  state_.poses_of(model_, states, poses);
+  state_.awake_poses_of(model_, states, poses);
   // Resting contacts at this very state.
   const std::size_t live = evaluate_resting(poses, true);
   // Gravity, the user's wrench and the friction held for this step, then, island by island, the
@@ -196,7 +196,7 @@ void World::watched_gaps_at(const double* y, std::vector<double>& gaps) {
   poses = state_.static_poses;
   for (std::size_t k = 0; k < model_.dynamic.size(); ++k) {
     const int i = model_.dynamic[k];
-    poses[i] = model_.pose_of(i, unpack_body(y + kStateSize * k));
+    if (!state_.asleep[i]) poses[i] = model_.pose_of(i, unpack_body(y + kStateSize * k));
   }
   gaps.resize(state_.watched.size());
   for (std::size_t k = 0; k < state_.watched.size(); ++k) gaps[k] = watched_gap(point_of(state_.watched[k], poses));
@@ -207,7 +207,7 @@ double World::watched_gap_at(const ContactFeature& f, const double* y) {
   poses.resize(state_.static_poses.size());
   for (const int i : {f.a, f.b}) {
     const int k = model_.slot[i];
-    poses[i] = k < 0 ? state_.static_poses[i] : model_.pose_of(i, unpack_body(y + kStateSize * k));
+    poses[i] = k < 0 || state_.asleep[i] ? state_.static_poses[i] : model_.pose_of(i, unpack_body(y + kStateSize * k));
   }
   return watched_gap(point_of(f, poses));
 }
@@ -533,10 +533,14 @@ bool World::settle_islands(bool may_sleep) {
   if (p.sleep_after <= 0) return false;
   const double t = state_.t;
   for (const int i : model_.dynamic) {  // who moves now: the fastest point of each body, and the user's wrenches
-    const BodyKinematics k(model_.bodies[i], state_.bodies[i], model_.inv_inertia_body[i]);
     const bool pushed = !state_.ext_force[i].isZero() || !state_.ext_torque[i].isZero();
-    if (pushed || k.v.norm() + k.omega.norm() * model_.bodies[i].half_extents.norm() > p.sleep_speed)
+    if (pushed) {
       state_.still_since[i] = t;
+      continue;
+    }
+    if (state_.asleep[i] && state_.bodies[i].P.isZero(0) && state_.bodies[i].L.isZero(0)) continue;  // (not hit)
+    const BodyKinematics k(model_.bodies[i], state_.bodies[i], model_.inv_inertia_body[i]);
+    if (k.v.norm() + k.omega.norm() * model_.bodies[i].half_extents.norm() > p.sleep_speed) state_.still_since[i] = t;
   }
   bool changed = false;
   std::vector<char>& in_island = work_.in_island;
@@ -559,6 +563,7 @@ bool World::settle_islands(bool may_sleep) {
       state_.asleep[i] = island.asleep;
       if (island.asleep) {
         state_.bodies[i].P.setZero(), state_.bodies[i].L.setZero();
+        state_.static_poses[i] = model_.pose_of(i, state_.bodies[i]);  // (where it stays)
       } else {
         state_.still_since[i] = t;
       }

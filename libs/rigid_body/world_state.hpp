@@ -41,13 +41,18 @@ struct WorldState {
   void set_body(const WorldModel& model, int i, const BodyState& s);
   // The bodies' poses at `states`; the static ones stay where they were last set.
   void poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
+  // The same within the integration, where a sleeping body's state stays as it fell asleep: its
+  // pose is the one kept then (an impact that moves one wakes it before the integration goes on).
+  void awake_poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
   // Kinetic plus gravitational potential energy of the dynamic bodies.
   double energy(const WorldModel& model) const;
   void wake_all();
 
   double t = 0;
   std::vector<BodyState> bodies;
-  std::vector<Pose> static_poses;           // every body's pose at its last set state; static ones stay so
+  // Every body's pose at its last set state, and a dynamic body's where it fell asleep: the poses
+  // of the bodies that do not move now (static ones, and sleeping ones).
+  std::vector<Pose> static_poses;
   std::vector<Vec3> ext_force, ext_torque;  // the user's wrenches, held until changed
   std::vector<ActiveContact> resting;       // their last normal forces and the friction held for the step
   std::vector<ContactIsland> islands;       // the resting contacts, grouped (contiguous) by island
