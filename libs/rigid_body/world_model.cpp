@@ -11,6 +11,10 @@ WorldModel::WorldModel(std::vector<BodyModel> bodies_in, const WorldParams& para
   if (!(params.rtol >= 0) || !(params.atol > 0))
     throw std::invalid_argument("World: tolerances rtol >= 0 and atol > 0 expected, got rtol " +
                                 std::to_string(params.rtol) + ", atol " + std::to_string(params.atol));
+  if (!(params.contact_tolerance > 0) || !(params.contact_release >= params.contact_tolerance))
+    throw std::invalid_argument("World: contact_tolerance > 0 and contact_release >= contact_tolerance expected, got " +
+                                std::to_string(params.contact_tolerance) + " and " +
+                                std::to_string(params.contact_release) + " m");
   slot.assign(bodies.size(), -1);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const auto& m = bodies[i];

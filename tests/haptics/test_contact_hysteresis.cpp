@@ -124,4 +124,10 @@ TEST(ContactHysteresis, AHeldContactApproachingFasterThanTheFeedbackClosesHitsWh
   EXPECT_NEAR((w.state(0).P - control.state(0).P).norm(), 0, 1e-12);
 }
 
+TEST(ContactHysteresis, AReleaseBelowTheToleranceIsRefused) {
+  WorldParams p;
+  p.contact_release = 0.5 * p.contact_tolerance;
+  EXPECT_THROW(World(cube_on_table(), resting(), p), std::invalid_argument);
+}
+
 }  // namespace wysiwyf::haptics
