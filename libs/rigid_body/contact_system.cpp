@@ -5,8 +5,8 @@
 
 namespace wysiwyf::haptics {
 
-// A = J M^-1 J^T, one entry at a time: a row of J touches at most two bodies, so the dense
-// product over 6 columns per dynamic body would be mostly zeros.
+// A = J M^-1 J^T: a row of J touches at most two bodies, so the dense product over 6 columns per
+// dynamic body would be mostly zeros; it is summed body by body instead.
 void ContactSystem::build(const ActiveContact* contacts, std::size_t count, const std::vector<Pose>& poses,
                           bool with_tangents) {
   const std::size_t row_count = with_tangents ? 3 * count : count;
@@ -39,17 +39,50 @@ void ContactSystem::build(const ActiveContact* contacts, std::size_t count, cons
                        out.minv_j[side].tail<3>() = p.inv_inertia * moment;
                      });
   }
+  // Body by body: the rows that touch it, as columns of J_k (6 x r_k) and M_k^-1 J_k^T, give its
+  // share J_k M_k^-1 J_k^T of A in one small dense product (vectorised), added at those rows.
+  // (Only the bodies these rows touch are visited: an island's build costs nothing per body
+  // elsewhere in the world.)
   const auto n = static_cast<Eigen::Index>(row_count);
-  A.resize(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index k = 0; k <= i; ++k) {
-      const JacobianRow &ri = rows[static_cast<std::size_t>(i)], &rk = rows[static_cast<std::size_t>(k)];
-      double sum = 0;
-      for (int s = 0; s < 2; ++s)
-        for (int t = 0; t < 2; ++t)
-          if (ri.slot[s] >= 0 && ri.slot[s] == rk.slot[t]) sum += ri.j[s].dot(rk.minv_j[t]);
-      A(i, k) = A(k, i) = sum;
+  A.setZero(n, n);
+  local_of.resize(model.dynamic.size(), -1);
+  touched.clear();
+  body_row_start.assign(1, 0);
+  for (std::size_t r = 0; r < row_count; ++r)
+    for (const int s : rows[r].slot) {
+      if (s < 0) continue;
+      int& local = local_of[static_cast<std::size_t>(s)];
+      if (local < 0) local = static_cast<int>(touched.size()), touched.push_back(s), body_row_start.push_back(0);
+      ++body_row_start[static_cast<std::size_t>(local) + 1];
     }
+  const std::size_t bodies = touched.size();
+  for (std::size_t k = 0; k < bodies; ++k) body_row_start[k + 1] += body_row_start[k];
+  body_rows.resize(body_row_start[bodies]);
+  fill.assign(body_row_start.begin(), body_row_start.end() - 1);
+  for (std::size_t r = 0; r < row_count; ++r)
+    for (int side = 0; side < 2; ++side)
+      if (const int s = rows[r].slot[side]; s >= 0)
+        body_rows[fill[static_cast<std::size_t>(local_of[static_cast<std::size_t>(s)])]++] = {r, side};
+  for (const int s : touched) local_of[static_cast<std::size_t>(s)] = -1;
+  for (std::size_t k = 0; k < bodies; ++k) {
+    const std::size_t first = body_row_start[k];
+    const auto r_k = static_cast<Eigen::Index>(body_row_start[k + 1] - first);
+    if (body_j.cols() < r_k) body_j.resize(6, r_k), body_minv_j.resize(6, r_k), body_block.resize(r_k, r_k);
+    for (Eigen::Index c = 0; c < r_k; ++c) {
+      const auto [r, side] = body_rows[first + static_cast<std::size_t>(c)];
+      body_j.col(c) = rows[r].j[side];
+      body_minv_j.col(c) = rows[r].minv_j[side];
+    }
+    auto block = body_block.topLeftCorner(r_k, r_k);
+    block.noalias() = body_j.leftCols(r_k).transpose().lazyProduct(body_minv_j.leftCols(r_k));
+    // (a body's rows come in order: its block's lower triangle goes to A's, column by column)
+    for (Eigen::Index d = 0; d < r_k; ++d) {
+      const auto column = static_cast<Eigen::Index>(body_rows[first + static_cast<std::size_t>(d)].first);
+      for (Eigen::Index c = d; c < r_k; ++c)
+        A(static_cast<Eigen::Index>(body_rows[first + static_cast<std::size_t>(c)].first), column) += block(c, d);
+    }
+  }
+  A.triangularView<Eigen::StrictlyUpper>() = A.transpose();  // (exactly symmetric, as the solvers take it)
 }
 
 bool ContactSystem::friction_coefficients(const ActiveContact* contacts, std::size_t count) {

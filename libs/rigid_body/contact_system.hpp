@@ -82,6 +82,16 @@ struct ContactSystem {
   Eigen::VectorXd bt, vt, mu;       // tangent rows' free terms and sliding velocities, friction coefficients
   std::vector<Vec3> force, torque;  // per body: the applied loads
   std::vector<std::pair<Vec3, Vec3>> body_acc;  // per body: linear and angular acceleration under them
+
+ private:
+  // build's scratch: the dynamic bodies the rows touch (slots, in order met; local_of: slot -> place
+  // there, -1 between builds), per such body k the rows that touch it, (row, side), from
+  // body_rows[body_row_start[k]]; its J_k, M_k^-1 J_k^T and their product (grown, never shrunk).
+  std::vector<int> local_of, touched;
+  std::vector<std::size_t> body_row_start, fill;
+  std::vector<std::pair<std::size_t, int>> body_rows;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> body_j, body_minv_j;
+  Eigen::MatrixXd body_block;
 };
 
 }  // namespace wysiwyf::haptics
