@@ -485,13 +485,30 @@ bool World::first_closing(double t_start, double t_reached, std::size_t& feature
     return false;
   }
   watched_gaps_at(ode.state(), at_end);
+  const double not_facing = model_.params.margin;  // (watched_gap's value for a feature off its partner)
   bool found = false;
   for (std::size_t k = 0; k < at_end.size(); ++k) {
-    const double before = state_.watched_gaps[k];
-    if (!(before > 0 && at_end[k] <= 0)) continue;  // (approaching only: open at the step's start)
+    double t_lo = t_start, gap_lo = state_.watched_gaps[k], t_hi = t_reached, gap_hi = at_end[k];
+    if (!(gap_lo > 0)) continue;  // (approaching only: open at the step's start)
     const ContactFeature& f = state_.watched[k];
-    const GapClosing c = find_gap_closing([&](double t) { return watched_gap_at(f, ode.state_at(t)); }, t_start, before,
-                                          t_reached, at_end[k], model_.params.impact_tolerance);
+    const auto gap_at = [&](double t) { return watched_gap_at(f, ode.state_at(t)); };
+    if (!(gap_hi <= 0)) {
+      // Facing its partner at the step's start and off it at the end, it may have closed in
+      // between and left the face through the other body (a corner of a box tumbling onto
+      // another's face, 0.55 mm deep, in a step of 1 ms that nothing else shortened): the step's
+      // dense output is looked at within it.
+      if (gap_hi != not_facing || gap_lo == not_facing) continue;
+      bool closed = false;
+      for (int s = 1; s < kLeftFaceSamples && !closed; ++s) {
+        const double t = t_start + (t_reached - t_start) * s / kLeftFaceSamples;
+        const double g = gap_at(t);
+        closed = g <= 0;
+        (closed ? t_hi : t_lo) = t;
+        (closed ? gap_hi : gap_lo) = g;
+      }
+      if (!closed) continue;
+    }
+    const GapClosing c = find_gap_closing(gap_at, t_lo, gap_lo, t_hi, gap_hi, model_.params.impact_tolerance);
     if (!found || c.t < t_impact) t_impact = c.t, feature = k, found = true;
   }
   return found;

@@ -95,6 +95,9 @@ class World {
   // After the integrator's step from t_start: the watched gap that closed first within it, at its
   // time of impact (false: none closed).
   bool first_closing(double t_start, double t_reached, std::size_t& feature, double& t_impact);
+  // A watched feature that faced its partner at an integrator step's start and not at its end
+  // is looked at in this many equal parts of the step for a gap that closed in between.
+  static constexpr int kLeftFaceSamples = 16;
   // The impact at the current state (STEP 4-6), feature `hit` of the watched having closed.
   void impact(std::size_t hit);
   // step's work (the resting contacts' friction held through it or none); throws where it
