@@ -1,32 +1,18 @@
 #include "rigid_body/contact_islands.hpp"
 
 #include <algorithm>
-#include <numeric>
 
 namespace wysiwyf::haptics {
 
-int IslandGrouping::root(int body) {
-  while (parent_[static_cast<std::size_t>(body)] != body) {
-    auto& p = parent_[static_cast<std::size_t>(body)];
-    p = parent_[static_cast<std::size_t>(p)];  // path halving
-    body = p;
-  }
-  return body;
-}
-
 void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vector<int>& slot,
                            std::vector<ContactIsland>& islands, const std::vector<ActiveContact>& previous) {
-  parent_.resize(slot.size());
-  std::iota(parent_.begin(), parent_.end(), 0);
+  bodies_.reset(slot.size());
   for (const auto& c : contacts)
-    if (slot[c.feature.a] >= 0 && slot[c.feature.b] >= 0) {
-      const int ra = root(c.feature.a), rb = root(c.feature.b);
-      if (ra != rb) parent_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
-    }
+    if (slot[c.feature.a] >= 0 && slot[c.feature.b] >= 0) bodies_.join(c.feature.a, c.feature.b);
   order_.clear();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const ContactFeature& f = contacts[i].feature;
-    order_.emplace_back(root(slot[f.a] >= 0 ? f.a : f.b), i);
+    order_.emplace_back(bodies_.root(slot[f.a] >= 0 ? f.a : f.b), i);
   }
   std::sort(order_.begin(), order_.end());  // by island, then by position: stable within each
   sorted_.clear();

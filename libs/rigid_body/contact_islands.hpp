@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "rigid_body/union_find.hpp"
 #include "rigid_body/world_state.hpp"
 
 namespace wysiwyf::haptics {
@@ -27,9 +28,7 @@ class IslandGrouping {
              const std::vector<ActiveContact>& previous);
 
  private:
-  int root(int body);
-
-  std::vector<int> parent_;                         // union-find over body indices
+  UnionFind bodies_;
   std::vector<std::pair<int, std::size_t>> order_;  // (island root, position) per contact
   std::vector<ActiveContact> sorted_;
   std::vector<ContactIsland> previous_;

@@ -97,11 +97,12 @@ bool ContactSystem::friction_coefficients(const ActiveContact* contacts, std::si
   return any;
 }
 
-// gravity + the user's wrench (+ the friction held for this step) on every dynamic body.
-void ContactSystem::applied_loads(const WorldState& state, const std::vector<Pose>& poses, bool with_friction) {
+// gravity + the user's wrench (+ the friction held for this step) on the bodies listed.
+void ContactSystem::applied_loads(const WorldState& state, const std::vector<int>& bodies,
+                                  const std::vector<Pose>& poses, bool with_friction) {
   force.resize(model.bodies.size());
   torque.resize(model.bodies.size());
-  for (int i : model.dynamic) {
+  for (int i : bodies) {
     force[i] = model.bodies[i].mass * model.params.gravity + state.ext_force[i];
     torque[i] = state.ext_torque[i];
   }
@@ -116,9 +117,10 @@ void ContactSystem::applied_loads(const WorldState& state, const std::vector<Pos
   }
 }
 
-void ContactSystem::accelerations(const std::vector<BodyState>& states, const std::vector<Pose>& poses) {
+void ContactSystem::accelerations(const std::vector<int>& bodies, const std::vector<BodyState>& states,
+                                  const std::vector<Pose>& poses) {
   body_acc.resize(model.bodies.size());
-  for (const int body : model.dynamic) {
+  for (const int body : bodies) {
     auto& [linear, angular] = body_acc[static_cast<std::size_t>(body)];
     const Pose& p = poses[body];
     linear = force[body] * p.inv_mass;

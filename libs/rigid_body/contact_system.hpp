@@ -58,11 +58,13 @@ struct ContactSystem {
              bool with_tangents = false);
   // The contacts' friction coefficients into mu; true if any is > 0.
   bool friction_coefficients(const ActiveContact* contacts, std::size_t count);
-  // force, torque: gravity and the user's wrench, plus (with_friction) the friction that the
-  // state's resting contacts hold.
-  void applied_loads(const WorldState& state, const std::vector<Pose>& poses, bool with_friction);
-  // Each dynamic body's accelerations under force/torque alone (body_acc), for free_terms.
-  void accelerations(const std::vector<BodyState>& states, const std::vector<Pose>& poses);
+  // force, torque of the dynamic `bodies`: gravity and the user's wrench, plus (with_friction)
+  // the friction that the state's resting contacts hold (which reach no other dynamic body).
+  void applied_loads(const WorldState& state, const std::vector<int>& bodies, const std::vector<Pose>& poses,
+                     bool with_friction);
+  // Their accelerations under force/torque alone (body_acc), for free_terms.
+  void accelerations(const std::vector<int>& bodies, const std::vector<BodyState>& states,
+                     const std::vector<Pose>& poses);
   // The first `live` rows' free terms under force/torque (after accelerations()): b (with gap feedback), b_free, and for
   // tangent_horizon > 0 bt (tangential acceleration that stops sliding within the horizon) and vt.
   void free_terms(const ActiveContact* active, std::size_t live, const std::vector<Pose>& poses,

@@ -44,6 +44,8 @@ class OdeIntegrator {
   // The state at t within the last step (its dense output), in a vector of the integrator's own
   // that the next call overwrites.
   virtual const double* state_at(double t) = 0;
+  // The local error test's tolerances from the next step on.
+  void set_tolerances(double rtol, double atol) { rtol_ = rtol, atol_ = atol; }
   // Adds the internal steps and error test failures since the last count or restart.
   virtual void count_work(int& steps, int& error_test_failures) = 0;
 

@@ -28,6 +28,7 @@
 #include "rigid_body/contact.hpp"
 #include "rigid_body/contact_system.hpp"
 #include "rigid_body/friction.hpp"
+#include "rigid_body/integration_groups.hpp"
 #include "rigid_body/lcp.hpp"
 #include "rigid_body/world_model.hpp"
 #include "rigid_body/world_state.hpp"
@@ -86,6 +87,8 @@ class World {
  private:
   friend class OdeIntegrator;  // calls rhs()
   void rhs(const double* y, double* ydot);
+  // An integrator for a group of `bodies` dynamic bodies (WorldParams::integrator).
+  std::unique_ptr<OdeIntegrator> make_integrator(int bodies);
   // The watched features' gaps at the state y (the margin for one that does not face its partner:
   // it cannot hit it).
   void watched_gaps_at(const double* y, std::vector<double>& gaps);
@@ -103,6 +106,16 @@ class World {
   // step's work (the resting contacts' friction held through it or none); throws where it
   // cannot go on.
   void integrate(double dt, bool friction);
+  // One integration group's bodies (integrated_, integrator_) from state_.t to t_end, the state
+  // holding its contacts and watched features only; restart: its integrator starts over.
+  void integrate_group(double t_end, bool restart);
+  // The state's contacts and watched features shared out among the groups and gathered back
+  // (world_groups.cpp): the world's are kept in the workspace while each group's are the
+  // state's; a group that had no impact gives its contacts back where they were, one that had
+  // gives its new islands, and the gathered islands take the order IslandGrouping gives them.
+  void take_share(const IntegrationGroup& g, bool restart);
+  void give_back(const IntegrationGroup& g, bool impacted);
+  void gather_groups(bool any_impacted);
   // The bodies set to `bodies` at t, the contacts to be found again and the integrator started over.
   void restart_from(double t, const std::vector<BodyState>& bodies);
   void hold(double t, const std::string& why);
@@ -136,7 +149,12 @@ class World {
   const WorldModel model_;
   WorldState state_;
   WorldWorkspace work_;
-  std::unique_ptr<OdeIntegrator> integrator_;
+  IntegrationGroups groups_;
+  OdeIntegrator* integrator_ = nullptr;  // the group being integrated's
+  // The dynamic bodies being integrated (a group's; every one's outside the integration), and how
+  // many impacts that group has had in this step (WorldParams::max_collisions_per_step).
+  const std::vector<int>* integrated_ = nullptr;
+  int group_collisions_ = 0;
   LcpSolver lcp_;
   FrictionSolver friction_;         // the resting contacts' friction for a step
   FrictionSolver impact_friction_;  // at impacts

@@ -35,6 +35,27 @@ struct WorldWorkspace {
   std::vector<Pose> gap_poses;           // watched_gap_at: the poses of the two bodies it evaluates
   std::vector<int> island_bodies;        // settle_islands: one island's dynamic bodies
   std::vector<char> in_island;           // and, per body, whether one holds it
+  // integrate, with more than one integration group: the world's contacts and watched features
+  // (and their gaps) while each group's are the state's; per watched feature, whether its group's
+  // impacts made it a contact; per island, whether a group's impacts replaced it; the islands of
+  // the groups that had impacts (their contacts in joined_resting); and the gathered islands'
+  // order (lowest body, island, where it is).
+  std::vector<ActiveContact> all_resting;
+  std::vector<ContactIsland> all_islands;
+  std::vector<ContactFeature> all_watched;
+  std::vector<double> all_gaps;
+  std::vector<char> watched_gone;
+  std::vector<char> island_replaced;
+  std::vector<ActiveContact> joined_resting;
+  std::vector<ContactIsland> joined_islands;
+  struct IslandPlace {
+    int lowest_body;
+    bool joined;  // in joined_islands (else all_islands)
+    std::size_t index;
+    bool operator<(const IslandPlace& o) const { return lowest_body < o.lowest_body; }
+  };
+  std::vector<IslandPlace> island_order;
+  std::vector<ContactIsland> gathered_islands;
 };
 
 }  // namespace wysiwyf::haptics

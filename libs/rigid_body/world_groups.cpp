@@ -1,0 +1,110 @@
+// World's contacts shared out among its integration groups and gathered back (world.hpp,
+// integration_groups.hpp). While a group is integrated the state holds its islands and watched
+// features only, so that everything the integration does (right-hand sides, watched gaps,
+// impacts, waking) sees that group alone; the world's are kept in the workspace meanwhile.
+#include <algorithm>
+
+#include "rigid_body/world.hpp"
+
+namespace wysiwyf::haptics {
+
+void World::take_share(const IntegrationGroup& g, bool restart) {
+  state_.resting.clear();
+  state_.islands.clear();
+  for (const std::size_t k : g.islands) {
+    ContactIsland island = work_.all_islands[k];
+    const auto from = work_.all_resting.begin();
+    island.begin = state_.resting.size();
+    state_.resting.insert(state_.resting.end(), from + static_cast<std::ptrdiff_t>(work_.all_islands[k].begin),
+                          from + static_cast<std::ptrdiff_t>(work_.all_islands[k].end));
+    island.end = state_.resting.size();
+    state_.islands.push_back(island);
+  }
+  state_.watched.clear();
+  state_.watched_gaps.clear();
+  for (const std::size_t k : g.watched) {
+    state_.watched.push_back(work_.all_watched[k]);
+    if (!restart) state_.watched_gaps.push_back(work_.all_gaps[k]);  // (restarting: found again at the state)
+  }
+}
+
+void World::give_back(const IntegrationGroup& g, bool impacted) {
+  if (impacted) {  // its new islands, gathered below in place of its old ones
+    for (const std::size_t k : g.islands) work_.island_replaced[k] = 1;
+    for (ContactIsland island : state_.islands) {
+      const std::size_t begin = island.begin;
+      island.begin = work_.joined_resting.size();
+      work_.joined_resting.insert(work_.joined_resting.end(),
+                                  state_.resting.begin() + static_cast<std::ptrdiff_t>(begin),
+                                  state_.resting.begin() + static_cast<std::ptrdiff_t>(island.end));
+      island.end = work_.joined_resting.size();
+      work_.joined_islands.push_back(island);
+    }
+  } else {  // the same contacts, each island where it was (their order within it may have changed)
+    for (std::size_t j = 0; j < g.islands.size(); ++j) {
+      const ContactIsland& now = state_.islands[j];
+      ContactIsland& was = work_.all_islands[g.islands[j]];
+      std::copy(state_.resting.begin() + static_cast<std::ptrdiff_t>(now.begin),
+                state_.resting.begin() + static_cast<std::ptrdiff_t>(now.end),
+                work_.all_resting.begin() + static_cast<std::ptrdiff_t>(was.begin));
+      was.live = now.live;
+      was.clamped = now.clamped;
+      was.asleep = now.asleep;
+    }
+  }
+  // The features still watched are the group's in their order, less those its impacts made
+  // contacts (all of them after max_collisions_per_step).
+  std::size_t still = 0;
+  for (const std::size_t k : g.watched) {
+    if (still < state_.watched.size() && state_.watched[still] == work_.all_watched[k]) {
+      work_.all_gaps[k] = state_.watched_gaps[still++];
+    } else {
+      work_.watched_gone[k] = 1;
+    }
+  }
+}
+
+void World::gather_groups(bool any_impacted) {
+  state_.watched.clear();
+  state_.watched_gaps.clear();
+  for (std::size_t k = 0; k < work_.all_watched.size(); ++k)
+    if (!work_.watched_gone[k])
+      state_.watched.push_back(work_.all_watched[k]), state_.watched_gaps.push_back(work_.all_gaps[k]);
+  if (!any_impacted) {  // every island where it was
+    state_.resting.swap(work_.all_resting);
+    state_.islands.swap(work_.all_islands);
+    return;
+  }
+  // The islands of groups without impacts and of sleeping ones as they were, the impacted groups'
+  // new ones, in the order of their lowest dynamic body (IslandGrouping's): a step that finds
+  // the same contacts again finds them in the same places.
+  const auto lowest_body = [&](const std::vector<ActiveContact>& resting, const ContactIsland& island) {
+    int lowest = static_cast<int>(model_.bodies.size());
+    for (std::size_t c = island.begin; c < island.end; ++c)
+      for (const int i : {resting[c].feature.a, resting[c].feature.b})
+        if (model_.slot[i] >= 0) lowest = std::min(lowest, i);
+    return lowest;
+  };
+  work_.island_order.clear();
+  for (std::size_t k = 0; k < work_.joined_islands.size(); ++k)
+    work_.island_order.push_back({lowest_body(work_.joined_resting, work_.joined_islands[k]), true, k});
+  for (std::size_t k = 0; k < work_.all_islands.size(); ++k)
+    if (!work_.island_replaced[k])
+      work_.island_order.push_back({lowest_body(work_.all_resting, work_.all_islands[k]), false, k});
+  std::sort(work_.island_order.begin(), work_.island_order.end());
+  state_.resting.clear();
+  work_.gathered_islands.clear();
+  for (const auto& place : work_.island_order) {
+    const std::vector<ActiveContact>& from = place.joined ? work_.joined_resting : work_.all_resting;
+    ContactIsland island = place.joined ? work_.joined_islands[place.index] : work_.all_islands[place.index];
+    const std::size_t begin = island.begin;
+    island.begin = state_.resting.size();
+    state_.resting.insert(state_.resting.end(), from.begin() + static_cast<std::ptrdiff_t>(begin),
+                          from.begin() + static_cast<std::ptrdiff_t>(island.end));
+    island.end = state_.resting.size();
+    work_.gathered_islands.push_back(island);
+  }
+  state_.islands.swap(work_.gathered_islands);
+}
+
+}  // namespace wysiwyf::haptics
