@@ -44,13 +44,6 @@ void WorldState::poses_of(const WorldModel& model, const std::vector<BodyState>&
   for (int i : model.dynamic) poses[i] = model.pose_of(i, states[i]);
 }
 
-void WorldState::awake_poses_of(const WorldModel& model, const std::vector<BodyState>& states,
-                                std::vector<Pose>& poses) const {
-  poses = static_poses;  // (static and sleeping bodies do not move)
-  for (int i : model.dynamic)
-    if (!asleep[i]) poses[i] = model.pose_of(i, states[i]);
-}
-
 double WorldState::energy(const WorldModel& model) const {
   double e = 0;
   for (int i : model.dynamic) {

@@ -41,9 +41,6 @@ struct WorldState {
   void set_body(const WorldModel& model, int i, const BodyState& s);
   // The bodies' poses at `states`; the static ones stay where they were last set.
   void poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
-  // The same within the integration, where a sleeping body's state stays as it fell asleep: its
-  // pose is the one kept then (an impact that moves one wakes it before the integration goes on).
-  void awake_poses_of(const WorldModel& model, const std::vector<BodyState>& states, std::vector<Pose>& poses) const;
   // Kinetic plus gravitational potential energy of the dynamic bodies.
   double energy(const WorldModel& model) const;
   void wake_all();
