@@ -8,18 +8,27 @@
 
 namespace wysiwyf::haptics {
 
+namespace {
+
+// Island `island` of the contacts `from`, appended to `to` (its range rebased there); the island
+// as it is now.
+ContactIsland append_island(ContactIsland island, const std::vector<ActiveContact>& from,
+                            std::vector<ActiveContact>& to) {
+  const auto first = from.begin() + static_cast<std::ptrdiff_t>(island.begin);
+  const auto last = from.begin() + static_cast<std::ptrdiff_t>(island.end);
+  island.begin = to.size();
+  to.insert(to.end(), first, last);
+  island.end = to.size();
+  return island;
+}
+
+}  // namespace
+
 void World::take_share(const IntegrationGroup& g, bool restart) {
   state_.resting.clear();
   state_.islands.clear();
-  for (const std::size_t k : g.islands) {
-    ContactIsland island = work_.all_islands[k];
-    const auto from = work_.all_resting.begin();
-    island.begin = state_.resting.size();
-    state_.resting.insert(state_.resting.end(), from + static_cast<std::ptrdiff_t>(work_.all_islands[k].begin),
-                          from + static_cast<std::ptrdiff_t>(work_.all_islands[k].end));
-    island.end = state_.resting.size();
-    state_.islands.push_back(island);
-  }
+  for (const std::size_t k : g.islands)
+    state_.islands.push_back(append_island(work_.all_islands[k], work_.all_resting, state_.resting));
   state_.watched.clear();
   state_.watched_gaps.clear();
   for (const std::size_t k : g.watched) {
@@ -31,15 +40,8 @@ void World::take_share(const IntegrationGroup& g, bool restart) {
 void World::give_back(const IntegrationGroup& g, bool impacted) {
   if (impacted) {  // its new islands, gathered below in place of its old ones
     for (const std::size_t k : g.islands) work_.island_replaced[k] = 1;
-    for (ContactIsland island : state_.islands) {
-      const std::size_t begin = island.begin;
-      island.begin = work_.joined_resting.size();
-      work_.joined_resting.insert(work_.joined_resting.end(),
-                                  state_.resting.begin() + static_cast<std::ptrdiff_t>(begin),
-                                  state_.resting.begin() + static_cast<std::ptrdiff_t>(island.end));
-      island.end = work_.joined_resting.size();
-      work_.joined_islands.push_back(island);
-    }
+    for (const ContactIsland& island : state_.islands)
+      work_.joined_islands.push_back(append_island(island, state_.resting, work_.joined_resting));
   } else {  // the same contacts, each island where it was (their order within it may have changed)
     for (std::size_t j = 0; j < g.islands.size(); ++j) {
       const ContactIsland& now = state_.islands[j];
@@ -96,13 +98,8 @@ void World::gather_groups(bool any_impacted) {
   work_.gathered_islands.clear();
   for (const auto& place : work_.island_order) {
     const std::vector<ActiveContact>& from = place.joined ? work_.joined_resting : work_.all_resting;
-    ContactIsland island = place.joined ? work_.joined_islands[place.index] : work_.all_islands[place.index];
-    const std::size_t begin = island.begin;
-    island.begin = state_.resting.size();
-    state_.resting.insert(state_.resting.end(), from.begin() + static_cast<std::ptrdiff_t>(begin),
-                          from.begin() + static_cast<std::ptrdiff_t>(island.end));
-    island.end = state_.resting.size();
-    work_.gathered_islands.push_back(island);
+    const ContactIsland& island = place.joined ? work_.joined_islands[place.index] : work_.all_islands[place.index];
+    work_.gathered_islands.push_back(append_island(island, from, state_.resting));
   }
   state_.islands.swap(work_.gathered_islands);
 }
