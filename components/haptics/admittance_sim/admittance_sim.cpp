@@ -10,6 +10,8 @@
 // pose where the device is, so the first setpoint is the last one the arm had). Detached, the
 // user's wrench does not act on the object and no setpoint is published.
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 #include "scene/scene.hpp"
 #include "rigid_body/world.hpp"
@@ -75,6 +77,8 @@ class AdmittanceSim final : public Component {
     p.atol = rtol_ * 1e-2;
     p.integrator = integrator_;
     world_ = std::make_unique<World>(scene_.models, scene_.initial, p);
+    contact_names_.clear();
+    for (const BodyModel& m : scene_.models) contact_names_.emplace_back(m.name);
   }
 
   void tick(Time now) override {
@@ -160,6 +164,8 @@ class AdmittanceSim final : public Component {
       setpoint_.write(setpoint_msg_);
     }
 
+    const std::vector<ActiveContact>& resting = world_->resting_contacts();
+    sort_contacts_by_body(resting);
     for (int i = 0; i < world_->body_count(); ++i) {
       if (!world_->model(i).dynamic) continue;
       const auto ki = world_->kinematics(i);
@@ -167,23 +173,38 @@ class AdmittanceSim final : public Component {
       object_msg_.child_frame_id(world_->model(i).name);
       msgs::to_msg(pose_of(i), object_msg_.pose());
       msgs::to_msg(ki.v, ki.omega, object_msg_.twist());
-      object_msg_.contacts().clear();
-      for (const auto& c : world_->resting_contacts()) {
-        if ((c.feature.a != i && c.feature.b != i) || object_msg_.contacts().size() >= 32) continue;
-        msg::Contact m;
+      // (the last message's contacts are written over: no message built and copied per contact)
+      std::vector<msg::Contact>& out = object_msg_.contacts();
+      const std::vector<std::size_t>& mine = contacts_of_[static_cast<std::size_t>(i)];
+      out.resize(mine.size());
+      for (std::size_t k = 0; k < mine.size(); ++k) {
+        const ActiveContact& c = resting[mine[k]];
+        msg::Contact& m = out[k];
         msgs::to_msg(c.point.p, m.position());
         msgs::to_msg(c.point.n, m.normal());
         m.gap(c.point.gap);
         m.force(c.force);
         m.kind(msg::CONTACT_RESTING);
-        m.other(world_->model(c.feature.a == i ? c.feature.b : c.feature.a).name);
-        object_msg_.contacts().push_back(m);
+        m.other(contact_names_[static_cast<std::size_t>(c.feature.a == i ? c.feature.b : c.feature.a)]);
       }
       objects_.write(object_msg_);
     }
     ++seq_;
   }
 
+  // Each body's resting contacts (the first kContactsPerObject, in the world's order), in one pass
+  // over them, not one pass for each body.
+  void sort_contacts_by_body(const std::vector<ActiveContact>& resting) {
+    contacts_of_.resize(static_cast<std::size_t>(world_->body_count()));
+    for (std::vector<std::size_t>& list : contacts_of_) list.clear();
+    for (std::size_t c = 0; c < resting.size(); ++c)
+      for (const int i : {resting[c].feature.a, resting[c].feature.b}) {
+        std::vector<std::size_t>& list = contacts_of_[static_cast<std::size_t>(i)];
+        if (list.size() < kContactsPerObject) list.push_back(c);
+      }
+  }
+
+  static constexpr std::size_t kContactsPerObject = 32;  // (ObjectState's contacts: a bounded message)
   std::string scene_path_;
   double max_force_ = 200, rtol_ = kHapticRtol, dt_ = 1e-3;
   Integrator integrator_ = Integrator::kRungeKutta;
@@ -205,6 +226,10 @@ class AdmittanceSim final : public Component {
   msg::WrenchStamped sample_;
   msg::CartesianSetpoint setpoint_msg_;
   msg::ObjectState object_msg_;
+  std::vector<std::vector<std::size_t>> contacts_of_;  // publish's: each body's resting contacts
+  // The bodies' names as a Contact's `other` holds them (a bounded string), converted once rather
+  // than at every contact of every tick
+  std::vector<std::decay_t<decltype(std::declval<msg::Contact&>().other())>> contact_names_;
   Input<msg::WrenchStamped> wrench_;
   Output<msg::CartesianSetpoint> setpoint_;
   Output<msg::ObjectState> objects_;
