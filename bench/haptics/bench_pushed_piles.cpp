@@ -8,7 +8,9 @@
 // are what a change is judged on. Reported: the wall time of every 1 ms step over all piles, its
 // p50 / p99 / p999 / longest, and the steps longer than 1 ms (a 1 kHz loop's overruns); and the
 // work a step does on average (right-hand sides, integrator steps, impacts, friction rounds, and
-// how many bodies sleep), the same at every run of a build where the wall time is not. The world
+// how many bodies sleep), the same at every run of a build where the wall time is not. Per pile,
+// issue 16's goal (a 16-body scene at 1 kHz, step p99 under 1 ms over the whole run): how many
+// piles miss it (more than 1 % of their steps over 1 ms) and the most steps over 1 ms of any. The world
 // is admittance_sim's, the boxes at rest sleeping (WorldParams::sleep_after), and, beside it,
 // one that integrates every body at every step (sleeping:0).
 #include <benchmark/benchmark.h>
@@ -79,11 +81,14 @@ void BM_PushedPiles(benchmark::State& state) {
   long failures = 0;
   StepReport work;  // summed over every step
   long unsettled_steps = 0, asleep = 0;
+  int piles_missing = 0, worst_pile = 0;  // piles with more than 1 % of their steps over 1 ms; most steps of one
   for (auto _ : state) {
     step_us.clear();
     double total = 0;
+    piles_missing = worst_pile = 0;
     for (int seed = 0; seed < piles; ++seed) {
       World w(s.models, perturbed(s, seed), p);
+      int pile_over = 0;
       for (int k = 0; k < steps; ++k) {
         const Vec3 force(push.along_x(k * 1e-3), 0, 0);
         w.set_external_wrench(box, w.state(box).q.toRotationMatrix() * force, Vec3::Zero());
@@ -92,12 +97,15 @@ void BM_PushedPiles(benchmark::State& state) {
         const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
         step_us.push_back(us);
         total += us;
+        pile_over += us > 1000.0;
         failures += r.integration_failures;
         work.rhs_evaluations += r.rhs_evaluations, work.integrator_steps += r.integrator_steps;
         work.collisions += r.collisions, work.friction_rounds += r.friction_rounds;
         unsettled_steps += r.friction_unconverged > 0;
         asleep += r.bodies_asleep;
       }
+      piles_missing += pile_over * 100 > steps;
+      worst_pile = std::max(worst_pile, pile_over);
     }
     state.SetIterationTime(total * 1e-6);
   }
@@ -113,6 +121,8 @@ void BM_PushedPiles(benchmark::State& state) {
   state.counters["p99_us"] = at(0.99);
   state.counters["p999_us"] = at(0.999);
   state.counters["max_us"] = step_us.back();
+  state.counters["piles_p99_over_1ms"] = piles_missing;
+  state.counters["worst_pile_over_1ms"] = worst_pile;
   state.counters["held_steps"] = static_cast<double>(failures);  // steps that could not be integrated
   // The work, a step on average (the same at every run of a build: what a change did to it).
   const double n = static_cast<double>(step_us.size());
