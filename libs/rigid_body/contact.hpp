@@ -23,6 +23,15 @@ struct ContactFeature {
   }
 };
 
+// slot: body -> its place among the dynamic bodies, or -1 for a static one (WorldModel::slot).
+// A feature's dynamic body (a, unless a is static; no feature joins two static bodies), which
+// names the island or integration group the feature belongs to.
+inline int dynamic_body(const ContactFeature& f, const std::vector<int>& slot) { return slot[f.a] >= 0 ? f.a : f.b; }
+// Whether the feature joins two dynamic bodies into one island or group (a static one joins none).
+inline bool joins_dynamic_bodies(const ContactFeature& f, const std::vector<int>& slot) {
+  return slot[f.a] >= 0 && slot[f.b] >= 0;
+}
+
 // A feature's identity (ContactFeature's operator==) in one sortable number.
 inline std::uint64_t feature_key(const ContactFeature& f) {
   return (static_cast<std::uint64_t>(f.kind) << 60) | (static_cast<std::uint64_t>(f.a & 0xFFFFF) << 40) |

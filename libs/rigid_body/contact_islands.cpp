@@ -8,11 +8,10 @@ void IslandGrouping::group(std::vector<ActiveContact>& contacts, const std::vect
                            std::vector<ContactIsland>& islands, const std::vector<ActiveContact>& previous) {
   bodies_.reset(slot.size());
   for (const auto& c : contacts)
-    if (slot[c.feature.a] >= 0 && slot[c.feature.b] >= 0) bodies_.join(c.feature.a, c.feature.b);
+    if (joins_dynamic_bodies(c.feature, slot)) bodies_.join(c.feature.a, c.feature.b);
   order_.clear();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const ContactFeature& f = contacts[i].feature;
-    order_.emplace_back(bodies_.root(slot[f.a] >= 0 ? f.a : f.b), i);
+    order_.emplace_back(bodies_.root(dynamic_body(contacts[i].feature, slot)), i);
   }
   std::sort(order_.begin(), order_.end());  // by island, then by position: stable within each
   sorted_.clear();

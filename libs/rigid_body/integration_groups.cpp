@@ -8,7 +8,7 @@ void IntegrationGroups::form(const WorldModel& model, const WorldState& state, c
   const std::size_t n = model.bodies.size();
   bodies_.reset(n);
   const auto join = [&](const ContactFeature& f) {
-    if (model.slot[f.a] >= 0 && model.slot[f.b] >= 0) bodies_.join(f.a, f.b);  // (a static body joins nothing)
+    if (joins_dynamic_bodies(f, model.slot)) bodies_.join(f.a, f.b);
   };
   for (const ActiveContact& c : state.resting) join(c.feature);
   for (const ContactFeature& f : state.watched) join(f);
@@ -17,7 +17,7 @@ void IntegrationGroups::form(const WorldModel& model, const WorldState& state, c
   // cost as much as the whole cube's physics).
   eventful_.assign(n, 0);
   for (const ContactFeature& f : state.watched)
-    eventful_[static_cast<std::size_t>(bodies_.root(model.slot[f.a] >= 0 ? f.a : f.b))] = 1;
+    eventful_[static_cast<std::size_t>(bodies_.root(dynamic_body(f, model.slot)))] = 1;
   int calm = -1;
   for (const int i : model.dynamic) {
     const int r = bodies_.root(i);
@@ -59,7 +59,7 @@ void IntegrationGroups::form(const WorldModel& model, const WorldState& state, c
 }
 
 int IntegrationGroups::group_of(const ContactFeature& f, const WorldModel& model) const {
-  return group_[static_cast<std::size_t>(model.slot[f.a] >= 0 ? f.a : f.b)];
+  return group_[static_cast<std::size_t>(dynamic_body(f, model.slot))];
 }
 
 void IntegrationGroups::assign(const WorldModel& model, const WorldState& state) {
