@@ -597,10 +597,11 @@ void check_merged(PipelineSpec& spec, std::vector<ConfigIssue>& issues) {
                         "component '" + c.name +
                             "' trigger_timeout: found one without a trigger; expected it with trigger: <input>, "
                             "or no trigger_timeout (the component ticks on its rate)"});
-    if (c.spin_ns.set && static_cast<double>(c.spin_ns.value) >= period) {
+    if (c.spin_ns.set && static_cast<double>(c.spin_ns.value) > period) {
       std::ostringstream msg;
-      msg << "component '" << c.name << "' spin: found " << c.spin_ns.value / 1e3 << " us, not less than its period of "
-          << period / 1e3 << " us; expected a spin shorter than the period (typically 50-200 us)";
+      msg << "component '" << c.name << "' spin: found " << c.spin_ns.value / 1e3 << " us, longer than its period of "
+          << period / 1e3 << " us; expected at most the period (typically 50-200 us; the whole period: the thread "
+          << "never sleeps between ticks)";
       issues.push_back({c.spin_ns.where, msg.str()});
     }
     if (spec.clock_mode() != ClockMode::kSim) continue;

@@ -55,6 +55,18 @@ TEST(RealClock, SpinAndPriorityRunAndTheLatenessOfEveryTickIsReported) {
   }
 }
 
+TEST(RealClock, ASpinOfTheWholePeriodKeepsTheThreadBusyAndStillStops) {
+  // spin equal to the period: the thread never sleeps between ticks (a haptic loop on a core of
+  // its own); it ticks, and stops when the run does.
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 58\ndds: {transport: local}\nclock: {mode: real, duration: 50ms}\ncomponents:\n"
+      "  busy: {type: test_probe, rate: 1000, spin: 1ms}\n");
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.stop_reason, "duration reached");
+  ASSERT_EQ(r.components.size(), 1u);
+  EXPECT_GT(r.components[0].ticks, 0u);
+}
+
 TEST(RealClock, CpusPinAComponentsThreadAndACpuTheMachineLacksIsSaid) {
   // cpus: [0] exists everywhere (pinned, nothing said); a CPU beyond the machine's is said, and
   // the component runs unpinned.
