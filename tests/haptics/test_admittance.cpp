@@ -1,6 +1,9 @@
 // The user's wrench path, scenes, and the admittance_sim component driven like the robot would.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <string>
+
 #include "scene/scene.hpp"
 #include "scene/tool_load.hpp"
 #include "wysiwyf/harness.hpp"
@@ -119,6 +122,33 @@ TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
   double weight_carried = 0;
   for (const auto& c : o.contacts()) weight_carried += c.force();
   EXPECT_NEAR(weight_carried, 9.81, 1e-3);
+}
+
+TEST(AdmittanceSim, EachObjectsContactNormalsPointOutOfTheOtherBodyIntoIt) {
+  // A stack: cube2's corners rest on cube1's top face (a contact whose first body is cube2). In
+  // cube1's ObjectState that contact's normal is outward from cube2, downwards, and the table's
+  // upwards: every normal points from the contact into the object.
+  Harness h("admittance_sim", "{scene: scenes/stack_5.yaml}", 1000);
+  auto objects = h.watch<msg::ObjectState>("objects");
+  h.activate();
+  std::map<std::string, msg::ObjectState> latest;
+  for (int i = 0; i < 5; ++i) {
+    h.tick(Time{i * kMs});
+    for (msg::ObjectState o; objects.take(o);) latest[o.child_frame_id().c_str()] = o;
+  }
+  ASSERT_EQ(latest.size(), 5u);
+  for (const auto& [name, o] : latest) {
+    ASSERT_FALSE(o.contacts().empty()) << name;
+    const Vec3 centre(o.pose().position().x(), o.pose().position().y(), o.pose().position().z());
+    for (const auto& c : o.contacts()) {
+      const Vec3 n(c.normal().x(), c.normal().y(), c.normal().z());
+      const Vec3 p(c.position().x(), c.position().y(), c.position().z());
+      EXPECT_NEAR(n.norm(), 1.0, 1e-9) << name;
+      EXPECT_GT(n.dot(centre - p), 0.0) << name << " against " << c.other().c_str();
+    }
+  }
+  for (const auto& c : latest["cube1"].contacts())
+    EXPECT_NEAR(c.normal().z(), std::string(c.other().c_str()) == "table" ? 1.0 : -1.0, 1e-6) << c.other().c_str();
 }
 
 // The user's push through the sensor path on a scene; returns the setpoint after 501 ms.

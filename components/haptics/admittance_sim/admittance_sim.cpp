@@ -181,7 +181,7 @@ class AdmittanceSim final : public Component {
         const ActiveContact& c = resting[mine[k]];
         msg::Contact& m = out[k];
         msgs::to_msg(c.point.p, m.position());
-        msgs::to_msg(c.point.n, m.normal());
+        msgs::to_msg(c.feature.a == i ? c.point.n : Vec3(-c.point.n), m.normal());  // (n: out of b, into a)
         m.gap(c.point.gap);
         m.force(c.force);
         m.kind(msg::CONTACT_RESTING);
