@@ -192,15 +192,15 @@ class AdmittanceSim final : public Component {
     ++seq_;
   }
 
-  // Each body's resting contacts (the first kContactsPerObject, in the world's order), in one pass
-  // over them, not one pass for each body.
+  // Each dynamic body's resting contacts (the first kContactsPerObject, in the world's order), in
+  // one pass over them, not one pass for each body.
   void sort_contacts_by_body(const std::vector<ActiveContact>& resting) {
     contacts_of_.resize(static_cast<std::size_t>(world_->body_count()));
     for (std::vector<std::size_t>& list : contacts_of_) list.clear();
     for (std::size_t c = 0; c < resting.size(); ++c)
       for (const int i : {resting[c].feature.a, resting[c].feature.b}) {
         std::vector<std::size_t>& list = contacts_of_[static_cast<std::size_t>(i)];
-        if (list.size() < kContactsPerObject) list.push_back(c);
+        if (world_->model(i).dynamic && list.size() < kContactsPerObject) list.push_back(c);
       }
   }
 
