@@ -125,9 +125,11 @@ TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
 }
 
 TEST(AdmittanceSim, EachObjectsContactNormalsPointOutOfTheOtherBodyIntoIt) {
-  // A stack: cube2's corners rest on cube1's top face (a contact whose first body is cube2). In
-  // cube1's ObjectState that contact's normal is outward from cube2, downwards, and the table's
-  // upwards: every normal points from the contact into the object.
+  // A stack: each cube touches the next face on face, the corners of one on the face of the other
+  // (the world keeps one of the two twins, its normal out of that contact's second body). In
+  // cube1's ObjectState the contact with cube2 points out of cube2, downwards, and the table's
+  // upwards, whichever body the world lists first: every normal points from the contact into the
+  // object.
   Harness h("admittance_sim", "{scene: scenes/stack_5.yaml}", 1000);
   auto objects = h.watch<msg::ObjectState>("objects");
   h.activate();
