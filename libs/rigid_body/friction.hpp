@@ -7,8 +7,9 @@
 //  - the friction forces with the normal forces' answer to them anticipated (the tangential rows
 //    through the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T over the touching set T, the
 //    normal LCP's clamped contacts and those at zero acceleration that it left without force
-//    because they are redundant: a friction force tilts the body, the touching contacts stop the
-//    tilt), by an active set over the contacts:
+//    because they are redundant, less those the spread below leaves without force: a friction
+//    force tilts the body, the touching contacts stop the tilt), by an active set over the
+//    contacts:
 //    every contact is first asked to stick: the minimum-norm forces that meet the targets exactly
 //    (no sliding by the horizon, or after the impact; the least-norm solution, psd_pseudo_inverse.hpp, so
 //    the four coplanar corners of a face, a singular system, share the load evenly); a contact
@@ -16,8 +17,8 @@
 //    sliding_speed (maximal dissipation), else along the force it needed, and the rest are
 //    solved again (isotropic Coulomb: a disc, no pyramid),
 // until what the forces do, A [f_n; f_t], stops changing. The friction is bounded by normal forces
-// spread over redundant contacts (a face's four corners) as the least forces that do what the
-// LCP's do, the split four equal springs would carry: the LCP's own answer leaves one corner
+// spread over redundant contacts (a face's four corners) as the least forces >= 0 that do what
+// the LCP's do, the split four equal springs would carry: the LCP's own answer leaves one corner
 // without force, and which one flips with the friction load, so the rounds cycled.
 //
 // The rows: a_n = Ann f_n + Ant f_t + bn (>= 0, complementary to f_n >= 0) and
@@ -86,8 +87,9 @@ class FrictionSolver {
 
  private:
   // The normal forces the friction is bounded by: the LCP's, spread over redundant touching
-  // contacts (the same motion, the least forces); sets touching_ and touching_inverse_ (of Ann_TT).
-  // Returns whether the touching set is the one of the last call (its factor kept).
+  // contacts (the same motion, the least forces >= 0); sets touching_, the contacts that carry
+  // them, and touching_inverse_ (of Ann_TT over those). Returns whether that set is the one of
+  // the last call (what depends on it alone kept).
   bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
 
   // The first round's shortcut: where no contact slides with friction and the frictionless normal
@@ -122,7 +124,7 @@ class FrictionSolver {
   std::vector<bool> touching_mask_;                   // per contact: in touching_
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
   std::vector<Eigen::Index> stick_rows_;
-  std::vector<int> touching_, touching_next_;
+  std::vector<int> touching_, touching_next_, touching_last_;
   std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
   Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_, Z_sticking_;
   // The touching set's half inverse F (F^T F = Ann_TT^+; Z = F Ant_T), its sliders' columns:
