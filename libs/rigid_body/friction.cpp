@@ -318,6 +318,42 @@ bool FrictionSolver::anticipation_holds(const Eigen::VectorXd& bn, const Eigen::
   return true;
 }
 
+bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
+  const auto nc = static_cast<Eigen::Index>(touching_last_.size());
+  if (nc == 0 || touching_ == touching_last_ ||
+      !std::includes(touching_.begin(), touching_.end(), touching_last_.begin(), touching_last_.end()))
+    return false;
+  // What the LCP's forces do on every touching contact, and the least forces over the last set
+  // that do it on that set's (touching_inverse_ is still that set's factor).
+  const auto nt = static_cast<Eigen::Index>(touching_.size());
+  motion_.setZero(nt);
+  for (Eigen::Index j = 0; j < nt; ++j) {
+    const int c = touching_[static_cast<std::size_t>(j)];
+    if (fn[c] == 0.0) continue;
+    for (Eigen::Index i = 0; i < nt; ++i) motion_[i] += Ann_(touching_[static_cast<std::size_t>(i)], c) * fn[c];
+  }
+  carried_.resize(nc);
+  for (Eigen::Index i = 0, k = 0; i < nt && k < nc; ++i)
+    if (touching_[static_cast<std::size_t>(i)] == touching_last_[static_cast<std::size_t>(k)])
+      carried_[k++] = motion_[i];
+  touching_inverse_.solve(carried_, carried_);
+  const double scale = std::max(1e-300, motion_.cwiseAbs().maxCoeff());
+  const double force_scale = std::max(1e-300, carried_.cwiseAbs().maxCoeff());
+  if (carried_.minCoeff() < -1e-12 * force_scale) return false;
+  // They must do the same on every touching contact (the others' rows depend on the set's).
+  for (Eigen::Index i = 0; i < nt; ++i) {
+    double done = 0;
+    for (Eigen::Index k = 0; k < nc; ++k)
+      done += Ann_(touching_[static_cast<std::size_t>(i)], touching_last_[static_cast<std::size_t>(k)]) * carried_[k];
+    if (std::abs(done - motion_[i]) > 1e-9 * scale) return false;
+  }
+  for (int c : touching_) fn[c] = 0.0;
+  for (Eigen::Index k = 0; k < nc; ++k) fn[touching_last_[static_cast<std::size_t>(k)]] = std::max(0.0, carried_[k]);
+  touching_.swap(touching_last_);
+  touching_last_ = touching_;
+  return true;
+}
+
 bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn) {
   const auto m = static_cast<Eigen::Index>(fn.size());
   // Touching: clamped, or without force at (round-off from) zero acceleration, a contact the
@@ -341,6 +377,9 @@ bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, 
   // through a pile converged by 0.2-0.3 a round instead of settling).
   touching_last_.swap(touching_);
   touching_.swap(touching_next_);
+  // (Where the last round's carrying set still carries the load, it is kept with its factor: in a
+  // settled jam each round had factored the touching set, then the same carrying set again.)
+  if (last_set_carries(fn)) return true;
   bool factored = false;
   for (;;) {
     const auto nt = static_cast<Eigen::Index>(touching_.size());

@@ -91,6 +91,9 @@ class FrictionSolver {
   // them, and touching_inverse_ (of Ann_TT over those). Returns whether that set is the one of
   // the last call (what depends on it alone kept).
   bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
+  // Whether the last call's carrying set, within this touching set, carries what the LCP's forces
+  // do; if so, sets fn to its least forces and touching_ back to it (its factor kept).
+  bool last_set_carries(Eigen::VectorXd& fn);
 
   // The first round's shortcut: where no contact slides with friction and the frictionless normal
   // forces (the LCP's, seen with no friction load) leave the tangential rows within the rounds'
@@ -119,7 +122,7 @@ class FrictionSolver {
   // Workspace, kept between solves (no allocation once the sizes have been seen).
   Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Akk_, Bkk_;
   Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
-  Eigen::VectorXd bn_eff_;
+  Eigen::VectorXd bn_eff_, motion_, carried_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
   std::vector<bool> touching_mask_;                   // per contact: in touching_
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
