@@ -239,10 +239,13 @@ class Security : public ::testing::Test {
     }
     return "";
   }
-  // Waits until the arm follows the script (the display's setpoints reach it).
+  // Waits until the arm follows the script (the display's setpoints reach it), up to a minute:
+  // ten tries (13 s) once left the arm "waiting for the first setpoint" in a full CI run beside
+  // other tests; alone the test passes in 3-4 s.
   void expect_arm_following() {
     std::string status;
-    for (int attempt = 0; attempt < 10; ++attempt) {
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < give_up) {
       status = arm_status();
       if (status.find("state: ARM_OK") != std::string::npos) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(500));
