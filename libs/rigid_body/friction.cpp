@@ -349,8 +349,7 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
   }
   for (int c : touching_) fn[c] = 0.0;
   for (Eigen::Index k = 0; k < nc; ++k) fn[touching_last_[static_cast<std::size_t>(k)]] = std::max(0.0, carried_[k]);
-  touching_.swap(touching_last_);
-  touching_last_ = touching_;
+  touching_ = touching_last_;
   return true;
 }
 
