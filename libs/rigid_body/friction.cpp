@@ -113,16 +113,15 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         if (!sliding_[static_cast<std::size_t>(i)]) stick_rows_.push_back(2 * i), stick_rows_.push_back(2 * i + 1);
       if (stick_rows_.empty()) break;
       const auto k = static_cast<Eigen::Index>(stick_rows_.size());
-      Akk_.resize(k, k);
-      rhs_.resize(k);
-      for (Eigen::Index a = 0; a < k; ++a) {
-        const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
-        double load_a = c_[row];
-        for (Eigen::Index i = 0; i < m; ++i)
-          if (sliding_[static_cast<std::size_t>(i)])
-            load_a += S_.row(row).segment<2>(2 * i).dot(r.ft.segment<2>(2 * i));
-        rhs_[a] = -load_a;
-        for (Eigen::Index b = 0; b < k; ++b) Akk_(a, b) = S_(row, stick_rows_[static_cast<std::size_t>(b)]);
+      // The sticking rows' load: c plus what the sliders' friction does there, added by S's
+      // columns (contiguous; S is symmetric), each slider's two terms summed first as before.
+      load_ = c_;
+      for (Eigen::Index i = 0; i < m; ++i) {
+        if (!sliding_[static_cast<std::size_t>(i)]) continue;
+        const double fx = r.ft[2 * i], fy = r.ft[2 * i + 1];
+        const double* sx = S_.col(2 * i).data();
+        const double* sy = S_.col(2 * i + 1).data();
+        for (Eigen::Index row = 0; row < 2 * m; ++row) load_[row] += sx[row] * fx + sy[row] * fy;
       }
       // The exact solution nearest zero in the metric sum |f_t,i|^2 / (mu f_n,i): each contact
       // carries friction in proportion to what it can hold (none without a normal force), so
@@ -133,7 +132,17 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         weight_[a] = std::sqrt(std::max(0.0, mu[i] * r.fn[i]));
       }
       // (Akk W y = rhs and W Akk W y = W rhs have the same solutions; the second is symmetric.)
-      Bkk_.noalias() = weight_.asDiagonal() * Akk_ * weight_.asDiagonal();
+      // W Akk W, gathered from S column by column (contiguous).
+      Bkk_.resize(k, k);
+      rhs_.resize(k);
+      for (Eigen::Index b = 0; b < k; ++b) {
+        const Eigen::Index col = stick_rows_[static_cast<std::size_t>(b)];
+        const double* s = S_.col(col).data();
+        double* out = Bkk_.col(b).data();
+        for (Eigen::Index a = 0; a < k; ++a)
+          out[a] = weight_[a] * s[stick_rows_[static_cast<std::size_t>(a)]] * weight_[b];
+        rhs_[b] = -load_[col];
+      }
       stick_inverse_.compute(Bkk_, kStickRank);
       stick_inverse_.solve(weight_.cwiseProduct(rhs_), y_);
       x_ = weight_.cwiseProduct(y_);

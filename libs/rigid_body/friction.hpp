@@ -120,9 +120,9 @@ class FrictionSolver {
   bool anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load, FrictionResult& r);
 
   // Workspace, kept between solves (no allocation once the sizes have been seen).
-  Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Akk_, Bkk_;
+  Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Bkk_;
   Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
-  Eigen::VectorXd bn_eff_, motion_, carried_;
+  Eigen::VectorXd bn_eff_, motion_, carried_, load_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
   std::vector<bool> touching_mask_;                   // per contact: in touching_
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
