@@ -130,10 +130,9 @@ class FrictionSolver {
   std::vector<int> touching_, touching_next_, touching_last_;
   std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
   Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_, Z_sticking_;
-  // The touching set's half inverse F (F^T F = Ann_TT^+; Z = F Ant_T), its sliders' columns:
-  // made by anticipate_sliders once per touching set.
+  // The touching set's half inverse F (F^T F = Ann_TT^+; Z = F Ant_T), made with Z once per
+  // touching set, and its sliders' columns.
   Eigen::MatrixXd F_, F_sliders_, identity_;
-  bool half_inverse_ready_ = false;
   Eigen::VectorXd slider_rhs_, stick_free_;
   Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
   PsdPseudoInverse stick_inverse_, touching_inverse_;
