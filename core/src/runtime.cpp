@@ -24,6 +24,7 @@
 #include "wysiwyf/detail/doorbell.hpp"
 #include "tick_stats.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
+#include "wysiwyf/real_time_throttling.hpp"
 #include "wysiwyf/tick_deadline.hpp"
 
 namespace wysiwyf {
@@ -312,10 +313,17 @@ struct Runtime::Impl final : RunHost {
   void set_fifo_priority(Slot& slot) {
     sched_param p{};
     p.sched_priority = slot.spec->priority.value;
-    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0)
+    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
       log(slot.spec->name, "priority " + std::to_string(p.sched_priority) +
                                " (SCHED_FIFO) refused: " + std::strerror(err) +
                                "; expected CAP_SYS_NICE or an rtprio limit (ulimit -r); running at normal priority");
+      return;
+    }
+    // (a periodic thread's spin; a data-triggered one sleeps on its doorbell)
+    const std::int64_t spin = !slot.doorbell && slot.spec->spin_ns.set ? slot.spec->spin_ns.value : 0;
+    if (const std::string w = real_time_throttling_warning(spin, slot.period_ns, read_real_time_bandwidth());
+        !w.empty())
+      log(slot.spec->name, "priority " + std::to_string(p.sched_priority) + ": " + w);
   }
 
   // Pins the slot's thread to its `cpus`; a CPU this machine lacks, or a refusal, is said and the

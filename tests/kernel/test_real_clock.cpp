@@ -1,6 +1,7 @@
 // The real-time executor and the DDS set-up options. These run on the wall clock, so they check
 // behaviour (it ticks, it stops, it counts overruns), never how precise the timing is.
 #include "test_support.hpp"
+#include "wysiwyf/real_time_throttling.hpp"
 
 namespace wysiwyf::test {
 
@@ -65,6 +66,28 @@ TEST(RealClock, ASpinOfTheWholePeriodKeepsTheThreadBusyAndStillStops) {
   EXPECT_EQ(r.stop_reason, "duration reached");
   ASSERT_EQ(r.components.size(), 1u);
   EXPECT_GT(r.components[0].ticks, 0u);
+}
+
+TEST(RealClock, PriorityWithASpinOfTheWholePeriodWarnsOfTheKernelsRealTimeLimit) {
+  // SCHED_FIFO threads may run 950000 of every 1000000 us by default: one that never sleeps is
+  // stopped for 50 ms every second. (Decided from the numbers: a test thread at SCHED_FIFO that
+  // never sleeps would take a core of the test machine.)
+  const RealTimeBandwidth linux_default{950000, 1000000};
+  const std::string said = real_time_throttling_warning(1'000'000, 1'000'000, linux_default);
+  EXPECT_NE(said.find("never sleeps"), std::string::npos) << said;
+  EXPECT_NE(said.find("950000 of every 1000000 us"), std::string::npos) << said;
+  EXPECT_NE(said.find("stopped for about 50 ms every 1000 ms"), std::string::npos) << said;
+  EXPECT_NE(said.find("expected a spin below the period"), std::string::npos) << said;
+  EXPECT_NE(real_time_throttling_warning(2'000'000, 1'000'000, linux_default), "");  // (more than the period)
+  // Nothing to say: the thread sleeps in each period, or the kernel sets no limit.
+  EXPECT_EQ(real_time_throttling_warning(100'000, 1'000'000, linux_default), "");
+  EXPECT_EQ(real_time_throttling_warning(0, 1'000'000, linux_default), "");
+  EXPECT_EQ(real_time_throttling_warning(1'000'000, 1'000'000, RealTimeBandwidth{-1, 1000000}), "");
+  EXPECT_EQ(real_time_throttling_warning(1'000'000, 1'000'000, RealTimeBandwidth{1000000, 1000000}), "");
+  // This machine's limit reads as a limit within its period, or as none.
+  const RealTimeBandwidth here = read_real_time_bandwidth();
+  EXPECT_TRUE(here.runtime_us == -1 || (here.period_us > 0 && here.runtime_us <= here.period_us))
+      << here.runtime_us << " of " << here.period_us;
 }
 
 TEST(RealClock, CpusPinAComponentsThreadAndACpuTheMachineLacksIsSaid) {
