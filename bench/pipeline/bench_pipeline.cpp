@@ -6,9 +6,10 @@
 // and how late its ticks start (from the kernel's report). The recording is made once, by
 // record-vision.yaml on the sim clock, into the build tree.
 // HapticLoop: the 1 kHz haptic loop with sixteen bodies (config/pipelines/bench/haptics-pile.yaml,
-// issue 16) on the real clock: admittance_sim's tick p50/p99 (the kernel's last 1024 ticks: the
-// settled pile pushed), its longest tick and how many ticks overran their period over the whole
-// run (the landing included), and how late ticks started.
+// issue 16) on the real clock: admittance_sim's tick p50/p99 and longest tick over the kernel's
+// last 1024 ticks (the pile pulled and settling), its tick p99 and longest tick over the whole
+// run (the landing, push and pull included: the goal's figure), how many periods it missed, and
+// how late ticks started.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -113,6 +114,8 @@ void HapticLoop(benchmark::State& state) {
       state.counters["tick_p50_us"] = c.tick_p50_us;
       state.counters["tick_p99_us"] = c.tick_p99_us;
       state.counters["tick_max_us"] = c.tick_max_us;
+      state.counters["run_tick_p99_us"] = c.run_tick_p99_us;  // goal: under the 1 ms period
+      state.counters["run_tick_max_us"] = c.run_tick_max_us;
       state.counters["late_p99_us"] = c.late_p99_us;
       return;
     }

@@ -575,11 +575,11 @@ void Runtime::Impl::teardown(RunResult& result) {
   for (auto& slot : slots) {
     const auto s = slot->stats.summarise();
     std::lock_guard<std::mutex> lock(slot->health_mutex);
-    result.components.push_back(ComponentReport{slot->spec->name, slot->spec->type.value, s.ticks, s.overruns, s.p50_us,
-                                                s.p99_us, s.max_us, s.late_p50_us, s.late_p99_us, s.late_max_us,
-                                                slot->dropped(), slot->rejected, slot->warnings,
-                                                slot->last_error.empty() ? to_string(slot->worst_health) : "failed",
-                                                slot->last_error.empty() ? slot->worst_reason : slot->last_error});
+    result.components.push_back(ComponentReport{
+        slot->spec->name, slot->spec->type.value, s.ticks, s.overruns, s.p50_us, s.p99_us, s.max_us, s.run_p99_us,
+        s.run_max_us, s.late_p50_us, s.late_p99_us, s.late_max_us, slot->dropped(), slot->rejected, slot->warnings,
+        slot->last_error.empty() ? to_string(slot->worst_health) : "failed",
+        slot->last_error.empty() ? slot->worst_reason : slot->last_error});
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

@@ -27,6 +27,8 @@ class TestProbe final : public wysiwyf::Component {
                                  wysiwyf::Range{0, 1e9});
     tick_sleep_us_ =
         ctx.param<int>("tick_sleep_us", 0, "sleep this long in every tick (overrun tests)", wysiwyf::Range{0, 1e6});
+    sleep_ticks_ = ctx.param<int>("sleep_ticks", 0, "with tick_sleep_us: only the first this many ticks sleep (0: all)",
+                                  wysiwyf::Range{0, 1e9});
     emit_nan_ = ctx.param<bool>("emit_nan", false, "write NaN in out.position[0] (bad-input tests)");
     hold_ticks_ = ctx.param<std::array<double, 2>>(
         "hold_ticks", {-1, -1}, "report holding from the first tick index to the second (health tests)");
@@ -64,7 +66,8 @@ class TestProbe final : public wysiwyf::Component {
     else
       report_health(wysiwyf::Health::kOk);
     ++ticks_;
-    if (tick_sleep_us_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(tick_sleep_us_));
+    if (tick_sleep_us_ > 0 && (sleep_ticks_ == 0 || ticks_ <= sleep_ticks_))
+      std::this_thread::sleep_for(std::chrono::microseconds(tick_sleep_us_));
     double sum = 0;
     while (in_.take(sample_)) {
       if (name_writers_ && in_.writer() != last_writer_) {
@@ -107,7 +110,7 @@ class TestProbe final : public wysiwyf::Component {
   std::array<double, 3> weights_{};
   std::vector<double> window_;
   std::string fail_phase_, record_, lifecycle_log_;
-  int tick_sleep_us_ = 0;
+  int tick_sleep_us_ = 0, sleep_ticks_ = 0;
   int fail_tick_ = 0, stop_after_ = 0, ticks_ = 0, received_ = 0, fault_tick_ = -1;
   std::array<double, 2> hold_ticks_{-1, -1};
   std::uint64_t seq_ = 0;

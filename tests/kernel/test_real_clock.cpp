@@ -34,6 +34,23 @@ TEST(RealClock, ATickLongerThanItsPeriodIsCountedAsAnOverrun) {
   EXPECT_GE(r.components[0].overruns, 4 * (r.components[0].ticks - 1));
 }
 
+TEST(RealClock, TheReportGivesTheTickP99OverTheWholeRunBesideTheLast1024Ticks) {
+  // 2000 ticks on the sim clock, the first 30 sleeping 20 ms (1.5 %): over the whole run the p99
+  // is one of those; the last 1024 ticks (the Diagnostics window) hold none of them.
+  const RunResult r = run_pipeline(
+      "wysiwyf: 1\ndomain: 61\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 2s}\ncomponents:\n"
+      "  probe: {type: test_probe, rate: 1000, params: {tick_sleep_us: 20000, sleep_ticks: 30}}\n");
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.components.size(), 1u);
+  const ComponentReport& c = r.components[0];
+  EXPECT_GE(c.ticks, 2000u);
+  EXPECT_GE(c.run_tick_max_us, 20000.0);
+  EXPECT_GE(c.run_tick_p99_us, 20000.0);
+  EXPECT_LE(c.run_tick_p99_us, c.run_tick_max_us);
+  EXPECT_LT(c.tick_p99_us, 20000.0);  // (the window: 1024 ticks that did not sleep)
+  EXPECT_LE(c.tick_max_us, c.run_tick_max_us);
+}
+
 TEST(RealClock, SpinAndPriorityRunAndTheLatenessOfEveryTickIsReported) {
   // spin: wake 200 us early and busy-wait; priority: SCHED_FIFO if this process may (a warning
   // otherwise; the run goes on either way). What is checked is behaviour, not precision.
