@@ -1,5 +1,6 @@
-// The real-time executor and the DDS set-up options. These run on the wall clock, so they check
-// behaviour (it ticks, it stops, it counts overruns), never how precise the timing is.
+// The real-time executor, the DDS set-up options and the tick-time report (wall time on either
+// clock). These run on the wall clock, so they check behaviour (it ticks, it stops, it counts
+// overruns, a tick that slept is counted as long), never how precise the timing is.
 #include "test_support.hpp"
 #include "wysiwyf/real_time_throttling.hpp"
 
@@ -34,7 +35,7 @@ TEST(RealClock, ATickLongerThanItsPeriodIsCountedAsAnOverrun) {
   EXPECT_GE(r.components[0].overruns, 4 * (r.components[0].ticks - 1));
 }
 
-TEST(RealClock, TheReportGivesTheTickP99OverTheWholeRunBesideTheLast1024Ticks) {
+TEST(TickReport, GivesTheP99OverTheWholeRunBesideTheLast1024Ticks) {
   // 2000 ticks on the sim clock, the first 30 sleeping 20 ms (1.5 %): over the whole run the p99
   // is one of those; the last 1024 ticks (the Diagnostics window) hold none of them.
   const RunResult r = run_pipeline(
