@@ -46,13 +46,15 @@ void print_report(const RunResult& r, bool real) {
             << " at t=" << r.sim_time_ns * 1e-9 << " s after " << r.wall_seconds << " s wall\n";
   std::cout << std::left << std::setw(18) << "component" << std::setw(20) << "type" << std::right << std::setw(10)
             << "ticks" << std::setw(11) << "p50 us" << std::setw(11) << "p99 us" << std::setw(11) << "max us"
-            << std::setw(10) << "overruns" << std::setw(9) << "dropped" << std::setw(10) << "rejected" << std::setw(10)
-            << "warnings" << (real ? "   late p50 us   late p99 us" : "") << "  state\n";
+            << std::setw(13) << "run p99 us" << std::setw(13) << "run max us" << std::setw(10) << "overruns"
+            << std::setw(9) << "dropped" << std::setw(10) << "rejected" << std::setw(10) << "warnings"
+            << (real ? "   late p50 us   late p99 us" : "") << "  state\n";
   for (const auto& c : r.components) {
     std::cout << std::left << std::setw(18) << c.name << std::setw(20) << c.type << std::right << std::setw(10)
               << c.ticks << std::setprecision(1) << std::setw(11) << c.tick_p50_us << std::setw(11) << c.tick_p99_us
-              << std::setw(11) << c.tick_max_us << std::setw(10) << c.overruns << std::setw(9) << c.dropped_samples
-              << std::setw(10) << c.rejected_samples << std::setw(10) << c.warnings;
+              << std::setw(11) << c.tick_max_us << std::setw(13) << c.run_tick_p99_us << std::setw(13)
+              << c.run_tick_max_us << std::setw(10) << c.overruns << std::setw(9) << c.dropped_samples << std::setw(10)
+              << c.rejected_samples << std::setw(10) << c.warnings;
     if (real) std::cout << std::setw(14) << c.late_p50_us << std::setw(14) << c.late_p99_us;
     std::cout << "  " << c.state << (c.state_reason.empty() ? "" : ": " + c.state_reason) << "\n";
   }
