@@ -53,6 +53,9 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   double best_change = std::numeric_limits<double>::infinity();
   int best_round = 1;
   touching_.clear();  // (a new Ann: no factor kept from another solve)
+  for (TouchingFactors& f : factors_) f.set.clear(), f.schur = false, f.used = 0;
+  factor_ = nullptr;
+  uses_ = 0;
   for (r.iterations = 1; r.iterations <= max_rounds; ++r.iterations) {
     // Normal forces, friction as a known load.
     ft_seen_ = r.ft;
@@ -63,7 +66,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     r.ok = true;
     r.fn = normal.f;
     if (r.iterations == 1 && without_friction_settles(A, normal, bt, mu, load, r)) return r;
-    const bool same_touching = spread_normal_forces(normal, load, r.fn) && r.iterations > 1;
+    spread_normal_forces(normal, load, r.fn);
     // The friction step sees the tangential rows as the touching normal contacts will answer them:
     // a friction force tilts the body, and the touching contacts' forces change to stop the tilt.
     // With the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T in place of Att (and the load
@@ -71,9 +74,15 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // solve, as long as the touching set stays: the rounds settle in one or two, not the
     // twenty-odd of plain alternation (which converges by about 0.6 a round). (Ann_TT^+: the
     // least forces that answer it; redundant contacts share the answer.) S and Z depend on the
-    // touching set only: kept while it stays.
+    // touching set only: kept with its factor (bind_factor), for as long as the solve lasts.
     const auto nt = static_cast<Eigen::Index>(touching_.size());
-    if (!same_touching) {
+    if (nt == 0) bind_factor();  // (the spread binds a factor only to a set that has contacts)
+    if (!factor_->schur) {
+      factor_->schur = true;
+      Eigen::MatrixXd& S_ = factor_->S;
+      Eigen::MatrixXd& Z_ = factor_->Z;
+      Eigen::MatrixXd& F_ = factor_->F;
+      Eigen::MatrixXd& AntC_ = factor_->AntC;
       S_ = Att;
       if (nt > 0) {
         AntC_.resize(nt, 2 * m);
@@ -83,7 +92,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         // too): a product in place of a solve for each of the 2m columns (-7 % of the friction
         // solve's time in pushed piles).
         identity_.setIdentity(nt, nt);
-        touching_inverse_.half_solve(identity_, F_);
+        factor_->inverse.half_solve(identity_, F_);
         Z_.noalias() = F_ * AntC_;
         // (one triangle and its mirror: S is symmetric; a quarter less time than the full product
         // on a pile's 56-80 rows)
@@ -91,6 +100,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         S_.triangularView<Eigen::StrictlyUpper>() = S_.transpose();
       }
     }
+    const Eigen::MatrixXd& S_ = factor_->S;
+    const Eigen::MatrixXd& Z_ = factor_->Z;
     if (r.iterations == 1) {
       // What the forces this LCP answered do: the friction it saw (the last step's, mostly) and its
       // normal forces. A first round that keeps that friction has settled: a step of a resting
@@ -187,8 +198,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     f_ << r.fn, r.ft;
     if (const auto nt = static_cast<Eigen::Index>(touching_.size()); nt > 0) {
       ft_seen_ = r.ft - ft_seen_;
-      answer_.noalias() = AntC_ * ft_seen_;
-      touching_inverse_.solve(answer_, answer_);
+      answer_.noalias() = factor_->AntC * ft_seen_;
+      factor_->inverse.solve(answer_, answer_);
       for (Eigen::Index i = 0; i < nt; ++i) f_[touching_[static_cast<std::size_t>(i)]] -= answer_[i];
     }
     effect_.noalias() = A * f_;
@@ -238,6 +249,9 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   }
   const auto ns = static_cast<Eigen::Index>(sliders_.size());
   if (ns == 0) return;
+  const Eigen::MatrixXd& S_ = factor_->S;
+  const Eigen::MatrixXd& Z_ = factor_->Z;
+  const Eigen::MatrixXd& F_ = factor_->F;
   const auto k = static_cast<Eigen::Index>(stick_rows_.size());
   // The touching forces f_T' = g - W ft: g = f_T + Ann_TT^+ Ant_T ft_seen (what they were, less
   // their answer to the friction the LCP saw), W = Ann_TT^+ Ant_T. The sliders' friction is
@@ -333,7 +347,7 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
       !std::includes(touching_.begin(), touching_.end(), touching_last_.begin(), touching_last_.end()))
     return false;
   // What the LCP's forces do on every touching contact, and the least forces over the last set
-  // that do it on that set's (touching_inverse_ is still that set's factor).
+  // that do it on that set's (factor_ is still that set's).
   const auto nt = static_cast<Eigen::Index>(touching_.size());
   motion_.setZero(nt);
   for (Eigen::Index j = 0; j < nt; ++j) {
@@ -345,7 +359,7 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
   for (Eigen::Index i = 0, k = 0; i < nt && k < nc; ++i)
     if (touching_[static_cast<std::size_t>(i)] == touching_last_[static_cast<std::size_t>(k)])
       carried_[k++] = motion_[i];
-  touching_inverse_.solve(carried_, carried_);
+  factor_->inverse.solve(carried_, carried_);
   const double scale = std::max(1e-300, motion_.cwiseAbs().maxCoeff());
   const double force_scale = std::max(1e-300, carried_.cwiseAbs().maxCoeff());
   if (carried_.minCoeff() < -1e-12 * force_scale) return false;
@@ -362,7 +376,31 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
   return true;
 }
 
-bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn) {
+void FrictionSolver::bind_factor() {
+  TouchingFactors* oldest = &factors_.front();
+  for (TouchingFactors& f : factors_) {
+    if (f.used > 0 && f.set == touching_) {
+      factor_ = &f;
+      f.used = ++uses_;
+      return;
+    }
+    if (f.used < oldest->used) oldest = &f;
+  }
+  // A set not seen in this solve: factored in place of the one least recently used.
+  factor_ = oldest;
+  TouchingFactors& f = *oldest;
+  f.set = touching_;
+  f.used = ++uses_;
+  f.schur = false;
+  const auto nt = static_cast<Eigen::Index>(touching_.size());
+  f.Ann.resize(nt, nt);
+  for (Eigen::Index i = 0; i < nt; ++i)
+    for (Eigen::Index j = 0; j < nt; ++j)
+      f.Ann(i, j) = Ann_(touching_[static_cast<std::size_t>(i)], touching_[static_cast<std::size_t>(j)]);
+  f.inverse.compute(f.Ann, kTouchingRank);
+}
+
+void FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn) {
   const auto m = static_cast<Eigen::Index>(fn.size());
   // Touching: clamped, or without force at (round-off from) zero acceleration, a contact the
   // pivoting kept out of C because its row depends on the clamped ones'.
@@ -387,24 +425,16 @@ bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, 
   touching_.swap(touching_next_);
   // (Where the last round's carrying set still carries the load, it is kept with its factor: in a
   // settled jam each round had factored the touching set, then the same carrying set again.)
-  if (last_set_carries(fn)) return true;
-  bool factored = false;
+  if (last_set_carries(fn)) return;
   for (;;) {
     const auto nt = static_cast<Eigen::Index>(touching_.size());
     if (nt == 0) break;
     f_touching_.resize(nt);
     for (Eigen::Index i = 0; i < nt; ++i) f_touching_[i] = fn[touching_[static_cast<std::size_t>(i)]];
-    if (factored || touching_ != touching_last_) {  // (Ann is the solve's: its factor stays with the set)
-      Ann_touching_.resize(nt, nt);
-      for (Eigen::Index i = 0; i < nt; ++i)
-        for (Eigen::Index j = 0; j < nt; ++j)
-          Ann_touching_(i, j) = Ann_(touching_[static_cast<std::size_t>(i)], touching_[static_cast<std::size_t>(j)]);
-      touching_inverse_.compute(Ann_touching_, kTouchingRank);
-      factored = true;
-    }
-    if (touching_inverse_.rank() == nt) break;  // (no redundant contact: the forces are unique)
-    spread_.noalias() = Ann_touching_ * f_touching_;
-    touching_inverse_.solve(spread_, spread_);
+    bind_factor();
+    if (factor_->inverse.rank() == nt) break;  // (no redundant contact: the forces are unique)
+    spread_.noalias() = factor_->Ann * f_touching_;
+    factor_->inverse.solve(spread_, spread_);
     double toward = 1.0;
     Eigen::Index reaches_zero = -1;
     for (Eigen::Index i = 0; i < nt; ++i) {
@@ -419,8 +449,6 @@ bool FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, 
     fn[touching_[static_cast<std::size_t>(reaches_zero)]] = 0.0;
     touching_.erase(touching_.begin() + reaches_zero);
   }
-  // (the same set refactored gives the same factor: what depends on the set alone still holds)
-  return touching_ == touching_last_;
 }
 
 }  // namespace wysiwyf::haptics

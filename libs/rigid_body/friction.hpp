@@ -25,6 +25,7 @@
 // a_t = Atn f_n + Att f_t + bt (-> 0 for sticking contacts), contact i's tangent rows 2i, 2i+1.
 #include <Eigen/Dense>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -86,11 +87,27 @@ class FrictionSolver {
   int stall_rounds = 3;
 
  private:
+  // What depends on a touching set T alone, within one solve (Ann is the solve's): Ann_TT and its
+  // factor, and, once the friction step has needed them, the Schur complement S, Z and the half
+  // inverse F (F^T F = Ann_TT^+, Z = F Ant_T) with Ant_T (AntC).
+  struct TouchingFactors {
+    std::vector<int> set;
+    Eigen::MatrixXd Ann;
+    PsdPseudoInverse inverse;
+    bool schur = false;  // S, Z, F and AntC made for this set
+    Eigen::MatrixXd S, Z, F, AntC;
+    long used = 0;  // when last bound (0: holds no set of this solve)
+  };
+  // Binds factor_ to touching_'s: the one kept, or made in place of the least recently used. A
+  // jam's rounds can alternate between two touching sets, one contact more or less (38 contacts,
+  // nothing sliding: 35, 38, 35, 38 carrying contacts, stopped unsettled after five rounds, for
+  // 40 steps on end); the set of two rounds before comes back with its factor and S.
+  void bind_factor();
+
   // The normal forces the friction is bounded by: the LCP's, spread over redundant touching
   // contacts (the same motion, the least forces >= 0); sets touching_, the contacts that carry
-  // them, and touching_inverse_ (of Ann_TT over those). Returns whether that set is the one of
-  // the last call (what depends on it alone kept).
-  bool spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
+  // them, and binds factor_ to them.
+  void spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
   // Whether the last call's carrying set, within this touching set, carries what the LCP's forces
   // do; if so, sets fn to its least forces and touching_ back to it (its factor kept).
   bool last_set_carries(Eigen::VectorXd& fn);
@@ -107,7 +124,7 @@ class FrictionSolver {
   // lambda d itself and to the stickers' answer to it (a linear system over the sliders, where
   // rounds converged by 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft,
   // the stickers' friction with them, unless a slider would be pressed off. Needs the round's
-  // touching set (touching_inverse_, Z_), ft_seen_ and the last stick solve (stick_rows_,
+  // touching set (factor_), ft_seen_ and the last stick solve (stick_rows_,
   // weight_, stick_inverse_, x_).
   void anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r);
 
@@ -120,7 +137,7 @@ class FrictionSolver {
   bool anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load, FrictionResult& r);
 
   // Workspace, kept between solves (no allocation once the sizes have been seen).
-  Eigen::MatrixXd Ann_, S_, AntC_, Ann_touching_, Z_, Bkk_;
+  Eigen::MatrixXd Ann_, Bkk_;
   Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
   Eigen::VectorXd bn_eff_, motion_, carried_, load_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
@@ -130,12 +147,13 @@ class FrictionSolver {
   std::vector<int> touching_, touching_next_, touching_last_;
   std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
   Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_, Z_sticking_;
-  // The touching set's half inverse F (F^T F = Ann_TT^+; Z = F Ant_T), made with Z once per
-  // touching set, and its sliders' columns.
-  Eigen::MatrixXd F_, F_sliders_, identity_;
+  Eigen::MatrixXd F_sliders_, identity_;  // (F's sliders' columns)
   Eigen::VectorXd slider_rhs_, stick_free_;
   Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
-  PsdPseudoInverse stick_inverse_, touching_inverse_;
+  PsdPseudoInverse stick_inverse_;
+  std::array<TouchingFactors, 4> factors_;  // (4: a two-set cycle and the spread's sets on the way)
+  TouchingFactors* factor_ = nullptr;       // touching_'s
+  long uses_ = 0;
 };
 
 }  // namespace wysiwyf::haptics
