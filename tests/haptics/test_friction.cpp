@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -275,6 +276,38 @@ TEST(FrictionSolver, AFacesFourCornersShareTheNormalLoadAndTheFrictionIsBoundedB
   EXPECT_NEAR(r.ft(Eigen::seq(1, 7, 2)).sum(), 0.0, 1e-9);
   const Eigen::VectorXd front = (Eigen::VectorXd(2) << r.fn[0], r.fn[3]).finished();
   EXPECT_GT(front.minCoeff(), r.fn[1]) << "the push tips the cube onto its front (+x) corners";
+}
+
+// What a solve keeps per touching set (its factor, its Schur complement) is the solve's own: a
+// solver that has just solved another problem over the same contacts (another cube on the same
+// four corners: the same touching set, another Ann) answers exactly as a fresh one.
+TEST(FrictionSolver, KeepsNothingOfOneSolvesTouchingSetsForTheNext) {
+  const double h = 0.1, mu = 0.5;
+  const Eigen::MatrixXd J = corner_jacobian(h);
+  const auto problem = [&](double m, double push_height) {
+    const double inertia = m * (2 * h) * (2 * h) / 6;
+    const Vec3 push(0.9 * mu * m * g, 0.2 * mu * m * g, 0), at_point(0, 0, push_height);
+    Eigen::VectorXd load(6);
+    load << (push + Vec3(0, 0, -m * g)) / m, at_point.cross(push) / inertia;
+    return std::make_pair(contact_matrix(J, m, inertia), Eigen::VectorXd(J * load));
+  };
+  const auto solve = [&](FrictionSolver& solver, const std::pair<Eigen::MatrixXd, Eigen::VectorXd>& p) {
+    LcpSolver lcp;
+    return solver.solve(lcp, p.first, p.second.head(4), p.second.tail(8), Eigen::VectorXd::Constant(4, mu),
+                        Eigen::VectorXd::Zero(8));
+  };
+  const auto light = problem(0.3, -0.05), heavy = problem(2.0, 0.05);
+  FrictionSolver fresh, used;
+  const FrictionResult expected = solve(fresh, heavy);
+  ASSERT_TRUE(expected.ok);
+  const FrictionResult before = solve(used, light);
+  ASSERT_TRUE(before.ok);
+  const FrictionResult after = solve(used, heavy);
+  ASSERT_TRUE(after.ok);
+  EXPECT_EQ(after.iterations, expected.iterations);
+  EXPECT_EQ(after.fn, expected.fn) << after.fn.transpose() << " against " << expected.fn.transpose();
+  EXPECT_EQ(after.ft, expected.ft) << after.ft.transpose() << " against " << expected.ft.transpose();
+  EXPECT_GT((before.fn - expected.fn).cwiseAbs().maxCoeff(), 1.0) << "two problems, not one";
 }
 
 // A cube resting alone (most boxes of a pile) takes no friction and no stick solve; the least push
