@@ -168,9 +168,16 @@ check "vision frozen and thawed, the user's script ran to its end: $(hits)" scri
 check "vision frozen: the display's process named it by the hand's DDS deadline (50 ms)" \
   grep -q "topic 'hand/position': no sample for its deadline (50 ms) from 'demo-hosts/vision/" "$work/display.log"
 # (The 250 Hz stream may still be lost once to a scheduling stall of this busy machine, vision or
-# not: what the freeze must not do is hold the display.)
-check "vision frozen: the display never held for the hand or the planner" \
-  bash -c "! grep -Eq '> fault: .*(hand|planner)' '$work/display.log'"
+# not: what the freeze must not do is hold the display. The same goes for the planner's own
+# fault, its joint states or device pose overdue: those come from the robot's host, not the
+# vision's (in a full ctest run the robot's process once stalled over 50 ms while vision was
+# frozen, its wrist reading late 74 times: the planner held, alone of the run's checks).)
+never_held_for_vision() {
+  local holds
+  holds=$(grep -E '> fault: .*(hand|planner)' "$work/display.log" | grep -v 'no joint state or device pose')
+  [ -z "$holds" ]
+}
+check "vision frozen: the display never held for the hand or the planner" never_held_for_vision
 
 # 5. Each group's link down for 2 s.
 run_display display link
@@ -209,6 +216,5 @@ check "robot restarted: the display started again through idle -> surface" \
 check "robot killed and restarted, its user's script ran to its end: $(hits)" script_done
 run_display vision kill
 check "vision killed and restarted, the user's script ran to its end: $(hits)" script_done
-check "vision killed: the display never held for the hand or the planner" \
-  bash -c "! grep -Eq '> fault: .*(hand|planner)' '$work/display.log'"
+check "vision killed: the display never held for the hand or the planner" never_held_for_vision
 exit $((failures > 0))
