@@ -79,11 +79,12 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     if (nt == 0) bind_factor();  // (the spread binds a factor only to a set that has contacts)
     if (!factor_->schur) {
       factor_->schur = true;
-      Eigen::MatrixXd& S_ = factor_->S;
       Eigen::MatrixXd& Z_ = factor_->Z;
       Eigen::MatrixXd& F_ = factor_->F;
       Eigen::MatrixXd& AntC_ = factor_->AntC;
-      S_ = Att;
+      factor_->s_column.assign(static_cast<std::size_t>(2 * m), 0);
+      factor_->s_whole = false;
+      factor_->Zt.resize(0, 0);
       if (nt > 0) {
         AntC_.resize(nt, 2 * m);
         for (Eigen::Index i = 0; i < nt; ++i) AntC_.row(i) = Ant.row(touching_[static_cast<std::size_t>(i)]);
@@ -94,10 +95,9 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         identity_.setIdentity(nt, nt);
         factor_->inverse.half_solve(identity_, F_);
         Z_.noalias() = F_ * AntC_;
-        // (one triangle and its mirror: S is symmetric; a quarter less time than the full product
-        // on a pile's 56-80 rows)
-        S_.selfadjointView<Eigen::Lower>().rankUpdate(Z_.transpose(), -1.0);
-        S_.triangularView<Eigen::StrictlyUpper>() = S_.transpose();
+      } else {
+        factor_->S = Att;  // (nothing touches: nothing answers the friction)
+        factor_->s_whole = true;
       }
     }
     const Eigen::MatrixXd& S_ = factor_->S;
@@ -129,15 +129,19 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         if (!sliding_[static_cast<std::size_t>(i)]) stick_rows_.push_back(2 * i), stick_rows_.push_back(2 * i + 1);
       if (stick_rows_.empty()) break;
       const auto k = static_cast<Eigen::Index>(stick_rows_.size());
-      // The sticking rows' load: c plus what the sliders' friction does there, added by S's
-      // columns (contiguous; S is symmetric), each slider's two terms summed first as before.
-      load_ = c_;
-      for (Eigen::Index i = 0; i < m; ++i) {
-        if (!sliding_[static_cast<std::size_t>(i)]) continue;
-        const double fx = r.ft[2 * i], fy = r.ft[2 * i + 1];
-        const double* sx = S_.col(2 * i).data();
-        const double* sy = S_.col(2 * i + 1).data();
-        for (Eigen::Index row = 0; row < 2 * m; ++row) load_[row] += sx[row] * fx + sy[row] * fy;
+      schur_columns(Att);
+      // The sticking rows' load: c plus what the sliders' friction does there, read down each
+      // sticking row's column of S (S is symmetric), each slider's two terms summed first.
+      sliding_now_.clear();
+      for (Eigen::Index i = 0; i < m; ++i)
+        if (sliding_[static_cast<std::size_t>(i)]) sliding_now_.push_back(static_cast<int>(i));
+      load_.resize(2 * m);
+      for (Eigen::Index a = 0; a < k; ++a) {
+        const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
+        const double* s = S_.col(row).data();
+        double sum = c_[row];
+        for (const int i : sliding_now_) sum += s[2 * i] * r.ft[2 * i] + s[2 * i + 1] * r.ft[2 * i + 1];
+        load_[row] = sum;
       }
       // The exact solution nearest zero in the metric sum |f_t,i|^2 / (mu f_n,i): each contact
       // carries friction in proportion to what it can hold (none without a normal force), so
@@ -277,7 +281,7 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
       const Eigen::Vector2d& d = direction_[static_cast<std::size_t>(i)];
       for (Eigen::Index a = 0; a < k; ++a) {
         const Eigen::Index row = stick_rows_[static_cast<std::size_t>(a)];
-        stick_cols_(a, j) = weight_[a] * (S_(row, 2 * i) * d.x() + S_(row, 2 * i + 1) * d.y());
+        stick_cols_(a, j) = weight_[a] * (S_(2 * i, row) * d.x() + S_(2 * i + 1, row) * d.y());  // (S symmetric)
       }
     }
     stick_inverse_.solve(stick_cols_, stick_cols_);
@@ -374,6 +378,42 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
   for (Eigen::Index k = 0; k < nc; ++k) fn[touching_last_[static_cast<std::size_t>(k)]] = std::max(0.0, carried_[k]);
   touching_ = touching_last_;
   return true;
+}
+
+void FrictionSolver::schur_columns(const Eigen::Ref<const Eigen::MatrixXd>& Att) {
+  TouchingFactors& f = *factor_;
+  if (f.s_whole) return;
+  const Eigen::Index n = Att.rows();
+  Eigen::Index missing = 0;
+  for (const Eigen::Index c : stick_rows_) missing += !f.s_column[static_cast<std::size_t>(c)];
+  if (missing == 0) return;
+  const Eigen::Index nt = f.Z.rows();
+  if (2 * missing > n) {
+    // S whole: one triangle and its mirror (a quarter less time than the full product on a
+    // pile's 56-80 rows).
+    f.S = Att;
+    f.S.selfadjointView<Eigen::Lower>().rankUpdate(f.Z.transpose(), -1.0);
+    f.S.triangularView<Eigen::StrictlyUpper>() = f.S.transpose();
+    f.s_whole = true;
+    return;
+  }
+  // Column by column: S(:, c) = Att(:, c) - sum_l Z(l, :)^T Z(l, c), the terms taken in the same
+  // order for every entry, so S(a, c) and S(c, a) are the same to the bit.
+  if (f.Zt.rows() != n) {
+    f.Zt = f.Z.transpose();
+    f.S.resize(n, n);
+  }
+  for (const Eigen::Index c : stick_rows_) {
+    if (f.s_column[static_cast<std::size_t>(c)]) continue;
+    f.s_column[static_cast<std::size_t>(c)] = 1;
+    double* out = f.S.col(c).data();
+    for (Eigen::Index a = 0; a < n; ++a) out[a] = Att(a, c);
+    for (Eigen::Index l = 0; l < nt; ++l) {
+      const double z = f.Z(l, c);
+      const double* zt = f.Zt.col(l).data();
+      for (Eigen::Index a = 0; a < n; ++a) out[a] -= zt[a] * z;
+    }
+  }
 }
 
 void FrictionSolver::bind_factor() {
