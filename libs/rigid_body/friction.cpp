@@ -54,7 +54,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   int best_round = 1;
   touching_.clear();  // (a new Ann: no factor kept from another solve)
   for (TouchingFactors& f : factors_) f.set.clear(), f.schur = false, f.used = 0;
-  factor_ = nullptr;
+  bound_ = 0;
   uses_ = 0;
   for (r.iterations = 1; r.iterations <= max_rounds; ++r.iterations) {
     // Normal forces, friction as a known load.
@@ -77,14 +77,14 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // touching set only: kept with its factor (bind_factor), for as long as the solve lasts.
     const auto nt = static_cast<Eigen::Index>(touching_.size());
     if (nt == 0) bind_factor();  // (the spread binds a factor only to a set that has contacts)
-    if (!factor_->schur) {
-      factor_->schur = true;
-      Eigen::MatrixXd& Z_ = factor_->Z;
-      Eigen::MatrixXd& F_ = factor_->F;
-      Eigen::MatrixXd& AntC_ = factor_->AntC;
-      factor_->s_column.assign(static_cast<std::size_t>(2 * m), 0);
-      factor_->s_whole = false;
-      factor_->Zt.resize(0, 0);
+    if (!factor().schur) {
+      factor().schur = true;
+      Eigen::MatrixXd& Z_ = factor().Z;
+      Eigen::MatrixXd& F_ = factor().F;
+      Eigen::MatrixXd& AntC_ = factor().AntC;
+      factor().s_column.assign(static_cast<std::size_t>(2 * m), 0);
+      factor().s_whole = false;
+      factor().Zt.resize(0, 0);
       if (nt > 0) {
         AntC_.resize(nt, 2 * m);
         for (Eigen::Index i = 0; i < nt; ++i) AntC_.row(i) = Ant.row(touching_[static_cast<std::size_t>(i)]);
@@ -93,15 +93,15 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         // too): a product in place of a solve for each of the 2m columns (-7 % of the friction
         // solve's time in pushed piles).
         identity_.setIdentity(nt, nt);
-        factor_->inverse.half_solve(identity_, F_);
+        factor().inverse.half_solve(identity_, F_);
         Z_.noalias() = F_ * AntC_;
       } else {
-        factor_->S = Att;  // (nothing touches: nothing answers the friction)
-        factor_->s_whole = true;
+        factor().S = Att;  // (nothing touches: nothing answers the friction)
+        factor().s_whole = true;
       }
     }
-    const Eigen::MatrixXd& S_ = factor_->S;
-    const Eigen::MatrixXd& Z_ = factor_->Z;
+    const Eigen::MatrixXd& S_ = factor().S;
+    const Eigen::MatrixXd& Z_ = factor().Z;
     if (r.iterations == 1) {
       // What the forces this LCP answered do: the friction it saw (the last step's, mostly) and its
       // normal forces. A first round that keeps that friction has settled: a step of a resting
@@ -202,8 +202,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     f_ << r.fn, r.ft;
     if (const auto nt = static_cast<Eigen::Index>(touching_.size()); nt > 0) {
       ft_seen_ = r.ft - ft_seen_;
-      answer_.noalias() = factor_->AntC * ft_seen_;
-      factor_->inverse.solve(answer_, answer_);
+      answer_.noalias() = factor().AntC * ft_seen_;
+      factor().inverse.solve(answer_, answer_);
       for (Eigen::Index i = 0; i < nt; ++i) f_[touching_[static_cast<std::size_t>(i)]] -= answer_[i];
     }
     effect_.noalias() = A * f_;
@@ -253,9 +253,9 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   }
   const auto ns = static_cast<Eigen::Index>(sliders_.size());
   if (ns == 0) return;
-  const Eigen::MatrixXd& S_ = factor_->S;
-  const Eigen::MatrixXd& Z_ = factor_->Z;
-  const Eigen::MatrixXd& F_ = factor_->F;
+  const Eigen::MatrixXd& S_ = factor().S;
+  const Eigen::MatrixXd& Z_ = factor().Z;
+  const Eigen::MatrixXd& F_ = factor().F;
   const auto k = static_cast<Eigen::Index>(stick_rows_.size());
   // The touching forces f_T' = g - W ft: g = f_T + Ann_TT^+ Ant_T ft_seen (what they were, less
   // their answer to the friction the LCP saw), W = Ann_TT^+ Ant_T. The sliders' friction is
@@ -351,7 +351,7 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
       !std::includes(touching_.begin(), touching_.end(), touching_last_.begin(), touching_last_.end()))
     return false;
   // What the LCP's forces do on every touching contact, and the least forces over the last set
-  // that do it on that set's (factor_ is still that set's).
+  // that do it on that set's (factor() is still that set's).
   const auto nt = static_cast<Eigen::Index>(touching_.size());
   motion_.setZero(nt);
   for (Eigen::Index j = 0; j < nt; ++j) {
@@ -363,7 +363,7 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
   for (Eigen::Index i = 0, k = 0; i < nt && k < nc; ++i)
     if (touching_[static_cast<std::size_t>(i)] == touching_last_[static_cast<std::size_t>(k)])
       carried_[k++] = motion_[i];
-  factor_->inverse.solve(carried_, carried_);
+  factor().inverse.solve(carried_, carried_);
   const double scale = std::max(1e-300, motion_.cwiseAbs().maxCoeff());
   const double force_scale = std::max(1e-300, carried_.cwiseAbs().maxCoeff());
   if (carried_.minCoeff() < -1e-12 * force_scale) return false;
@@ -381,7 +381,7 @@ bool FrictionSolver::last_set_carries(Eigen::VectorXd& fn) {
 }
 
 void FrictionSolver::schur_columns(const Eigen::Ref<const Eigen::MatrixXd>& Att) {
-  TouchingFactors& f = *factor_;
+  TouchingFactors& f = factor();
   if (f.s_whole) return;
   const Eigen::Index n = Att.rows();
   Eigen::Index missing = 0;
@@ -417,18 +417,19 @@ void FrictionSolver::schur_columns(const Eigen::Ref<const Eigen::MatrixXd>& Att)
 }
 
 void FrictionSolver::bind_factor() {
-  TouchingFactors* oldest = &factors_.front();
-  for (TouchingFactors& f : factors_) {
+  std::size_t oldest = 0;
+  for (std::size_t k = 0; k < factors_.size(); ++k) {
+    TouchingFactors& f = factors_[k];
     if (f.used > 0 && f.set == touching_) {
-      factor_ = &f;
+      bound_ = k;
       f.used = ++uses_;
       return;
     }
-    if (f.used < oldest->used) oldest = &f;
+    if (f.used < factors_[oldest].used) oldest = k;
   }
   // A set not seen in this solve: factored in place of the one least recently used.
-  factor_ = oldest;
-  TouchingFactors& f = *oldest;
+  bound_ = oldest;
+  TouchingFactors& f = factors_[oldest];
   f.set = touching_;
   f.used = ++uses_;
   f.schur = false;
@@ -472,9 +473,9 @@ void FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, 
     f_touching_.resize(nt);
     for (Eigen::Index i = 0; i < nt; ++i) f_touching_[i] = fn[touching_[static_cast<std::size_t>(i)]];
     bind_factor();
-    if (factor_->inverse.rank() == nt) break;  // (no redundant contact: the forces are unique)
-    spread_.noalias() = factor_->Ann * f_touching_;
-    factor_->inverse.solve(spread_, spread_);
+    if (factor().inverse.rank() == nt) break;  // (no redundant contact: the forces are unique)
+    spread_.noalias() = factor().Ann * f_touching_;
+    factor().inverse.solve(spread_, spread_);
     double toward = 1.0;
     Eigen::Index reaches_zero = -1;
     for (Eigen::Index i = 0; i < nt; ++i) {

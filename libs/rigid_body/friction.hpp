@@ -102,12 +102,13 @@ class FrictionSolver {
     bool s_whole = false;
     long used = 0;  // when last bound (0: holds no set of this solve)
   };
-  // Binds factor_ to touching_'s: the one kept, or made in place of the least recently used. A
+  // Binds factor() to touching_'s: the one kept, or made in place of the least recently used. A
   // jam's rounds can alternate between two touching sets, one contact more or less (38 contacts,
   // nothing sliding: 35, 38, 35, 38 carrying contacts, stopped unsettled after five rounds, for
   // 40 steps on end); the set of two rounds before comes back with its factor and S.
   void bind_factor();
-  // Makes the columns of factor_'s S = Att - Z^T Z that the sticking rows (stick_rows_) read: S
+  TouchingFactors& factor() { return factors_[bound_]; }
+  // Makes the columns of factor()'s S = Att - Z^T Z that the sticking rows (stick_rows_) read: S
   // is read along the sticking rows only (their system, their load, the sliders' effect on
   // them), and S is symmetric, so their columns are all it needs. Where the stickers are few
   // (an impact, most contacts sliding from the start: 0-15 sticking rows of 56-80), only those
@@ -118,7 +119,7 @@ class FrictionSolver {
 
   // The normal forces the friction is bounded by: the LCP's, spread over redundant touching
   // contacts (the same motion, the least forces >= 0); sets touching_, the contacts that carry
-  // them, and binds factor_ to them.
+  // them, and binds factor() to them.
   void spread_normal_forces(const LcpResult& normal, double load, Eigen::VectorXd& fn);
   // Whether the last call's carrying set, within this touching set, carries what the LCP's forces
   // do; if so, sets fn to its least forces and touching_ back to it (its factor kept).
@@ -136,7 +137,7 @@ class FrictionSolver {
   // lambda d itself and to the stickers' answer to it (a linear system over the sliders, where
   // rounds converged by 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft,
   // the stickers' friction with them, unless a slider would be pressed off. Needs the round's
-  // touching set (factor_), ft_seen_ and the last stick solve (stick_rows_,
+  // touching set (factor()), ft_seen_ and the last stick solve (stick_rows_,
   // weight_, stick_inverse_, x_).
   void anticipate_sliders(const Eigen::VectorXd& mu, FrictionResult& r);
 
@@ -165,7 +166,7 @@ class FrictionSolver {
   Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
   PsdPseudoInverse stick_inverse_;
   std::array<TouchingFactors, 4> factors_;  // (4: a two-set cycle and the spread's sets on the way)
-  TouchingFactors* factor_ = nullptr;       // touching_'s
+  std::size_t bound_ = 0;                   // factors_[bound_]: touching_'s (bind_factor)
   long uses_ = 0;
 };
 
