@@ -77,14 +77,14 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // touching set only: kept with its factor (bind_factor), for as long as the solve lasts.
     const auto nt = static_cast<Eigen::Index>(touching_.size());
     if (nt == 0) bind_factor();  // (the spread binds a factor only to a set that has contacts)
-    if (!factor().schur) {
-      factor().schur = true;
-      Eigen::MatrixXd& Z_ = factor().Z;
-      Eigen::MatrixXd& F_ = factor().F;
-      Eigen::MatrixXd& AntC_ = factor().AntC;
-      factor().s_column.assign(static_cast<std::size_t>(2 * m), 0);
-      factor().s_whole = false;
-      factor().Zt.resize(0, 0);
+    if (TouchingFactors& set = factor(); !set.schur) {
+      set.schur = true;
+      Eigen::MatrixXd& Z_ = set.Z;
+      Eigen::MatrixXd& F_ = set.F;
+      Eigen::MatrixXd& AntC_ = set.AntC;
+      set.s_column.assign(static_cast<std::size_t>(2 * m), 0);
+      set.s_whole = false;
+      set.Zt.resize(0, 0);
       if (nt > 0) {
         AntC_.resize(nt, 2 * m);
         for (Eigen::Index i = 0; i < nt; ++i) AntC_.row(i) = Ant.row(touching_[static_cast<std::size_t>(i)]);
@@ -93,11 +93,11 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         // too): a product in place of a solve for each of the 2m columns (-7 % of the friction
         // solve's time in pushed piles).
         identity_.setIdentity(nt, nt);
-        factor().inverse.half_solve(identity_, F_);
+        set.inverse.half_solve(identity_, F_);
         Z_.noalias() = F_ * AntC_;
       } else {
-        factor().S = Att;  // (nothing touches: nothing answers the friction)
-        factor().s_whole = true;
+        set.S = Att;  // (nothing touches: nothing answers the friction)
+        set.s_whole = true;
       }
     }
     const Eigen::MatrixXd& S_ = factor().S;
