@@ -3,7 +3,8 @@
 
 Usage: speeds_after_loss.py JOINT_STATES SETPOINTS PERIOD_MS
 The loss is the last setpoint's stamp; the tracker may carry the arm on for one period of the
-stream (PERIOD_MS) from the setpoint's arrival, no longer: the next setpoint was due at the
+stream (PERIOD_MS: the period the arm measured, as its fault text gives it, rounded up) from the
+setpoint's arrival, no longer: the next setpoint was due at the
 last stamp + PERIOD_MS + the delivery (allowed 5 ms on a loaded machine). From then on no joint
 may speed up beyond noise: prints each
 joint's speed when the next setpoint was due and the largest speed after it, and exits 1 when a
