@@ -216,14 +216,35 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       r.converged = true;
       return r;
     }
-    effect_prev_.swap(effect_);
     if (r.iterations > 1 && change < 0.5 * best_change) best_change = change, best_round = r.iterations;
+    // A two-round cycle: the forces and what they do are what they were two rounds before (a
+    // jam's touching set alternating between two, a contact more or less), so the rounds to come
+    // repeat these two, every change the same and none halving, to the stall. Ended now, on the
+    // answer the stall would end on: this round's, or the last one's where the rounds left are odd.
+    if (end_two_round_cycles && r.iterations >= 3 && repeats_two_rounds_back(r, load)) {
+      const int stall_at = std::min(max_rounds, std::max(r.iterations, best_round + stall_rounds));
+      if ((stall_at - r.iterations) % 2 == 1) r.fn.swap(fn_last_), r.ft.swap(ft_last_);
+      break;
+    }
     if (r.iterations - best_round >= stall_rounds) break;
+    effect_before_.swap(effect_prev_);
+    effect_prev_.swap(effect_);
+    fn_before_.swap(fn_last_);
+    ft_before_.swap(ft_last_);
+    fn_last_ = r.fn;
+    ft_last_ = r.ft;
   }
   r.iterations = std::min(r.iterations, max_rounds);
   // Not settled within the rounds: the last normal solve is still exact for the friction it saw,
   // so non-penetration holds; the caller reports it.
   return r;
+}
+
+bool FrictionSolver::repeats_two_rounds_back(const FrictionResult& r, double load) const {
+  const double force_scale = std::max(1e-300, r.fn.cwiseAbs().maxCoeff());
+  return (effect_ - effect_before_).cwiseAbs().maxCoeff() <= tolerance * load &&
+         (r.fn - fn_before_).cwiseAbs().maxCoeff() <= tolerance * force_scale &&
+         (r.ft - ft_before_).cwiseAbs().maxCoeff() <= tolerance * force_scale;
 }
 
 bool FrictionSolver::without_friction_settles(const Eigen::MatrixXd& A, const LcpResult& normal,

@@ -85,6 +85,10 @@ class FrictionSolver {
   // loads) goes on as long as it is let, and its last round is as good as any; a contraction
   // halves it within two rounds. (6, before: three more rounds, each a pile's LCP and stick solve.)
   int stall_rounds = 3;
+  // A two-round cycle (the forces and what they do repeat every other round: a jam's touching set
+  // alternating between two) ended as soon as it shows, on the answer the stall would end on
+  // (false: at the stall). A pile's jam pulled on: 5 rounds a step for 40 steps on end.
+  bool end_two_round_cycles = true;
 
  private:
   // What depends on a touching set T alone, within one solve (Ann is the solve's): Ann_TT and its
@@ -125,6 +129,10 @@ class FrictionSolver {
   // do; if so, sets fn to its least forces and touching_ back to it (its factor kept).
   bool last_set_carries(Eigen::VectorXd& fn);
 
+  // Whether this round's forces r and what they do (effect_) are, within the rounds' tolerance,
+  // those of two rounds before (the solver's state then repeats: a two-round cycle).
+  bool repeats_two_rounds_back(const FrictionResult& r, double load) const;
+
   // The first round's shortcut: where no contact slides with friction and the frictionless normal
   // forces (the LCP's, seen with no friction load) leave the tangential rows within the rounds'
   // tolerance, no friction is the answer: what the stick solve would find does less than a
@@ -152,6 +160,8 @@ class FrictionSolver {
   // Workspace, kept between solves (no allocation once the sizes have been seen).
   Eigen::MatrixXd Ann_, Bkk_;
   Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
+  Eigen::VectorXd effect_before_, fn_before_, ft_before_;  // two rounds before
+  Eigen::VectorXd fn_last_, ft_last_;                      // the last round's answer
   Eigen::VectorXd bn_eff_, motion_, carried_, load_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
   std::vector<bool> touching_mask_;                   // per contact: in touching_

@@ -7,7 +7,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -440,6 +445,69 @@ TEST(FrictionSolver, ABoxSlidingOnARestingBoxIsHeldBackByMuFnWhileTheTableHoldsT
     // The lower cube's corners do not slide on the table (its friction holds it exactly).
     EXPECT_LT((A.bottomRows(2 * n) * forces + bt).head(8).cwiseAbs().maxCoeff(), 1e-9 * g);
   }
+}
+
+}  // namespace
+}  // namespace wysiwyf::haptics
+
+namespace wysiwyf::haptics {
+namespace {
+
+// A problem written as tests/haptics/data/*.txt: matrices by name, and the LCP's warm start.
+struct FrictionProblem {
+  std::map<std::string, Eigen::MatrixXd> m;
+  LcpIndices clamped;
+};
+
+FrictionProblem read_problem(const std::string& path) {
+  std::ifstream in(path);
+  FrictionProblem p;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream head(line);
+    std::string name;
+    if (!(head >> name)) continue;  // (the rest of a matrix's last row)
+    if (name == "clamped") {
+      std::vector<int> c;
+      for (int i; head >> i;) c.push_back(i);
+      p.clamped.resize(static_cast<Eigen::Index>(c.size()));
+      for (std::size_t i = 0; i < c.size(); ++i) p.clamped[static_cast<Eigen::Index>(i)] = c[i];
+      continue;
+    }
+    Eigen::Index rows = 0, cols = 0;
+    head >> rows >> cols;
+    Eigen::MatrixXd& x = p.m[name];
+    x.resize(rows, cols);
+    for (Eigen::Index i = 0; i < rows; ++i)
+      for (Eigen::Index j = 0; j < cols; ++j) in >> x(i, j);
+  }
+  return p;
+}
+
+// A pushed pile's contacts whose rounds fall into a two-round cycle (the same forces every other
+// round, never settling) end as soon as the cycle shows, on the answer the stall would have ended
+// on: one round less here, forty steps of a jam two rounds less each.
+TEST(FrictionSolver, ATwoRoundCycleEndsAsSoonAsItShowsOnTheAnswerTheStallWouldEndOn) {
+  const FrictionProblem p = read_problem(std::string(WYSIWYF_HAPTICS_DATA_DIR) + "/friction_two_round_cycle.txt");
+  ASSERT_EQ(p.m.size(), 6u);
+  const auto solve = [&](bool end_cycles) {
+    FrictionSolver solver;
+    solver.end_two_round_cycles = end_cycles;
+    LcpSolver lcp;
+    return solver.solve(lcp, p.m.at("A"), p.m.at("bn"), p.m.at("bt"), p.m.at("mu"), p.m.at("vt"), p.m.at("ft_start"),
+                        p.clamped);
+  };
+  const FrictionResult stalled = solve(false), ended = solve(true);
+  ASSERT_TRUE(stalled.ok && ended.ok);
+  EXPECT_FALSE(stalled.converged || ended.converged);  // (a cycle: unsettled either way)
+  EXPECT_EQ(stalled.iterations, 6);
+  EXPECT_EQ(ended.iterations, 5);
+  const double scale = stalled.fn.cwiseAbs().maxCoeff();
+  EXPECT_LE((ended.fn - stalled.fn).cwiseAbs().maxCoeff(), 1e-8 * scale)
+      << ended.fn.transpose() << " against " << stalled.fn.transpose();
+  EXPECT_LE((ended.ft - stalled.ft).cwiseAbs().maxCoeff(), 1e-8 * scale)
+      << ended.ft.transpose() << " against " << stalled.ft.transpose();
 }
 
 }  // namespace
