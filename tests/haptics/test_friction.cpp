@@ -447,12 +447,6 @@ TEST(FrictionSolver, ABoxSlidingOnARestingBoxIsHeldBackByMuFnWhileTheTableHoldsT
   }
 }
 
-}  // namespace
-}  // namespace wysiwyf::haptics
-
-namespace wysiwyf::haptics {
-namespace {
-
 // A problem written as tests/haptics/data/*.txt: matrices by name, and the LCP's warm start.
 struct FrictionProblem {
   std::map<std::string, Eigen::MatrixXd> m;
