@@ -1,14 +1,17 @@
 // What watching costs the loop: config/pipelines/admittance-push.yaml on the real clock (the
 // 1 kHz admittance_sim with spin), run again and again with nothing attached and with each
 // monitor attached from another process (topic hz, topic echo, record --all, the Foxglove bridge
-// with a client subscribed to every topic), the conditions interleaved round by round in one run.
+// with a client subscribed to every topic), the conditions interleaved round by round, in three
+// families: the loop's thread as is, pinned to a core of its own, and SCHED_FIFO.
 // The monitors take samples in batches (their readers' latency budget, dds::kBatchingPeriod);
 // the `_prompt` conditions ask for each sample as it is written (--prompt), as before batching.
 // Reports admittance_sim's tick p50/p99 (the kernel's last 1024 ticks: the end of each run,
 // long after the monitor attached) as the median over the rounds, and checks that the monitor
-// really received samples.
+// really received samples. `nothing_again` is "nothing" once more, reported against it: the
+// noise floor of the ratios in the same run. Rounds: 5, or WYSIWYF_BENCH_ROUNDS.
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <sched.h>
 #include <signal.h>
 #include <spawn.h>
@@ -18,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -49,11 +53,22 @@ const fs::path kWork = fs::path(WYSIWYF_BENCH_WORK_DIR) / "monitor";
 struct Condition {
   std::string name;
   std::vector<std::vector<std::string>> processes;
-  std::string proof;  // text the last process's output must contain
-  // The haptic loop on a core of its own: physics pinned to CPU 1 (`cpus: [1]`), the rest of
-  // the pipeline process (DDS, the publisher thread) and the monitors on CPU 0.
-  bool pinned = false;
+  std::string proof;     // text the last process's output must contain
+  std::string family{};  // "" (as is), "pinned_" or "fifo_": how the haptic loop's thread runs
 };
+
+// How the haptic loop's thread runs, each family measured on its own against its own "nothing":
+// as is (a normal thread, anywhere: `priority: ~`); pinned: a normal thread on a core of its own
+// (`cpus: [1]`), the rest of the pipeline process (DDS, the publisher thread) and the monitors on
+// CPU 0; fifo: SCHED_FIFO (`priority: 80`, as admittance-push.yaml ships it), anywhere, as a
+// real-time loop is run (no normal thread preempts its tick).
+const std::vector<std::string> kFamilies{"", "pinned_", "fifo_"};
+bool pinned(const Condition& c) { return c.family == "pinned_"; }
+std::string family_of(const std::string& name) {
+  for (const std::string& f : kFamilies)
+    if (!f.empty() && name.rfind(f, 0) == 0) return f;
+  return "";
+}
 
 std::vector<std::string> cli(std::vector<std::string> args) {
   args.insert(args.begin(), WYSIWYF_CLI);
@@ -64,6 +79,7 @@ std::vector<Condition> base_conditions() {
   const std::string domain = std::to_string(kDomain);
   return {
       {"nothing", {}, ""},
+      {"nothing_again", {}, ""},
       {"topic_hz", {cli({"topic", "hz", "robot/setpoint", "--domain", domain, "--transport", "local"})}, "rate "},
       {"topic_hz_prompt",
        {cli({"topic", "hz", "robot/setpoint", "--domain", domain, "--transport", "local", "--prompt"})},
@@ -86,15 +102,34 @@ std::vector<Condition> base_conditions() {
   };
 }
 
-// Each condition as is, then (on a machine of 2 CPUs or more) pinned.
-std::vector<Condition> conditions() {
-  std::vector<Condition> all = base_conditions();
-  if (sysconf(_SC_NPROCESSORS_ONLN) >= 2)
-    for (Condition c : base_conditions()) {
-      c.name = "pinned_" + c.name;
-      c.pinned = true;
-      all.push_back(c);
-    }
+// Whether a thread of this process may run SCHED_FIFO at the fifo family's priority (root, or
+// an rtprio limit): tried on a thread of its own.
+bool fifo_allowed() {
+  static const bool allowed = [] {
+    bool ok = false;
+    std::thread probe([&ok] {
+      sched_param p{};
+      p.sched_priority = 80;
+      ok = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+    });
+    probe.join();
+    if (!ok) std::fprintf(stderr, "bench_monitor: SCHED_FIFO is not allowed here; the fifo_ conditions are left out\n");
+    return ok;
+  }();
+  return allowed;
+}
+
+// The conditions of one family; pinned needs a machine of 2 CPUs or more, fifo the right to
+// SCHED_FIFO.
+std::vector<Condition> conditions(const std::string& family) {
+  std::vector<Condition> all;
+  if (family == "pinned_" && sysconf(_SC_NPROCESSORS_ONLN) < 2) return all;
+  if (family == "fifo_" && !fifo_allowed()) return all;
+  for (Condition c : base_conditions()) {
+    c.name = family + c.name;
+    c.family = family;
+    all.push_back(c);
+  }
   return all;
 }
 
@@ -159,19 +194,20 @@ Figures run_once(const Condition& c, int round) {
                                 "clock.pace=null",
                                 "clock.step=null",
                                 std::string("clock.duration=") + (bench::smoke() ? "1500ms" : "4s")};
-  if (c.pinned) sets.push_back("physics.cpus=1");
+  if (pinned(c)) sets.push_back("physics.cpus=1");
+  sets.push_back(c.family == "fifo_" ? "physics.priority=80" : "physics.priority=~");
   const PipelineSpec spec = load_pipeline(std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/admittance-push.yaml", sets);
   const ValidationResult v = validate_pipeline(spec, loader);
   if (!v.errors.empty()) throw std::runtime_error(v.errors.front().str());
   fs::create_directories(kWork);
   fs::path out;
-  if (c.pinned) run_on({0});  // the monitors started next, and DDS's threads, inherit it
+  if (pinned(c)) run_on({0});  // the monitors started next, and DDS's threads, inherit it
   struct Unpin {
     bool pinned;
     ~Unpin() {
       if (pinned) run_on(all_cpus());
     }
-  } unpin{c.pinned};
+  } unpin{pinned(c)};
   std::vector<std::unique_ptr<Child>> monitor;
   for (std::size_t i = 0; i < c.processes.size(); ++i) {
     out = kWork / (c.name + "-" + std::to_string(round) + "-" + std::to_string(i) + ".txt");
@@ -182,6 +218,8 @@ Figures run_once(const Condition& c, int round) {
   const RunResult r = runtime.run();
   while (!monitor.empty()) monitor.pop_back();  // the client first, then the bridge
   if (!r.ok) throw std::runtime_error(r.error + "\n" + log.str());
+  if (log.str().find("(SCHED_FIFO) refused") != std::string::npos)
+    throw std::runtime_error(c.name + ": the loop could not run SCHED_FIFO here:\n" + log.str());
   if (!c.proof.empty()) {
     std::ifstream in(out);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -198,24 +236,35 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
-// Every condition, interleaved round by round; measured once for all the benchmarks.
-const std::map<std::string, std::vector<Figures>>& measurements() {
-  static const std::map<std::string, std::vector<Figures>> all = [] {
-    std::map<std::string, std::vector<Figures>> m;
-    const int rounds = bench::smoke() ? 1 : 5;
-    for (int round = 0; round < rounds; ++round)
-      for (const auto& c : conditions()) m[c.name].push_back(run_once(c, round));
-    return m;
-  }();
-  return all;
+int rounds() {
+  if (bench::smoke()) return 1;
+  const char* n = std::getenv("WYSIWYF_BENCH_ROUNDS");
+  return n && std::atoi(n) > 0 ? std::atoi(n) : 5;
+}
+
+// A family's conditions, interleaved round by round, each round starting one condition further
+// on (no condition always first after the pause between rounds); measured once, when the
+// family's first benchmark runs (so a filter can run one family alone).
+const std::map<std::string, std::vector<Figures>>& measurements(const std::string& family) {
+  static std::map<std::string, std::map<std::string, std::vector<Figures>>> by_family;
+  if (const auto done = by_family.find(family); done != by_family.end()) return done->second;
+  std::map<std::string, std::vector<Figures>> m;
+  const std::vector<Condition> all = conditions(family);
+  for (int round = 0; round < rounds(); ++round)
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const Condition& c = all[(i + static_cast<std::size_t>(round)) % all.size()];
+      m[c.name].push_back(run_once(c, round));
+    }
+  return by_family[family] = std::move(m);
 }
 
 void TickWithMonitor(benchmark::State& state, const std::string& name) {
   try {
-    const auto& m = measurements();
+    const std::string family = family_of(name);
+    const auto& m = measurements(family);
     std::vector<double> p50, p99, base50, base99;
     for (const auto& f : m.at(name)) p50.push_back(f.p50_us), p99.push_back(f.p99_us);
-    const std::string base = name.rfind("pinned_", 0) == 0 ? "pinned_nothing" : "nothing";
+    const std::string base = family + "nothing";
     for (const auto& f : m.at(base)) base50.push_back(f.p50_us), base99.push_back(f.p99_us);
     for (auto _ : state) benchmark::DoNotOptimize(p50.data());
     state.counters["p50_us"] = median(p50);
@@ -224,9 +273,13 @@ void TickWithMonitor(benchmark::State& state, const std::string& name) {
     state.counters["p99_vs_nothing"] = median(p99) / median(base99);
     // Each round against the "nothing" of the same round, the median of those: steadier where
     // the machine drifts over the run (rounds are minutes apart, conditions of a round seconds).
-    std::vector<double> paired;
-    for (std::size_t r = 0; r < p50.size() && r < base50.size(); ++r) paired.push_back(p50[r] / base50[r]);
-    state.counters["p50_vs_nothing_paired"] = median(paired);
+    std::vector<double> paired50, paired99;
+    for (std::size_t r = 0; r < p50.size() && r < base50.size(); ++r) {
+      paired50.push_back(p50[r] / base50[r]);
+      paired99.push_back(p99[r] / base99[r]);
+    }
+    state.counters["p50_vs_nothing_paired"] = median(paired50);
+    state.counters["p99_vs_nothing_paired"] = median(paired99);
     state.counters["rounds"] = static_cast<double>(p50.size());
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
@@ -285,8 +338,9 @@ void RecordDemo(benchmark::State& state) {
 }
 
 const bool registered = [] {
-  for (const auto& c : conditions())
-    benchmark::RegisterBenchmark(("AdmittanceTick/" + c.name).c_str(), TickWithMonitor, c.name)->Iterations(1);
+  for (const std::string& family : kFamilies)
+    for (const auto& c : conditions(family))
+      benchmark::RegisterBenchmark(("AdmittanceTick/" + c.name).c_str(), TickWithMonitor, c.name)->Iterations(1);
   benchmark::RegisterBenchmark("RecordDemo/all_topics", RecordDemo)->Iterations(1)->Unit(benchmark::kSecond);
   return true;
 }();

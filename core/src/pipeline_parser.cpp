@@ -349,17 +349,19 @@ class Parser {
     }
   }
 
+  template <typename Field>
+  static void remove_if_null(const YAML::Node& n, const char* key, Field& field) {
+    if (const YAML::Node m = n[key]; m && m.IsNull()) field = Field{};
+  }
+
   void apply_clock(const YAML::Node& n, const std::string& file, ClockSpec& clock) {
     check_keys(n, file, kClockKeys, "clock key");
     // `key: ~` removes what an earlier layer set (the clock's default applies): a real-clock
     // variant of a sim pipeline drops its pace and step with `--set clock.pace=null`.
-    const auto remove_if_null = [&](const char* key, auto& field) {
-      if (const YAML::Node m = n[key]; m && m.IsNull()) field = std::decay_t<decltype(field)>{};
-    };
-    remove_if_null("mode", clock.mode);
-    remove_if_null("step", clock.step_ns);
-    remove_if_null("duration", clock.duration_ns);
-    remove_if_null("pace", clock.pace);
+    remove_if_null(n, "mode", clock.mode);
+    remove_if_null(n, "step", clock.step_ns);
+    remove_if_null(n, "duration", clock.duration_ns);
+    remove_if_null(n, "pace", clock.pace);
     if (const YAML::Node m = n["mode"]; m && !m.IsNull()) {
       if (m.IsScalar() && m.Scalar() == "sim")
         clock.mode.assign(ClockMode::kSim, at(m, file));
@@ -451,8 +453,14 @@ class Parser {
       else
         error(at(m, file), label + " enabled: found " + describe_node(m) + "; expected true or false");
     }
-    if (const YAML::Node m = n["spin"]) get_duration(m, file, label + " spin", true, c.spin_ns);
-    if (const YAML::Node m = n["priority"]) {
+    // `key: ~` removes what an earlier layer set: `--set physics.priority=~` runs a loop shipped
+    // SCHED_FIFO as a normal thread.
+    remove_if_null(n, "spin", c.spin_ns);
+    remove_if_null(n, "priority", c.priority);
+    remove_if_null(n, "cpus", c.cpus);
+    remove_if_null(n, "trigger_timeout", c.trigger_timeout_ns);
+    if (const YAML::Node m = n["spin"]; m && !m.IsNull()) get_duration(m, file, label + " spin", true, c.spin_ns);
+    if (const YAML::Node m = n["priority"]; m && !m.IsNull()) {
       int p = 0;
       if (!to_int(m, p) || p < 1 || p > 99)
         error(at(m, file),
@@ -460,7 +468,7 @@ class Parser {
       else
         c.priority.assign(p, at(m, file));
     }
-    if (const YAML::Node m = n["cpus"]) {  // one CPU or a list of them
+    if (const YAML::Node m = n["cpus"]; m && !m.IsNull()) {  // one CPU or a list of them
       const std::string expected = "; expected a CPU number (0, 1, ...) or a list of them, e.g. [1] or [2, 3]";
       std::vector<YAML::Node> items;
       if (m.IsSequence())
@@ -481,7 +489,7 @@ class Parser {
       if (ok) c.cpus.assign(cpus, at(m, file));
     }
     if (const YAML::Node m = n["trigger"]) apply_trigger(m, file, label, c);
-    if (const YAML::Node m = n["trigger_timeout"])
+    if (const YAML::Node m = n["trigger_timeout"]; m && !m.IsNull())
       get_duration(m, file, label + " trigger_timeout", false, c.trigger_timeout_ns);
     if (const YAML::Node m = n["params"]; m && !m.IsNull() && expect_map(m, file, label + " params")) {
       check_duplicates(m, file);

@@ -49,7 +49,7 @@ TEST(PipelineFile, IncludeThenOverrideThenSet) {
 }
 
 // `~` in a later file or --set removes a key set before: a parameter or topic goes back to the
-// component's default, a component leaves the pipeline.
+// component's default, a component leaves the pipeline, a clock or real-time key is unset.
 TEST(PipelineFile, ANullRemovesAParameterATopicOrAComponent) {
   const auto dir = scratch_dir();
   std::ofstream(dir / "shipped.yaml") << "wysiwyf: 1\nclock: {mode: sim, step: 1ms}\ncomponents:\n"
@@ -76,6 +76,13 @@ TEST(PipelineFile, ANullRemovesAParameterATopicOrAComponent) {
   EXPECT_EQ(real.clock_mode(), ClockMode::kReal);
   EXPECT_FALSE(real.clock.pace.set);
   EXPECT_FALSE(real.clock.step_ns.set);
+  // A real-time key: a loop shipped SCHED_FIFO and pinned, run as a normal thread anywhere.
+  std::ofstream(dir / "fifo.yaml") << "wysiwyf: 1\nclock: {mode: real}\ncomponents:\n"
+                                      "  a: {type: test_probe, rate: 1000, spin: 100us, priority: 80, cpus: [1]}\n";
+  const ComponentSpec normal = *load_pipeline((dir / "fifo.yaml").string(), {"a.priority=~", "a.cpus=null"}).find("a");
+  EXPECT_FALSE(normal.priority.set);
+  EXPECT_FALSE(normal.cpus.set);
+  EXPECT_TRUE(normal.spin_ns.set);
 }
 
 // include: looks beside the including file, then in the config path ($WYSIWYF_CONFIG_PATH first).

@@ -6,8 +6,8 @@
 # the wrist's force, the setpoints and the arm's state cross the hosts, the display switches to
 # admittance on the touch, and the monitor judges the contacts. Then each group in turn is frozen
 # (SIGSTOP) for 2 s in the middle of the run and thawed:
-#   display: the arm holds within 3 of its setpoint stream's periods (250 Hz: 12 ms; 10 ms of
-#            slack for the arm's tick on a loaded machine), naming the lost source; thawed, the
+#   display: the arm holds within 3 of its setpoint stream's periods (250 Hz: 12 ms), noticed at
+#            its first tick after them, naming the lost process; thawed, the
 #            supervisor starts it again the normal way (its request, then idle -> surface);
 #   robot:   the supervisor holds (no wrist reading) and, the arm back, starts it again;
 #   vision:  the display carries on with the hand's last track (it never holds for the hand) and
@@ -20,10 +20,10 @@
 #   robot:   the supervisor holds; the restarted arm stands parked elsewhere, and the supervisor
 #            holds it there (no setpoint refused) before the display starts again;
 #   vision:  the display carries on.
-# Whenever the display's group is lost, the monitor on h4 records joint states and setpoints
-# across the loss, and no joint may speed up after the next setpoint was due
-# (speeds_after_loss.py). In every case the user's script runs to its end. Needs root; exits 77
-# (skipped) without it.
+# Whenever the display's group is lost, the monitor on h4 records joint states, setpoints and the
+# arm's status across the loss: the arm held within 3 of the stream's periods as recorded, and no
+# joint sped up once the tracker stopped carrying it on (hold_after_loss.py). In every case the
+# user's script runs to its end. Needs root; exits 77 (skipped) without it.
 # Usage: demo_hosts.sh <build dir> <source dir> <domain>
 set -uo pipefail
 build=$1 src=$2 domain=$3
@@ -43,9 +43,9 @@ start_group() {  # start_group <group>: its process in its host, log in $work/<g
   pid[$1]=$!
   pids+=("$!")
 }
-record_across_the_loss() {  # in $work/joints.yaml and $work/setpoints.yaml
+record_across_the_loss() {  # in $work/joints.yaml, $work/setpoints.yaml and $work/statuses.yaml
   local t
-  for t in joints:joint_state setpoints:setpoint; do
+  for t in joints:joint_state setpoints:setpoint statuses:status; do
     ip netns exec "$tag-${host[monitor]}" timeout 2.5 "$cli" topic echo "robot/${t#*:}" --domain "$domain" \
       --transport udp --timeout 2 >"$work/${t%%:*}.yaml" 2>/dev/null &
   done
@@ -59,8 +59,8 @@ run_display() {  # run_display <group or ""> [stop|link|kill]: one scripted run,
   if [[ -n $1 ]]; then
     # At 5 s the user is reaching for the cube's knob, or pushing it. The display is lost at 7 s,
     # as the plate relocates to the cube's -y face (joint 4 at about 2 rad/s), and the monitor's
-    # host records joint states and setpoints from 1.5 s before it to 1 s after (before a killed
-    # display's successor writes).
+    # host records joint states, setpoints and the arm's status from 1.5 s before it to 1 s after
+    # (before a killed display's successor writes).
     if [[ $1 == display ]]; then
       sleep 5.5
       record_across_the_loss
@@ -107,27 +107,20 @@ check() {  # check <what> <command...>: counts a failure, prints the logs
 }
 script_done() { grep -Eq "script done: 2 reach\(es\)" "$work/robot.log"; }
 hits() { grep -o "script done: .*" "$work/robot.log"; }
-# The arm's loss of its setpoint stream, from its log, naming the display's process: within 3 of
-# the 250 Hz stream's periods (12 ms; 10 ms of slack for the arm's own tick on a loaded machine).
-arm_held_within_3_periods() {  # arm_held_within_3_periods <what happened>: and no joint sped up
-  local lost n l p
-  lost=$(grep -o "fault: setpoint stream lost: no setpoint for [0-9]* ms from 'supervisor/[a-z]*' in process 'demo-hosts/display/[0-9]*' .*lost after [0-9]* ms)" "$work/robot.log" | head -1)
-  n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
-  l=$(grep -o 'lost after [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
-  p=$(grep -o 'came every [0-9]* ms' <<<"$lost" | grep -o '[0-9]*')
-  # The stream's period as the arm measured it (250 Hz, 4 ms; 5-6 ms while this 2-core machine runs
-  # four hosts and a build: the bound was a fixed 15 ms, and failed on 16 and 18); reported in
-  # whole ms, so 3 (p + 1). The stream itself must stay under 8 ms.
-  check "$1: the arm held within 3 of the stream's periods: ${lost#fault: }" \
-    test -n "$n" -a -n "$l" -a -n "$p" -a "${n:-999}" -le $((${l:-0} + 10)) -a "${p:-999}" -le 8 \
-    -a "${l:-999}" -le $((3 * (${p:-0} + 1)))
+# The arm's loss of its setpoint stream, from the monitor's records (hold_after_loss.py): within 3
+# of the stream's periods as recorded (250 Hz, 4 ms; 5-18 ms on this 2-core machine running four
+# hosts and a build, so measured, not assumed), noticed at the arm's first tick after the timeout,
+# and no joint sped up once the tracker stopped carrying the arm on along the last setpoint (for
+# one period from its arrival, as the arm saw it).
+arm_held_within_3_periods() {  # arm_held_within_3_periods <what happened>
+  local checks line
   wait  # (the monitor's records)
-  # The arm extrapolates the last setpoint for one of the periods it measured (7 ms once on a
-  # loaded CI machine, where a fixed 4 ms made it look as if it sped up after the loss); the
-  # text rounds it to whole ms, so p + 1.
-  local speeds
-  speeds=$(python3 "$src/tests/net/speeds_after_loss.py" "$work/joints.yaml" "$work/setpoints.yaml" $((${p:-4} + 1)))
-  check "$1: no joint sped up after the loss (the monitor's record on h4): $speeds" test $? -eq 0
+  checks=$(python3 "$src/tests/net/hold_after_loss.py" "$work/joints.yaml" "$work/setpoints.yaml" "$work/statuses.yaml")
+  while IFS= read -r line; do
+    check "$1: ${line#FAILED: }" test "${line#FAILED: }" = "$line"
+  done <<<"$checks"
+  check "$1: the arm named the lost display's process" \
+    grep -q "setpoint stream lost: .* from 'supervisor/[a-z]*' in process 'demo-hosts/display/[0-9]*'" <<<"$checks"
 }
 
 # 1. The scripted run across the hosts.
@@ -178,7 +171,9 @@ check "vision frozen: the display's process named it by the hand's DDS deadline 
 never_held_for_vision() {
   local holds
   holds=$(grep -E '> fault: .*(hand|planner)' "$work/display.log" | grep -v 'no joint state or device pose')
-  [ -z "$holds" ]
+  [ -z "$holds" ] && return 0
+  echo "the display held: $(head -3 <<<"$holds")"
+  return 1
 }
 check "vision frozen: the display never held for the hand or the planner" never_held_for_vision
 

@@ -5,10 +5,12 @@
 # First the hosts exchange data (the monitor on h3 reads the arm's joint state from h2 and the
 # setpoint from h1); then, for each fault of the display's group (SIGKILL, SIGSTOP, its link taken
 # down), the arm must hold within three setpoint periods of the last setpoint it got, measured by
-# the arm from the stamps (the reason it gives: "no setpoint for N ms ... came every P ms"), with
-# no joint speeding up after the loss (the monitor's record of joint states and setpoints); the
+# the arm from the stamps (the reason it gives: "no setpoint for N ms ... came every P ms") and
+# matching the stream as the monitor recorded it, with no joint speeding up after the loss (the
+# monitor's record of joint states, setpoints and the arm's status, hold_after_loss.py); the
 # display's group coming back (thawed, its link up) must not move the arm by itself; restarted,
-# it starts the arm again the normal way (the script asks the arm to clear the loss).
+# it starts the arm again the normal way (the script asks the arm to clear the loss). A loss of
+# the running display's stream before the fault restarts its group (restart_display), and says so.
 # All of it twice: with multicast discovery, then with a Fast DDS Discovery Server on h3
 # (`wysiwyf discovery-server`) and the hosts' multicast routes removed.
 # Needs root (namespaces, veth pairs); exits 77 (skipped) where it cannot make them.
@@ -69,6 +71,8 @@ arm_status() {
   in_ns h3 timeout 8 "$cli" topic echo robot/status --domain "$domain" --transport udp --count 4 --timeout 20 \
     "${tool_discovery[@]}" 2>/dev/null | awk '/^---/ { block = "" } { block = block $0 "\n" } END { printf "%s", block }'
 }
+samples() { grep -c '^---$' "$work/$1.yaml"; }  # samples <record>: how many it holds so far
+clears() { grep -c "cleared the input fault 'setpoint stream lost" "$work/robot.log"; }  # the arm's, so far
 started=0
 start() {  # start <ns> <group>: the group's process in that namespace; its pid in $started
   # (ip netns exec execs the program: $! is the group's own process, for kill -KILL and -STOP.)
@@ -76,9 +80,28 @@ start() {  # start <ns> <group>: the group's process in that namespace; its pid 
   started=$!
   pids+=("$started")
 }
+# This VM now and then wakes a 100 Hz thread 20-30 ms late (an idle 60 s: once, 27 ms), which
+# the arm rightly reads as its stream lost (30 ms). Before a fault that is not what is tested: the
+# display's group is restarted, as the display's supervisor would start the arm again, and said.
+restart_display() {  # restart_display <what was seen>
+  echo "$1: the display's group restarted, as the display's supervisor would start the arm again"
+  kill -TERM "$display"
+  wait "$display" 2>/dev/null
+  start h1 display
+  display=$started
+}
+lost_running_display() {  # lost_running_display <file>: the arm lost the running display's stream
+  grep -q "setpoint stream lost: .* in process 'hosts/display/$display'" "$1"
+}
 wait_following() {
+  local restarts=0
   for _ in $(seq 30); do
     arm_status >"$work/status" && grep -q "state: ARM_OK" "$work/status" && return 0
+    if lost_running_display "$work/status" && ((restarts < 3)); then
+      restart_display "$round (the arm lost the running display's stream: $(grep -o 'no setpoint for [0-9]* ms' "$work/status"))"
+      restarts=$((restarts + 1))
+      continue
+    fi
     sleep 0.5
   done
   echo "the arm never followed the display's setpoints:"; cat "$work/status" "$work/robot.log" "$work/display.log"
@@ -88,6 +111,7 @@ wait_following() {
 failures=0
 faults() {  # faults <discovery>: the data check, then each fault of the display's group
 for fault in kill stop link; do
+  round="$1, $fault"
   start h2 robot
   robot=$started
   start h1 display
@@ -99,47 +123,48 @@ for fault in kill stop link; do
     monitor robot/setpoint | grep -q "source: \"script\"" || { echo "h3 read no setpoint from h1"; exit 1; }
     echo "$1: h3 reads robot/joint_state from h2 and robot/setpoint from h1 over UDP"
   fi
-  sleep 1  # the arm is moving along the script
-  # The monitor records joint states and setpoints across the fault (4 s from now).
-  in_ns h3 timeout 4 "$cli" topic echo robot/joint_state --domain "$domain" --transport udp --timeout 3 \
-    "${tool_discovery[@]}" >"$work/joints.yaml" 2>/dev/null &
-  joints=$!
-  in_ns h3 timeout 4 "$cli" topic echo robot/setpoint --domain "$domain" --transport udp --timeout 3 \
-    "${tool_discovery[@]}" >"$work/setpoints.yaml" 2>/dev/null &
-  setpoints=$!
-  sleep 1.5
+  # The monitor records joint states, setpoints and the arm's status across the fault: from once
+  # each record has begun (a loaded machine has taken seconds to match the monitor's readers) and
+  # 0.5 s more, to 2.5 s after the fault. A loss of the running display's stream before the
+  # fault (see restart_display) starts the recording again.
+  for attempt in 1 2 3; do
+    sleep 1  # the arm is moving along the script
+    recorders=()
+    for t in joints:joint_state setpoints:setpoint statuses:status; do
+      # (Not through in_ns: $! would be the shell running it, and TERM would leave the recorder
+      # running on, writing into the next round's record. ip netns exec execs timeout.)
+      ip netns exec "$tag-h3" timeout 60 "$cli" topic echo "robot/${t#*:}" --domain "$domain" --transport udp \
+        --timeout 30 "${tool_discovery[@]}" >"$work/${t%%:*}.yaml" 2>/dev/null &
+      recorders+=($!)
+    done
+    for _ in $(seq 300); do
+      (($(samples joints) >= 200 && $(samples setpoints) >= 20 && $(samples statuses) >= 2)) && break
+      sleep 0.1
+    done
+    sleep 0.5
+    if ! lost_running_display "$work/statuses.yaml" || ((attempt == 3)); then break; fi
+    kill -TERM "${recorders[@]}" 2>/dev/null
+    wait "${recorders[@]}"
+    restart_display "$round (recording, before the fault, the arm lost the running display's stream)"
+    wait_following || exit 1
+  done
   case $fault in
     kill) kill -KILL "$display" ;;
     stop) kill -STOP "$display" ;;
     link) ip -n "$tag-h1" link set eth0 down ;;
   esac
-  sleep 1
-  arm_status >"$work/status"
-  # The arm's reason: "no setpoint for N ms from 'script' (its stream came every P ms; lost
-  # after L ms)": P is the longest gap between its last 8 stamps (10 ms; 20 ms when the script,
-  # late by a whole period on a loaded machine, skipped a tick).
-  reason=$(grep -o 'reason: ".*"' "$work/status")
-  n=$(grep -o 'no setpoint for [0-9]* ms' <<<"$reason" | grep -o '[0-9]*')
-  p=$(grep -o 'came every [0-9]* ms' <<<"$reason" | grep -o '[0-9]*')
-  l=$(grep -o 'lost after [0-9]* ms' <<<"$reason" | grep -o '[0-9]*')
-  # The watchdog's threshold is 3 periods (L = 3 P, P rounded in the text); the arm notices at
-  # its next tick after it, which a loaded 2-core machine can delay by a few ms (real clock):
-  # 10 ms of slack for that.
-  if grep -q "state: ARM_FAULT" "$work/status" && grep -q "setpoint stream lost" <<<"$reason" &&
-    [[ -n $n && -n $p && -n $l ]] && ((p <= 21 && l <= 3 * (p + 1) && n <= l + 10)); then
-    echo "$1, $fault: the arm holds within 3 of the stream's periods: $reason"
-  else
-    echo "$1, $fault: FAILED: expected a hold after 3 periods of the 100 Hz stream (noticed within 10 ms):"
-    cat "$work/status" "$work/robot.log"
-    failures=$((failures + 1))
-  fi
-  wait "$joints" "$setpoints"
-  # (P + 1: the arm extrapolates for its measured period, which the text rounds to whole ms)
-  if speeds=$(python3 "$src/tests/net/speeds_after_loss.py" "$work/joints.yaml" "$work/setpoints.yaml" $((${p:-10} + 1))); then
-    echo "$1, $fault: no joint sped up after the loss: $speeds"
-  else
-    echo "$1, $fault: FAILED: $speeds"
-    failures=$((failures + 1))
+  sleep 2.5
+  kill -TERM "${recorders[@]}" 2>/dev/null
+  wait "${recorders[@]}"
+  # The arm's hold and its speeds, from the records (hold_after_loss.py): within 3 of the stream's
+  # periods as the monitor recorded them, noticed at the arm's first tick after the timeout, and
+  # no joint sped up once the tracker stopped carrying the arm on.
+  checks=$(python3 "$src/tests/net/hold_after_loss.py" "$work/joints.yaml" "$work/setpoints.yaml" "$work/statuses.yaml")
+  failed=$?
+  while IFS= read -r line; do echo "$1, $fault: $line"; done <<<"$checks"
+  if ((failed > 0)); then
+    cat "$work/robot.log"
+    failures=$((failures + failed))
   fi
   if [[ $fault != kill ]]; then
     # The display's group comes back by itself (thawed, its link up) and writes again: the arm
@@ -162,7 +187,7 @@ for fault in kill stop link; do
     # A killed group is noticed by its DDS lease (5 s), which frees the setpoint for its restart
     # (with a discovery server, the server notices and tells the others it left).
     sleep 6
-    if grep -Eq "process 'hosts/display/[0-9]+' (is lost|left the domain)" "$work/robot.log" &&
+    if grep -Eq "process 'hosts/display/$display' (is lost|left the domain)" "$work/robot.log" &&
       grep -q "left; the next writer heard owns it" "$work/robot.log"; then
       echo "$1, kill: the robot's process named the lost display process and freed the setpoint for its restart"
     else
@@ -172,9 +197,10 @@ for fault in kill stop link; do
     fi
   fi
   # Restarted, the display's group starts the arm again: it asks the arm to clear the loss.
+  cleared=$(clears)
   start h1 display
   display=$started
-  if wait_following && grep -q "cleared the input fault 'setpoint stream lost" "$work/robot.log"; then
+  if wait_following && (($(clears) > cleared)); then
     echo "$1, $fault: restarted, the display's group started the arm again (asked it to clear the loss)"
   else
     echo "$1, $fault: FAILED: the restarted display's group did not start the arm again:"
