@@ -153,7 +153,7 @@ int cmd_bridge(Args args) {
     else
       foxglove_wanted.erase(channel);
   };
-  server.on_dashboard_request = [&](const std::string& json) { feed.on_request(json); };
+  server.on_dashboard_request = [&](const bridge::DashboardRequest& request) { feed.on_request(request); };
   server.dashboard_greeting = [&] { return feed.greeting(); };
   server.start();
   const std::string host = server_options.address == "0.0.0.0" ? "localhost" : server_options.address;
@@ -167,12 +167,19 @@ int cmd_bridge(Args args) {
   Subscriber* subscriber = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
   std::map<std::string, std::unique_ptr<BridgedTopic>> topics;
   std::uint32_t next_channel = 1;
+  bool told_too_many = false;
   const auto start = Clock::now();
   while (!stop_signal_received() && (duration == 0 || Clock::now() - start < std::chrono::duration<double>(duration))) {
     // New topics as writers announce them: a channel each, with its type's IDL as the schema.
     for (const auto& [topic, info] : s.discovery.topics()) {
       if (info.writers.empty() || topics.count(topic)) continue;
       if (!only.empty() && std::find(only.begin(), only.end(), topic) == only.end()) continue;
+      if (next_channel >= bridge::kMaxChannels) {  // any participant may announce topics: bounded
+        if (!told_too_many)
+          std::cerr << "more than " << bridge::kMaxChannels - 1 << " topics: the rest are not bridged\n";
+        told_too_many = true;
+        continue;
+      }
       std::string searched;
       const auto schema = idl_schema(info.type, searched);
       if (!schema)

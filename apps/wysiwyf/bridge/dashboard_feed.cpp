@@ -17,6 +17,18 @@ constexpr auto kModePeriod = std::chrono::milliseconds(200);
 constexpr auto kFramePeriod = std::chrono::milliseconds(100);  // <= 10 video frames a second
 constexpr std::size_t kMaxPlots = 8;
 
+// A string member of a decoded sample, "" where it is missing or of another type (a sample comes
+// from any writer on the domain).
+std::string string_member(const json& sample, const char* key) {
+  if (!sample.is_object()) return "";
+  const auto it = sample.find(key);
+  return it != sample.end() && it->is_string() ? it->get<std::string>() : "";
+}
+
+// JSON text for the page; a string that is not UTF-8 (a DDS string may hold any bytes) is
+// replaced rather than thrown on.
+std::string text(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
 }  // namespace
 
 DashboardFeed::DashboardFeed(WsServer& server, DashboardOptions options)
@@ -63,14 +75,14 @@ void DashboardFeed::on_sample(const std::string& topic, const std::string& type,
   const auto sample = decoder_.to_json(type, cdr);
   if (!sample) return;
   if (diagnostics) {
-    const std::string instance = sample->value("instance", "");
-    std::string text = json{{"op", "diagnostics"}, {"sample", *sample}}.dump();
-    diagnostics_[instance] = text;
-    server_.dashboard_text(std::move(text));
+    const std::string instance = string_member(*sample, "instance");
+    std::string op = text(json{{"op", "diagnostics"}, {"sample", *sample}});
+    diagnostics_[instance] = op;
+    server_.dashboard_text(std::move(op));
   }
   if (mode) {
-    const std::string name = sample->value("mode", "");  // e.g. MODE_SURFACE
-    mode_ = json{{"op", "mode"}, {"sample", *sample}}.dump();
+    const std::string name = string_member(*sample, "mode");  // e.g. MODE_SURFACE
+    mode_ = text(json{{"op", "mode"}, {"sample", *sample}});
     if (name != mode_name_ || now - mode_sent_ >= kModePeriod) {
       server_.dashboard_text(mode_);
       mode_sent_ = now;
@@ -110,7 +122,7 @@ void DashboardFeed::flush() {
   std::lock_guard<std::mutex> lock(mutex_);
   for (auto& [key, p] : plots_) {
     if (p.t.empty()) continue;
-    server_.dashboard_text(json{{"op", "points"}, {"plot", key}, {"t", p.t}, {"v", p.v}}.dump());
+    server_.dashboard_text(text(json{{"op", "points"}, {"plot", key}, {"t", p.t}, {"v", p.v}}));
     p.t.clear();
     p.v.clear();
   }
@@ -120,24 +132,20 @@ std::vector<std::string> DashboardFeed::greeting() {
   std::lock_guard<std::mutex> lock(mutex_);
   json plots = json::array();
   for (const auto& [key, p] : plots_) plots.push_back(key);
-  std::vector<std::string> out{json{
-      {"op", "hello"},
-      {"domain", options_.domain},
-      {"video", options_.video_topic},
-      {"mode_topic", options_.mode_topic},
-      {"plots", plots}}.dump()};
+  std::vector<std::string> out{text(json{{"op", "hello"},
+                                         {"domain", options_.domain},
+                                         {"video", options_.video_topic},
+                                         {"mode_topic", options_.mode_topic},
+                                         {"plots", plots}})};
   for (const auto& [instance, text] : diagnostics_) out.push_back(text);
   if (!mode_.empty()) out.push_back(mode_);
   return out;
 }
 
-void DashboardFeed::on_request(const std::string& text) {
-  const json m = json::parse(text, nullptr, false);
-  if (m.is_discarded() || !m.is_object()) return;
-  const std::string op = m.value("op", ""), topic = m.value("topic", ""), field = m.value("field", "");
+void DashboardFeed::on_request(const DashboardRequest& request) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (op == "plot") add_plot(topic, field);
-  if (op == "unplot") plots_.erase(topic + ":" + field);
+  if (request.op == DashboardRequest::Op::kPlot) add_plot(request.topic, request.field);
+  if (request.op == DashboardRequest::Op::kUnplot) plots_.erase(request.topic + ":" + request.field);
 }
 
 }  // namespace wysiwyf::bridge

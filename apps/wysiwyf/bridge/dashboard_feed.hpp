@@ -44,7 +44,7 @@ class DashboardFeed {
 
   // The WsServer's dashboard hooks.
   std::vector<std::string> greeting();
-  void on_request(const std::string& json);
+  void on_request(const DashboardRequest& request);
 
  private:
   struct Plot {

@@ -7,12 +7,13 @@
 #include <boost/beast/websocket.hpp>
 #include <chrono>
 #include <deque>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <stdexcept>
+
+#include "client_requests.hpp"
+#include "http_session.hpp"
 
 namespace wysiwyf::bridge {
 
@@ -27,41 +28,21 @@ namespace {
 
 constexpr const char* kFoxglove = "foxglove.websocket.v1";
 constexpr const char* kDashboard = "wysiwyf.dashboard.v1";
-constexpr std::uint32_t kMaxChannels = 4096;
+// Requests a client may make: 50 a second, bursts of 200 (a page subscribing to every channel at
+// once sends one request); beyond that they are refused and the client told.
+constexpr double kRequestsPerSecond = 50, kRequestBurst = 200;
 
-// The subprotocol the server speaks out of a client's offer ("a, b"), or "" if none.
-std::string pick_subprotocol(std::string_view offered) {
-  std::string list(offered);
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const auto b = item.find_first_not_of(' '), e = item.find_last_not_of(' ');
-    if (b == std::string::npos) continue;
-    const std::string p = item.substr(b, e - b + 1);
-    if (p == kFoxglove || p == kDashboard) return p;
-  }
-  return "";
-}
-
-const char* content_type(const std::filesystem::path& file) {
-  const auto ext = file.extension().string();
-  if (ext == ".html") return "text/html; charset=utf-8";
-  if (ext == ".js" || ext == ".mjs") return "text/javascript; charset=utf-8";
-  if (ext == ".css") return "text/css; charset=utf-8";
-  if (ext == ".json") return "application/json";
-  if (ext == ".png") return "image/png";
-  if (ext == ".svg") return "image/svg+xml";
-  return "application/octet-stream";
-}
+// JSON text for a client; a string that is not UTF-8 (a topic or type name from any participant
+// on the domain may hold any bytes) is replaced rather than thrown on.
+std::string to_text(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
 
 std::string channel_json(const Channel& c) {
-  return json{{"id", c.id},
-              {"topic", c.topic},
-              {"encoding", c.encoding},
-              {"schemaName", c.schema_name},
-              {"schema", c.schema},
-              {"schemaEncoding", c.schema_encoding}}
-      .dump();
+  return to_text(json{{"id", c.id},
+                      {"topic", c.topic},
+                      {"encoding", c.encoding},
+                      {"schemaName", c.schema_name},
+                      {"schema", c.schema},
+                      {"schemaEncoding", c.schema_encoding}});
 }
 
 }  // namespace
@@ -99,6 +80,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
 
   void accept(http::request<http::string_body> req) {
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    ws_.read_message_max(kMaxRequestBytes);  // a larger message closes this client ("message too big")
     ws_.set_option(websocket::stream_base::decorator([p = protocol_](websocket::response_type& res) {
       res.set(http::field::sec_websocket_protocol, p);
       res.set(http::field::server, "wysiwyf bridge");
@@ -150,12 +132,12 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     server_->sessions.insert(shared_from_this());
     (foxglove() ? server_->foxglove_clients : server_->dashboard_clients).fetch_add(1);
     if (foxglove()) {
-      send_text(json{{"op", "serverInfo"},
-                     {"name", server_->options.name},
-                     {"capabilities", json::array()},
-                     {"metadata", json{{"wysiwyf", "DDS topics as CDR with their OMG IDL"}}},
-                     {"sessionId", std::to_string(std::chrono::system_clock::now().time_since_epoch().count())}}
-                    .dump());
+      send_text(
+          to_text(json{{"op", "serverInfo"},
+                       {"name", server_->options.name},
+                       {"capabilities", json::array()},
+                       {"metadata", json{{"wysiwyf", "DDS topics as CDR with their OMG IDL"}}},
+                       {"sessionId", std::to_string(std::chrono::system_clock::now().time_since_epoch().count())}}));
       std::string channels = R"({"op":"advertise","channels":[)";
       bool first = true;
       for (const auto& [id, c] : server_->channels) {
@@ -177,46 +159,69 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
       close();
       return;
     }
-    if (ws_.got_text()) {
+    if (!budget_.take(RequestBudget::Clock::now())) {
+      if (budget_.refusal_to_report())
+        problem("more than " + std::to_string(static_cast<int>(kRequestsPerSecond)) +
+                " requests a second: the rest are refused until this client slows down");
+    } else if (!ws_.got_text()) {
+      problem(foxglove() ? "binary client messages (client publish, service calls) are not supported by this server"
+                         : "the dashboard takes JSON text requests only");
+    } else {
       const std::string text = beast::buffers_to_string(buffer_.data());
       if (foxglove())
         handle_foxglove(text);
-      else if (server_->owner->on_dashboard_request)
-        server_->owner->on_dashboard_request(text);
+      else
+        handle_dashboard(text);
     }
     buffer_.consume(buffer_.size());
     read();
   }
 
+  // Tells this client what was wrong with its request: a Foxglove status (level 2, error) or the
+  // dashboard's {"op":"error"}. Droppable: a client that sends without reading cannot grow its
+  // queue with replies beyond the queue's bound.
+  void problem(const std::string& message) { status(2, message); }
   void status(int level, const std::string& message) {
-    send_text(json{{"op", "status"}, {"level", level}, {"message", message}}.dump());
+    const json reply = foxglove() ? json{{"op", "status"}, {"level", level}, {"message", message}}
+                                  : json{{"op", "error"}, {"message", message}};
+    enqueue({"", std::make_shared<const std::string>(to_text(reply)), false, true});
+  }
+
+  void handle_dashboard(const std::string& text) {
+    const DashboardRequest r = parse_dashboard_request(text);
+    if (r.op == DashboardRequest::Op::kInvalid)
+      problem(r.problem);
+    else if (server_->owner->on_dashboard_request)
+      server_->owner->on_dashboard_request(r);
   }
 
   void handle_foxglove(const std::string& text) {
-    json m = json::parse(text, nullptr, false);
-    if (m.is_discarded() || !m.is_object() || !m.contains("op")) {
-      status(2, "expected a JSON object with an \"op\"; got: " + text.substr(0, 80));
-      return;
-    }
-    const std::string op = m.value("op", "");
-    if (op == "subscribe") {
-      for (const auto& s : m.value("subscriptions", json::array())) {
-        const auto id = s.value("id", std::uint32_t(0)), channel = s.value("channelId", std::uint32_t(0));
-        if (!server_->channels.count(channel)) {
-          status(2, "subscribe: no channel " + std::to_string(channel) + " is advertised");
-        } else if (channel_of_subscription_.count(id)) {
-          status(2, "subscribe: subscription id " + std::to_string(id) + " is in use");
-        } else if (subscription_of_channel_.count(channel)) {
-          status(2, "subscribe: channel " + std::to_string(channel) + " is already subscribed by this client");
-        } else {
+    const FoxgloveRequest r = parse_foxglove_request(text);
+    if (r.op == FoxgloveRequest::Op::kSubscribe) {
+      // One reply for all the refused subscriptions of a request, naming the first.
+      std::size_t refused = 0;
+      std::string first;
+      for (const auto [id, channel] : r.subscriptions) {
+        std::string why;
+        if (!server_->channels.count(channel))
+          why = "no channel " + std::to_string(channel) + " is advertised";
+        else if (channel_of_subscription_.count(id))
+          why = "subscription id " + std::to_string(id) + " is in use";
+        else if (subscription_of_channel_.count(channel))
+          why = "channel " + std::to_string(channel) + " is already subscribed by this client";
+        if (why.empty()) {
           channel_of_subscription_[id] = channel;
           subscription_of_channel_[channel] = id;
           server_->subscribed(channel, +1);
+        } else if (refused++ == 0) {
+          first = why;
         }
       }
-    } else if (op == "unsubscribe") {
-      for (const auto& j : m.value("subscriptionIds", json::array())) {
-        const auto id = j.get<std::uint32_t>();
+      if (refused == 1) status(2, "subscribe: " + first);
+      if (refused > 1)
+        status(2, "subscribe: " + std::to_string(refused) + " subscriptions refused, the first: " + first);
+    } else if (r.op == FoxgloveRequest::Op::kUnsubscribe) {
+      for (const std::uint32_t id : r.unsubscribe) {
         auto it = channel_of_subscription_.find(id);
         if (it == channel_of_subscription_.end()) continue;
         subscription_of_channel_.erase(it->second);
@@ -224,7 +229,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
         channel_of_subscription_.erase(it);
       }
     } else {
-      status(1, "op '" + op + "' is not supported by this server (it only streams: subscribe, unsubscribe)");
+      status(r.op == FoxgloveRequest::Op::kUnsupported ? 1 : 2, r.problem);
     }
   }
 
@@ -269,85 +274,10 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   std::shared_ptr<WsServer::Impl> server_;
   std::string protocol_;
   std::map<std::uint32_t, std::uint32_t> channel_of_subscription_, subscription_of_channel_;
+  RequestBudget budget_{kRequestsPerSecond, kRequestBurst};
   std::deque<Frame> queue_;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false, closed_ = false, warned_drops_ = false;
-};
-
-// A plain HTTP connection: the dashboard's files, or the upgrade to a WebSocket.
-class HttpSession : public std::enable_shared_from_this<HttpSession> {
- public:
-  HttpSession(tcp::socket&& socket, std::shared_ptr<WsServer::Impl> server)
-      : stream_(std::move(socket)), server_(std::move(server)) {}
-  void read() {
-    req_ = {};
-    stream_.expires_after(std::chrono::seconds(30));
-    http::async_read(stream_, buffer_, req_,
-                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
-  }
-
- private:
-  void on_read(beast::error_code ec) {
-    if (ec) return;
-    if (websocket::is_upgrade(req_)) {
-      const std::string protocol = pick_subprotocol(std::string(req_[http::field::sec_websocket_protocol]));
-      if (protocol.empty()) {
-        respond(http::status::bad_request, "text/plain",
-                std::string("expected the WebSocket subprotocol ") + kFoxglove + " (Foxglove) or " + kDashboard +
-                    " (the dashboard); the client offered '" + std::string(req_[http::field::sec_websocket_protocol]) +
-                    "'\n");
-        return;
-      }
-      stream_.expires_never();
-      std::make_shared<WsSession>(std::move(stream_), server_, protocol)->accept(std::move(req_));
-      return;
-    }
-    serve_file();
-  }
-
-  void serve_file() {
-    if (req_.method() != http::verb::get && req_.method() != http::verb::head) {
-      respond(http::status::method_not_allowed, "text/plain", "only GET\n");
-      return;
-    }
-    std::string target(req_.target());
-    target = target.substr(0, target.find('?'));
-    if (target == "/") target = "/index.html";
-    const bool safe = target.find("..") == std::string::npos &&
-                      target.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-/") ==
-                          std::string::npos;
-    const auto file = server_->options.web_root / target.substr(1);
-    std::ifstream in(file, std::ios::binary);
-    if (!safe || server_->options.web_root.empty() || !in) {
-      respond(http::status::not_found, "text/plain",
-              "no such file: " + target +
-                  (server_->options.web_root.empty() ? " (this bridge serves no dashboard: its files were not found)"
-                                                     : "") +
-                  "\n");
-      return;
-    }
-    std::ostringstream body;
-    body << in.rdbuf();
-    respond(http::status::ok, content_type(file), body.str());
-  }
-
-  void respond(http::status status, const std::string& type, std::string body) {
-    auto res = std::make_shared<http::response<http::string_body>>(status, req_.version());
-    res->set(http::field::server, "wysiwyf bridge");
-    res->set(http::field::content_type, type);
-    res->set(http::field::cache_control, "no-cache");
-    res->keep_alive(req_.keep_alive());
-    res->body() = req_.method() == http::verb::head ? "" : std::move(body);
-    res->prepare_payload();
-    http::async_write(stream_, *res, [self = shared_from_this(), res](beast::error_code ec, std::size_t) {
-      if (!ec && res->keep_alive()) self->read();
-    });
-  }
-
-  beast::tcp_stream stream_;
-  beast::flat_buffer buffer_;
-  http::request<http::string_body> req_;
-  std::shared_ptr<WsServer::Impl> server_;
 };
 
 void WsServer::Impl::accept() {
@@ -356,7 +286,11 @@ void WsServer::Impl::accept() {
     if (!ec) {
       socket.set_option(tcp::no_delay(true));
       // The Impl outlives every session: the destructor stops the I/O thread before it goes.
-      std::make_shared<HttpSession>(std::move(socket), std::shared_ptr<Impl>(owner->impl_))->read();
+      serve_http(std::move(socket), options.web_root, {kFoxglove, kDashboard},
+                 [server = std::shared_ptr<Impl>(owner->impl_)](beast::tcp_stream&& stream, HttpRequest&& request,
+                                                                const std::string& protocol) {
+                   std::make_shared<WsSession>(std::move(stream), server, protocol)->accept(std::move(request));
+                 });
     }
     accept();
   });
@@ -411,7 +345,7 @@ void WsServer::advertise(const Channel& channel) {
 void WsServer::unadvertise(std::uint32_t channel_id) {
   net::post(impl_->io, [impl = impl_, channel_id] {
     impl->channels.erase(channel_id);
-    const std::string text = json{{"op", "unadvertise"}, {"channelIds", {channel_id}}}.dump();
+    const std::string text = to_text(json{{"op", "unadvertise"}, {"channelIds", {channel_id}}});
     for (const auto& s : impl->sessions)
       if (s->foxglove()) s->send_text(text);
   });

@@ -3,7 +3,9 @@
 // the Foxglove WebSocket protocol v1 (subprotocol "foxglove.websocket.v1": advertise channels,
 // clients subscribe, message data streamed as binary frames), the dashboard's own feed
 // (subprotocol "wysiwyf.dashboard.v1": JSON and JPEG frames), and the dashboard's files over
-// plain HTTP. One I/O thread; publishing from any thread never blocks: a client that cannot keep
+// plain HTTP (only the files of its web root: web_files.hpp). Every client request is validated
+// before use (client_requests.hpp), bounded in size and rate; a bad one gets a reply naming what
+// was wrong and the server carries on. One I/O thread; publishing from any thread never blocks: a client that cannot keep
 // up loses messages (counted, and told once in a status message) instead of holding DDS back.
 #include <atomic>
 #include <cstdint>
@@ -15,7 +17,11 @@
 #include <thread>
 #include <vector>
 
+#include "client_requests.hpp"
+
 namespace wysiwyf::bridge {
+
+constexpr std::uint32_t kMaxChannels = 4096;  // channel ids are 1 to kMaxChannels - 1
 
 struct Channel {
   std::uint32_t id = 0;
@@ -65,8 +71,9 @@ class WsServer {
   // Dashboard clients: a JSON text or a binary frame to all of them.
   void dashboard_text(std::string json);
   void dashboard_binary(std::vector<std::uint8_t> bytes);
-  // A JSON request from a dashboard client (the I/O thread calls it).
-  std::function<void(const std::string& json)> on_dashboard_request;
+  // A dashboard client's request, validated (the I/O thread calls it; a bad one never reaches
+  // it: the client is told what was wrong).
+  std::function<void(const DashboardRequest& request)> on_dashboard_request;
   // Called (I/O thread) when a dashboard client connects: what it should be sent first.
   std::function<std::vector<std::string>()> dashboard_greeting;
 

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# `wysiwyf bridge` against hostile and careless clients, on a running pipeline (admittance-push):
+#  1. every malformed WebSocket frame that once crashed it, on both subprotocols, gets an error
+#     reply naming what was wrong; a frame over the size bound closes only that client; a flood
+#     is refused and said (js/hostile_client.mjs);
+#  2. HTTP paths outside the web root (absolute, `..`, encoded, devices, hidden files) get a 404
+#     and none of the file's bytes; the dashboard's own files are still served;
+#  3. the bridge is still up, and the official Foxglove client (@foxglove/ws-protocol) still
+#     subscribes and decodes the pipeline's topics.
+# Usage: hostile_clients.sh BUILD_DIR SOURCE_DIR DOMAIN
+set -euo pipefail
+build=$1 src=$2 domain=$3
+cli=$build/bin/wysiwyf
+js=$build/npm/monitor
+[[ -d $js/node_modules/ws ]] || { echo "FAIL: $js/node_modules has no ws: scripts/test installs tests/monitor/js (npm ci)"; exit 1; }
+cp "$src"/tests/monitor/js/*.mjs "$js/"
+work=$(mktemp -d)
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; echo "--- bridge log"; cat "$work/bridge.log"; exit 1; }
+
+"$cli" run "$src/config/pipelines/admittance-push.yaml" --set domain="$domain" --set dds.transport=local \
+  --set clock.duration=600s --no-progress >"$work/run.log" 2>&1 &
+pids+=($!)
+"$cli" bridge --domain "$domain" --transport local --port 0 >"$work/bridge.log" 2>&1 &
+bridge=$!
+pids+=($!)
+for _ in $(seq 100); do grep -q "ws://" "$work/bridge.log" && break; sleep 0.1; done
+port=$(sed -n 's|.*ws://127.0.0.1:\([0-9]*\).*|\1|p' "$work/bridge.log" | head -1)
+[[ -n $port ]] || fail "the bridge did not say where it listens"
+alive() { kill -0 "$bridge" 2>/dev/null || fail "the bridge died after $1"; }
+
+echo "== 1. malformed frames"
+node "$js/hostile_client.mjs" "ws://127.0.0.1:$port" >"$work/hostile.json" ||
+  { cat "$work/hostile.json"; fail "a frame did not get the reply it should (above: ok false)"; }
+python3 -c "
+import json
+for r in json.load(open('$work/hostile.json')):
+    print(f\"{r['protocol'][:9]:9} {r['frame'][:70]:72} -> {r.get('reply', r.get('close'))}\")"
+alive "the malformed frames"
+
+echo "== 2. HTTP paths"
+http() { curl -s --path-as-is -o "$work/body" -w '%{http_code}' --max-time 5 "http://127.0.0.1:$port$1"; }
+for path in //etc/passwd //proc/self/environ //root/.bashrc //dev/zero /../../../../etc/passwd \
+            /%2e%2e/%2e%2e/etc/passwd /..%2f..%2fetc/passwd /vendor/../../../etc/passwd /index.html/../../etc/hostname \
+            /.git/config /vendor /fifo; do
+  code=$(http "$path") || fail "GET $path: no answer"
+  [[ $code == 404 ]] || fail "GET $path: HTTP $code (expected 404)"
+  ! grep -q "root:" "$work/body" || fail "GET $path: the body holds a file from outside the web root"
+  (( $(stat -c %s "$work/body") < 100 )) || fail "GET $path: a body of $(stat -c %s "$work/body") bytes"
+  echo "GET $path -> 404"
+done
+code=$(http /) && [[ $code == 200 ]] && grep -q "<html" "$work/body" || fail "GET /: HTTP $code, not the dashboard"
+code=$(http /vendor/uplot/uPlot.iife.min.js) && [[ $code == 200 ]] || fail "GET the dashboard's script: HTTP $code"
+echo "GET / and /vendor/uplot/uPlot.iife.min.js -> 200"
+alive "the HTTP paths"
+
+echo "== 3. the official client afterwards"
+node "$js/foxglove_client.mjs" "ws://127.0.0.1:$port" 60 robot/wrench robot/setpoint >"$work/fox.json" ||
+  { cat "$work/fox.json"; fail "the Foxglove client did not get 3 messages of each topic after the hostile clients"; }
+python3 - "$work/fox.json" <<'EOF' || fail "the official client's messages"
+import json, sys
+d = json.load(open(sys.argv[1]))
+w = d["messages"]["robot/wrench"][-1]
+s = d["messages"]["robot/setpoint"][-1]
+assert d["channels"]["robot/wrench"]["schemaName"] == "wysiwyf::msg::WrenchStamped", d["channels"]["robot/wrench"]
+assert abs(w["wrench"]["force"]["x"] + 11.343) < 1e-9, w
+assert s["header"]["stamp_ns"] > 0, s
+print("ok: robot/wrench and robot/setpoint decoded (force.x", w["wrench"]["force"]["x"], ")")
+EOF
+alive "the official client"
+echo "PASS: the bridge answered every hostile frame and path and still serves"
