@@ -30,6 +30,7 @@ void Reader::rewind() {
 
 bool Reader::read_record(std::uint8_t& op, std::vector<std::uint8_t>& content) {
   const std::uint64_t at = static_cast<std::uint64_t>(in_.tellg());
+  record_at_ = at;
   std::uint64_t length = 0;
   if (!in_.read(reinterpret_cast<char*>(&op), 1) || !in_.read(reinterpret_cast<char*>(&length), 8)) {
     problem_ = "cut short at byte " + std::to_string(at) + " (no footer: the writer did not close it)";
@@ -106,20 +107,17 @@ bool Reader::next(Message& out) {
       const auto crc = c.get<std::uint32_t>();
       const std::string compression = c.str();
       const auto size = c.get<std::uint64_t>();
+      const std::string where = "the chunk at byte " + std::to_string(record_at_) + ": ";
       if (!c.ok || size > record_.size() - c.at) {
-        problem_ = "a chunk record is malformed";
+        problem_ = where + "its record is malformed (its fields run past its end)";
         ended_ = true;
         break;
       }
-      if (!compression.empty()) {
-        problem_ = "chunks compressed with '" + compression + "' are not supported (only uncompressed)";
-        ended_ = true;
-        break;
-      }
-      chunk_.assign(record_.begin() + static_cast<std::ptrdiff_t>(c.at),
-                    record_.begin() + static_cast<std::ptrdiff_t>(c.at + size));
-      if (chunk_.size() != uncompressed || (crc != 0 && crc32_z(0, chunk_.data(), chunk_.size()) != crc)) {
-        problem_ = "a chunk fails its CRC";
+      // Sizes are checked before anything is allocated for the chunk (Decompressor).
+      const std::string why = decompressor_.decompress(compression, record_.data() + c.at, size, uncompressed, chunk_);
+      if (!why.empty() || (crc != 0 && crc32_z(0, chunk_.data(), chunk_.size()) != crc)) {
+        problem_ = where + (why.empty() ? "its records fail their CRC" : why);
+        chunk_.clear();
         ended_ = true;
         break;
       }

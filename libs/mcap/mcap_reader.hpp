@@ -1,12 +1,17 @@
 #pragma once
 // Reads an MCAP file front to back (schemas, channels and messages, inside chunks or not), as
 // far as it is whole: a file whose writer was killed reads up to its last complete record and
-// says it was cut short. Used by `wysiwyf play` and by the tests.
+// says it was cut short. Chunks may be compressed with zstd or lz4, or not; a chunk that is
+// corrupt, truncated or claims more than kMaxChunkBytes ends the reading with problem() saying
+// so (nothing is allocated for a size the file claims before it is checked). Used by
+// `wysiwyf play` and by the tests.
 #include <cstdint>
 #include <fstream>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "mcap/mcap_compression.hpp"
 
 namespace wysiwyf::mcap {
 
@@ -55,6 +60,8 @@ class Reader {
   std::map<std::uint16_t, Schema> schemas_;
   std::map<std::uint16_t, Channel> channels_;
   std::vector<std::uint8_t> record_, chunk_;  // the current record; the chunk being read
+  std::uint64_t record_at_ = 0;               // where the current record starts in the file
+  Decompressor decompressor_;
   std::size_t chunk_at_ = 0;
   std::string problem_;
   bool complete_ = false, ended_ = false;

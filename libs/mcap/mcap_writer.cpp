@@ -19,7 +19,8 @@ std::uint32_t crc(std::uint32_t running, const std::uint8_t* p, std::size_t n) {
 
 }  // namespace
 
-Writer::Writer(const std::string& path, WriterOptions options) : path_(path), options_(std::move(options)) {
+Writer::Writer(const std::string& path, WriterOptions options)
+    : path_(path), options_(std::move(options)), compressor_(options_.compression, options_.compression_level) {
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
   Bytes head;
@@ -109,17 +110,20 @@ void Writer::write(std::uint16_t channel, std::uint32_t sequence, std::uint64_t 
 
 void Writer::flush_chunk() {
   if (chunk_.b.empty()) return;
-  ChunkIndex index{chunk_start_, chunk_end_, offset_, 0, 0, chunk_.b.size(), {}};
+  compressor_.compress(chunk_.b.data(), chunk_.b.size(), compressed_);
+  ChunkIndex index{chunk_start_, chunk_end_, offset_, 0, 0, chunk_.b.size(), compressed_.size(), {}};
   Bytes r;
+  r.b.reserve(compressed_.size() + 64 + chunk_index_.size() * 64);
   const auto at = r.open(kChunk);
   r.u64(chunk_start_);
   r.u64(chunk_end_);
   r.u64(chunk_.b.size());                           // uncompressed size
   r.u32(crc(0, chunk_.b.data(), chunk_.b.size()));  // uncompressed CRC
-  r.str("");                                        // no compression
-  r.u64(chunk_.b.size());
-  r.put(chunk_.b.data(), chunk_.b.size());
+  r.str(compression_name(compressor_.compression()));
+  r.u64(compressed_.size());
+  r.put(compressed_.data(), compressed_.size());
   r.close(at);
+  records_bytes_ += chunk_.b.size();
   index.length = r.b.size();
   // Its message indexes follow it: per channel, each message's log time and offset in the chunk.
   std::uint64_t index_at = offset_ + r.b.size();
@@ -191,8 +195,8 @@ void Writer::close() {
     chunks.u32(static_cast<std::uint32_t>(c.index_offsets.size() * 10));
     for (const auto& [channel, offset] : c.index_offsets) chunks.u16(channel), chunks.u64(offset);
     chunks.u64(c.index_length);
-    chunks.str("");
-    chunks.u64(c.records_size);  // compressed size (no compression)
+    chunks.str(compression_name(compressor_.compression()));
+    chunks.u64(c.compressed_size);
     chunks.u64(c.records_size);  // uncompressed size
     chunks.close(ci);
   }

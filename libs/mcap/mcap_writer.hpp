@@ -1,6 +1,7 @@
 #pragma once
-// Writes an MCAP file: schemas and channels as they appear, messages in chunks (uncompressed,
-// CRC-checked) each followed by its message indexes, and at close a summary (schemas, channels,
+// Writes an MCAP file: schemas and channels as they appear, messages in chunks (compressed with
+// zstd by default, or lz4, or not; the CRC of the uncompressed records in each) each followed by
+// its message indexes, and at close a summary (schemas, channels,
 // statistics, chunk indexes) with summary offsets and the footer. Each chunk is written to the
 // file when it closes (by size or by age), so a writer that is killed leaves a file that reads
 // up to its last closed chunk; memory stays bounded by one chunk.
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mcap/mcap_compression.hpp"
 #include "mcap/mcap_records.hpp"
 
 namespace wysiwyf::mcap {
@@ -18,6 +20,10 @@ struct WriterOptions {
   std::string library = "wysiwyf";            // who wrote the file
   std::size_t chunk_bytes = 4 * 1024 * 1024;  // a chunk closes when its records pass this size
   std::uint64_t chunk_span_ns = 500'000'000;  // ... or when its first message is this old (log time)
+  Compression compression = Compression::kZstd;
+  // zstd: 1 is its fastest positive level, and keeps up with the demo's images on the recorder's
+  // one thread (docs/architecture.md, Recording); lz4: 0 is its fast mode.
+  int compression_level = 1;
 };
 
 class Writer {
@@ -41,11 +47,13 @@ class Writer {
 
   std::uint64_t message_count() const { return message_count_; }
   std::uint64_t bytes_written() const { return offset_; }
+  // The chunks' records before compression (what bytes_written() would near without it).
+  std::uint64_t records_bytes() const { return records_bytes_; }
   std::uint32_t chunk_count() const { return static_cast<std::uint32_t>(chunk_indexes_.size()); }
 
  private:
   struct ChunkIndex {
-    std::uint64_t start_time, end_time, offset, length, index_length, records_size;
+    std::uint64_t start_time, end_time, offset, length, index_length, records_size, compressed_size;
     std::map<std::uint16_t, std::uint64_t> index_offsets;
   };
   void emit(const Bytes& bytes, bool data_section = true);
@@ -59,6 +67,9 @@ class Writer {
   std::uint16_t next_schema_ = 1, next_channel_ = 1;
   // The open chunk: its records, its time span, each channel's (log time, offset) index.
   Bytes chunk_;
+  Compressor compressor_;
+  std::vector<std::uint8_t> compressed_;  // the chunk's records compressed (reused)
+  std::uint64_t records_bytes_ = 0;
   std::uint64_t chunk_start_ = 0, chunk_end_ = 0;
   std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> chunk_index_;
   std::vector<ChunkIndex> chunk_indexes_;
