@@ -52,11 +52,17 @@ struct Recording {
   std::mutex mutex;  // the writer (file)
   mcap::Writer writer;
   std::atomic<std::uint64_t> lost{0};        // DDS says samples were lost before reaching the recorder
-  std::atomic<std::uint64_t> overflowed{0};  // samples dropped because the disk fell 1 GiB behind
+  std::atomic<std::uint64_t> overflowed{0};  // samples dropped: the writer (compression, disk) fell 1 GiB behind
 
-  explicit Recording(const std::string& path)
-      : writer(path, mcap::WriterOptions{"", "wysiwyf record"}), thread_([this] { write_loop(); }) {}
+  Recording(const std::string& path, mcap::Compression compression)
+      : writer(path, options(compression)), thread_([this] { write_loop(); }) {}
   ~Recording() { stop(); }
+  static mcap::WriterOptions options(mcap::Compression compression) {
+    mcap::WriterOptions o;
+    o.library = "wysiwyf record";
+    o.compression = compression;
+    return o;
+  }
 
   // The writer thread takes what came in this long in one go: a wake per batch, not per sample
   // (at 1 kHz a topic, a futex wake per sample was most of the recorder's time, in task switches).
@@ -197,13 +203,16 @@ int cmd_record(Args args) {
     if (!(duration >= 0) || !std::isfinite(duration))
       throw UsageError("--duration: found '" + *d + "'; expected a number of seconds (0: until Ctrl-C)");
   }
+  const std::string compression_arg = args.value("--compression").value_or("zstd");
+  const auto compression = mcap::parse_compression(compression_arg);
+  if (!compression) throw UsageError("--compression: found '" + compression_arg + "'; expected zstd, lz4 or none");
   const bool progress = !args.flag("--no-progress") && isatty(STDERR_FILENO);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   const std::vector<std::string> wanted = args.positional();
   if (out.empty()) throw UsageError("record: expected -o FILE.mcap");
   if (wanted.empty() && !all) throw UsageError("record: expected topic names, or --all for every topic");
   install_stop_signal_handlers();
-  Recording rec(out);
+  Recording rec(out, *compression);
   std::cerr << "recording " << (all ? "every topic" : std::to_string(wanted.size()) + " topic(s)") << " of domain "
             << s.domain << " (transport " << s.transport << ") into " << out << "\n";
 
@@ -268,7 +277,14 @@ int cmd_record(Args args) {
   std::cout << "recorded " << rec.writer.message_count() << " messages on " << recorders.size() << " topic(s), "
             << rec.writer.chunk_count() << " chunks, " << rec.writer.bytes_written() << " bytes into " << out
             << "; lost " << rec.lost.load() << " before the recorder, " << rec.overflowed.load()
-            << " in it (the disk more than 1 GiB behind)\n";
+            << " in it (the file's writer more than 1 GiB behind)\n";
+  if (rec.writer.records_bytes() > 0)  // what the compression saved
+    std::cout << "chunks " << (*compression == mcap::Compression::kNone ? "uncompressed" : compression_arg) << ": "
+              << rec.writer.records_bytes() << " bytes of records in a file of " << rec.writer.bytes_written()
+              << " bytes ("
+              << std::lround(100.0 * static_cast<double>(rec.writer.bytes_written()) /
+                             static_cast<double>(rec.writer.records_bytes()))
+              << " %)\n";
   for (const auto& [topic, r] : recorders)
     std::cout << "  " << topic << ": " << r->messages.load()
               << (r->lost ? ", lost " + std::to_string(r->lost.load()) : "") << "\n";

@@ -127,9 +127,12 @@ const CommandHelp kCommands[] = {
 )"},
     {"record",
      R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
+         [--compression zstd|lz4|none]
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
+        --compression: of each chunk, lossless; zstd (default, level 1: the smallest files that
+        keep up with the demo's images), lz4 (faster, larger), none. play reads all three.
         A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
         not slow its loops; --prompt: each sample as it is written (arrival times as sent).
         Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).

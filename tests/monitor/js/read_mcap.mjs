@@ -1,13 +1,26 @@
 // Reads a `wysiwyf record` file with the official MCAP reader (@mcap/core) and decodes its
-// messages with Foxglove's OMG IDL decoder from the schemas in the file. Prints JSON.
+// messages with Foxglove's OMG IDL decoder from the schemas in the file. Chunks compressed with
+// zstd or lz4 are decompressed by Foxglove's WebAssembly builds of the reference libraries (the
+// handlers @mcap/support gives @mcap/core). Prints JSON.
 //   node read_mcap.mjs summary FILE      indexed read (summary, chunk indexes, CRCs): per topic
-//                                        the schema, the count, and every message decoded
-//   node read_mcap.mjs stream FILE       front-to-back read of a file that may be cut short
+//                                        the schema, the count, and every message decoded; the
+//                                        chunks per compression ("" for none)
+//   node read_mcap.mjs stream FILE       front-to-back read of a file that may be cut short;
+//                                        the chunks per compression
 //   node read_mcap.mjs compare A B TOPIC the TOPIC messages of A and B with equal stamps: equal bytes?
 import { readFileSync } from "node:fs";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader } from "@foxglove/omgidl-serialization";
+import decompressLz4 from "@foxglove/wasm-lz4";
+import * as zstd from "@foxglove/wasm-zstd";
+
+await Promise.all([zstd.isLoaded, decompressLz4.isLoaded]);
+const decompressHandlers = {
+  zstd: (buffer, size) => zstd.decompress(buffer, Number(size)),
+  lz4: (buffer, size) => decompressLz4(buffer, Number(size)),
+};
+const countBy = (values) => values.reduce((n, v) => ({ ...n, [v]: (n[v] ?? 0) + 1 }), {});
 
 const json = (v) =>
   JSON.stringify(v, (k, x) => (typeof x === "bigint" ? Number(x) : ArrayBuffer.isView(x) ? `<${x.length} bytes>` : x));
@@ -18,7 +31,7 @@ async function indexed(file) {
     size: async () => BigInt(bytes.byteLength),
     read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
   };
-  return McapIndexedReader.Initialize({ readable });
+  return McapIndexedReader.Initialize({ readable, decompressHandlers });
 }
 
 function decoderFor(schema) {
@@ -39,24 +52,32 @@ async function summary(file) {
     t.count++;
     if (decoders.has(m.channelId)) t.messages.push(decoders.get(m.channelId).readMessage(m.data));
   }
-  return { messages: Number(reader.statistics.messageCount), chunks: reader.chunkIndexes.length, topics };
+  return {
+    messages: Number(reader.statistics.messageCount),
+    chunks: reader.chunkIndexes.length,
+    compression: countBy(reader.chunkIndexes.map((c) => c.compression)),
+    topics,
+  };
 }
 
 function stream(file) {
-  const reader = new McapStreamReader({ validateCrcs: true });
+  const reader = new McapStreamReader({ validateCrcs: true, includeChunks: true, decompressHandlers });
   reader.append(readFileSync(file));
-  const schemas = new Map(), channels = new Map();
-  let messages = 0, decoded = 0, chunks = 0;
+  const schemas = new Map(), channels = new Map(), decoders = new Map();
+  const compressions = [];
+  let messages = 0, decoded = 0;
   for (let r; (r = reader.nextRecord()) !== undefined; ) {
-    if (r.type === "Schema") schemas.set(r.id, r);
+    if (r.type === "Chunk") compressions.push(r.compression);
+    else if (r.type === "Schema") schemas.set(r.id, r);
     else if (r.type === "Channel") channels.set(r.id, r);
     else if (r.type === "Message") {
       messages++;
       const schema = schemas.get(channels.get(r.channelId).schemaId);
-      if (schema) decoderFor(schema).readMessage(r.data), decoded++;
+      if (schema && !decoders.has(schema.id)) decoders.set(schema.id, decoderFor(schema));
+      if (schema) decoders.get(schema.id).readMessage(r.data), decoded++;
     }
   }
-  return { messages, decoded, done: reader.done() };
+  return { messages, decoded, chunks: compressions.length, compression: countBy(compressions), done: reader.done() };
 }
 
 async function compare(a, b, topic) {
