@@ -72,19 +72,40 @@ class BridgedTopic final : public DataReaderListener {
       if (to_dashboard) feed_.on_sample(topic_, info_.type, sample_.bytes, now);
     }
   }
+  // A writer whose QoS this reader cannot match (a replay's after the live writer's): the main
+  // loop opens the reader again with the topic's QoS as its writers now announce it.
   void on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) override {
-    std::cerr << "topic '" << topic_ << "': a writer was refused: " << dds::qos_policy_name(status.last_policy_id)
-              << "\n";
+    std::lock_guard<std::mutex> lock(refused_mutex_);
+    refused_ = dds::qos_policy_name(status.last_policy_id);
   }
 
-  // Opens or closes the reader.
-  void want(bool wanted, Subscriber* subscriber) {
+  // Opens or closes the reader; an open one whose writer was refused is opened again with `now`,
+  // the topic as discovery sees it now, and every Foxglove client is told.
+  void want(bool wanted, Subscriber* subscriber, const TopicInfo& now) {
+    std::string refused;
+    {
+      std::lock_guard<std::mutex> lock(refused_mutex_);
+      refused.swap(refused_);
+    }
+    // (Only for a change: two writers of conflicting QoS at once keep one of them refused.)
+    const bool other_qos = now.reliability != info_.reliability || now.durability != info_.durability ||
+                           now.one_writer != info_.one_writer || now.keyed != info_.keyed;
+    if (!refused.empty() && reader_ && wanted && other_qos) {
+      subscriber->delete_datareader(reader_);
+      reader_ = nullptr;
+      info_ = now;
+      const std::string text = "topic '" + topic_ + "': a writer was refused (" + refused +
+                               "); the bridge reads it again with the QoS its writers announce now";
+      std::cerr << text << "\n";
+      server_.status_to_foxglove(1, text);
+    }
     if (wanted == (reader_ != nullptr)) return;
     if (!wanted) {
       subscriber->delete_datareader(reader_);
       reader_ = nullptr;
       return;
     }
+    info_ = now;
     reader_ = open_raw_reader(session_, subscriber, topic_, info_, 32, this,
                               StatusMask::data_available() << StatusMask::requested_incompatible_qos());
   }
@@ -101,6 +122,8 @@ class BridgedTopic final : public DataReaderListener {
   std::uint32_t channel_;
   RawCdr sample_;
   DataReader* reader_ = nullptr;
+  std::mutex refused_mutex_;
+  std::string refused_;  // the policy of the last refused writer, until the main loop acts
 };
 
 }  // namespace
@@ -200,9 +223,12 @@ int cmd_bridge(Args args) {
       std::lock_guard<std::mutex> lock(wanted_mutex);
       fox = foxglove_wanted;
     }
+    const auto discovered = s.discovery.topics();
     for (auto& [topic, bridged] : topics) {
       bridged->to_dashboard = dashboard_topics.count(topic) > 0;
-      bridged->want(bridged->to_dashboard || fox.count(bridged->channel()), subscriber);
+      const auto now = discovered.find(topic);
+      if (now != discovered.end())
+        bridged->want(bridged->to_dashboard || fox.count(bridged->channel()), subscriber, now->second);
     }
     feed.flush();
     std::this_thread::sleep_for(std::chrono::milliseconds(50));

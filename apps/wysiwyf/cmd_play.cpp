@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "dds_session.hpp"
+#include "dynamic_keys.hpp"
 #include "mcap/mcap_reader.hpp"
 #include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
@@ -146,17 +147,28 @@ int play_onto_domain(Args& args, const std::string& file, const std::vector<std:
                     << "); skipped\n";
           continue;
         }
-        if (meta("keyed") == "true") {  // a raw writer cannot compute the instance keys
-          std::cerr << "topic '" << ch.topic << "': a keyed type (" << meta("dds_type") << "); skipped\n";
-          continue;
+        const bool keyed = meta("keyed") == "true";
+        RawCdrType::KeyOf key_of;
+        if (keyed) {  // each sample's instance from its bytes, through the type's description
+          std::string searched;
+          key_of = dynamic_key_of(meta("dds_type"), searched);
+          if (!key_of) {
+            std::cerr << "topic '" << ch.topic << "': a keyed type (" << meta("dds_type")
+                      << ") whose keys cannot be computed: no description of it (searched " << searched
+                      << "); skipped\n";
+            continue;
+          }
         }
-        TypeSupport support(new RawCdrType(meta("dds_type"), false));
+        TypeSupport support(new RawCdrType(meta("dds_type"), keyed, std::move(key_of)));
         support.register_type(s.participant, meta("dds_type"));
         Topic* t = s.participant->create_topic(ch.topic, meta("dds_type"), TOPIC_QOS_DEFAULT);
         Qos qos = Qos::reliable(16);
         if (meta("reliability") == "best_effort") qos.reliability = Reliability::kBestEffort;
         if (meta("durability") == "transient_local") qos.durability = Durability::kTransientLocal;
-        DataWriterQos wq = dds::writer_qos(qos);
+        // A topic that takes one writer (a robot's setpoint) is written as its writer did, so
+        // readers that ask for exclusive ownership match the replay.
+        qos.single_writer = meta("ownership") == "exclusive";
+        DataWriterQos wq = dds::writer_qos(qos, keyed ? dds::kKeyedTopicInstances : 1);
         wq.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
         wq.data_sharing().off();
         it->second = t ? publisher->create_datawriter(t, wq) : nullptr;

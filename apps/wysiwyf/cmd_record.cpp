@@ -236,7 +236,8 @@ int cmd_record(Args args) {
             {{"dds_type", info.type},
              {"reliability", info.reliability == RELIABLE_RELIABILITY_QOS ? "reliable" : "best_effort"},
              {"durability", info.durability == VOLATILE_DURABILITY_QOS ? "volatile" : "transient_local"},
-             {"keyed", info.keyed ? "true" : "false"}});
+             {"keyed", info.keyed ? "true" : "false"},
+             {"ownership", info.one_writer ? "exclusive" : "shared"}});
       }
       if (!schema)
         std::cerr << "topic '" << topic << "': no IDL defines " << info.type << " (searched " << searched

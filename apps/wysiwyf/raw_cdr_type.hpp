@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,14 @@ struct RawCdr {
 
 class RawCdrType final : public eprosima::fastdds::dds::TopicDataType {
  public:
+  // A sample's instance from its bytes (dynamic_keys.hpp); false where the bytes are not the type.
+  using KeyOf = std::function<bool(const std::vector<std::uint8_t>& cdr,
+                                   eprosima::fastrtps::rtps::InstanceHandle_t* handle, bool force_md5)>;
+
   // `keyed`: the type has @key members (a reader must say so to match its writers).
-  RawCdrType(const std::string& type_name, bool keyed) {
+  // `key_of`: how a writer of a keyed type computes each sample's instance; without it every
+  // sample counts as one instance (enough for a reader: a writer sends the key with the sample).
+  RawCdrType(const std::string& type_name, bool keyed, KeyOf key_of = {}) : key_of_(std::move(key_of)) {
     setName(type_name.c_str());
     m_typeSize = 64 * 1024;  // a first guess for buffers; larger samples grow them
     m_isGetKeyDefined = keyed;
@@ -46,15 +53,18 @@ class RawCdrType final : public eprosima::fastdds::dds::TopicDataType {
   }
   void* createData() override { return new RawCdr(); }
   void deleteData(void* data) override { delete static_cast<RawCdr*>(data); }
-  // The bytes are not decoded, so a keyed type's samples all count as one instance here: the
-  // recorder takes each as it comes (per-instance history does not matter to it); the player
-  // does not write keyed types.
-  bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t* handle, bool) override {
+  // Without a key function the bytes are not decoded, so a keyed type's samples all count as one
+  // instance: the recorder takes each as it comes (per-instance history does not matter to it).
+  bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle, bool force_md5) override {
     if (!m_isGetKeyDefined) return false;
+    if (key_of_) return key_of_(static_cast<RawCdr*>(data)->bytes, handle, force_md5);
     *handle = eprosima::fastrtps::rtps::InstanceHandle_t();
     handle->value[0] = 1;
     return true;
   }
+
+ private:
+  KeyOf key_of_;
 };
 
 }  // namespace wysiwyf::cli

@@ -119,6 +119,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     beast::get_lowest_layer(ws_).socket().close(ec);
   }
 
+  void send_status(int level, const std::string& message) { status(level, message); }
+
  private:
   struct Frame {
     std::string header;
@@ -348,6 +350,13 @@ void WsServer::unadvertise(std::uint32_t channel_id) {
     const std::string text = to_text(json{{"op", "unadvertise"}, {"channelIds", {channel_id}}});
     for (const auto& s : impl->sessions)
       if (s->foxglove()) s->send_text(text);
+  });
+}
+
+void WsServer::status_to_foxglove(int level, const std::string& message) {
+  net::post(impl_->io, [impl = impl_, level, message] {
+    for (const auto& s : impl->sessions)
+      if (s->foxglove()) s->send_status(level, message);
   });
 }
 

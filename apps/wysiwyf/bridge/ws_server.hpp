@@ -63,6 +63,8 @@ class WsServer {
   void unadvertise(std::uint32_t channel_id);
   // Message data to the clients subscribed to `channel_id` (copied; returns at once).
   void publish(std::uint32_t channel_id, std::uint64_t receive_ns, const std::uint8_t* data, std::size_t size);
+  // A status message to every Foxglove client (level 0 info, 1 warning, 2 error).
+  void status_to_foxglove(int level, const std::string& message);
   // How many Foxglove subscriptions `channel_id` has (0: nobody wants it; cheap, any thread).
   int subscribers(std::uint32_t channel_id) const;
   // Called on the I/O thread when a channel gains its first or loses its last subscriber.
