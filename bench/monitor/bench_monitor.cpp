@@ -182,8 +182,13 @@ class Child {
   pid_t pid_ = -1;
 };
 
+// The loop's tick, the kernel's last 1024: wall time, and its cost to the loop's own thread (CPU
+// time; user-space instructions where this machine counts them, else -1): what a monitor in
+// another process does to the loop's own work, apart from what it does to the machine's noise.
 struct Figures {
   double p50_us = 0, p99_us = 0;
+  double cpu_p50_us = 0, cpu_p99_us = 0;
+  double instructions_p50 = -1, instructions_p99 = -1;
 };
 
 Figures run_once(const Condition& c, int round) {
@@ -214,7 +219,9 @@ Figures run_once(const Condition& c, int round) {
     monitor.push_back(std::make_unique<Child>(c.processes[i], out));
   }
   std::ostringstream log;
-  Runtime runtime(spec, loader, RunOptions{"", false, &log});
+  RunOptions options{"", false, &log};
+  options.measure_tick_cost = true;
+  Runtime runtime(spec, loader, options);
   const RunResult r = runtime.run();
   while (!monitor.empty()) monitor.pop_back();  // the client first, then the bridge
   if (!r.ok) throw std::runtime_error(r.error + "\n" + log.str());
@@ -227,7 +234,9 @@ Figures run_once(const Condition& c, int round) {
       throw std::runtime_error(c.name + " saw no samples of the loop; its output:\n" + text.substr(0, 2000));
   }
   for (const auto& comp : r.components)
-    if (comp.name == "physics") return Figures{comp.tick_p50_us, comp.tick_p99_us};
+    if (comp.name == "physics")
+      return Figures{comp.tick_p50_us, comp.tick_p99_us,      comp.cpu_p50_us,
+                     comp.cpu_p99_us,  comp.instructions_p50, comp.instructions_p99};
   throw std::runtime_error("no 'physics' component in the run");
 }
 
@@ -281,6 +290,23 @@ void TickWithMonitor(benchmark::State& state, const std::string& name) {
     state.counters["p50_vs_nothing_paired"] = median(paired50);
     state.counters["p99_vs_nothing_paired"] = median(paired99);
     state.counters["rounds"] = static_cast<double>(p50.size());
+    // The same, of the tick's cost to the loop's thread (CPU time, instructions where counted).
+    const auto cost = [&](const char* key, double Figures::*field) {
+      std::vector<double> v, paired;
+      const auto& runs = m.at(name);
+      const auto& base_runs = m.at(base);
+      for (std::size_t r = 0; r < runs.size(); ++r) {
+        if (runs[r].*field < 0) return;
+        v.push_back(runs[r].*field);
+        if (r < base_runs.size() && base_runs[r].*field > 0) paired.push_back(runs[r].*field / base_runs[r].*field);
+      }
+      state.counters[std::string(key)] = median(v);
+      state.counters[std::string(key) + "_vs_nothing_paired"] = median(paired);
+    };
+    cost("cpu_p50_us", &Figures::cpu_p50_us);
+    cost("cpu_p99_us", &Figures::cpu_p99_us);
+    cost("instructions_p50", &Figures::instructions_p50);
+    cost("instructions_p99", &Figures::instructions_p99);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
   }

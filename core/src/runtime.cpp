@@ -22,6 +22,7 @@
 
 #include "dds_bridge.hpp"
 #include "wysiwyf/detail/doorbell.hpp"
+#include "tick_cost.hpp"
 #include "tick_stats.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/real_time_throttling.hpp"
@@ -186,9 +187,16 @@ struct Runtime::Impl final : RunHost {
   void tick(Slot& slot, Time now, double late_us = 0) {
     slot.last_tick_ns = now.ns;
     const auto t0 = Clock::now();
+    const detail::TickCost c0 = options.measure_tick_cost ? detail::thread_cost_now() : detail::TickCost{};
     guarded(
         slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
-    slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
+    if (options.measure_tick_cost) {
+      const detail::TickCost cost = detail::thread_cost_now() - c0;
+      slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us, cost.cpu_us,
+                        cost.instructions);
+    } else {
+      slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
+    }
     if (flush_after_tick) bridge->flush_soon();  // DDS sends what the tick wrote, on its own thread
   }
   bool flush_after_tick = false;  // real clock: each tick wakes the publisher; sim clock: each step
@@ -580,6 +588,9 @@ void Runtime::Impl::teardown(RunResult& result) {
         s.run_max_us, s.late_p50_us, s.late_p99_us, s.late_max_us, slot->dropped(), slot->rejected, slot->warnings,
         slot->last_error.empty() ? to_string(slot->worst_health) : "failed",
         slot->last_error.empty() ? slot->worst_reason : slot->last_error});
+    ComponentReport& r = result.components.back();
+    r.cpu_p50_us = s.cpu_p50_us, r.cpu_p99_us = s.cpu_p99_us;
+    r.instructions_p50 = s.instructions_p50, r.instructions_p99 = s.instructions_p99;
   }
   // Components go first (reverse order), then DDS, then the topics they wrote to.
   for (auto it = slots.rbegin(); it != slots.rend(); ++it) (*it)->component.reset();

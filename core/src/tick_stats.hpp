@@ -1,7 +1,8 @@
 #pragma once
 // Tick durations, start lateness and counts of one component, summarised for Diagnostics (the
 // last 1024 ticks) and for the run's report (tick durations over the whole run as well, in bins
-// 1 % wide). Thread-safe: the component's thread records, the diagnostics publisher reads.
+// 1 % wide; and, where measured, each tick's cost to its thread: tick_cost.hpp). Thread-safe:
+// the component's thread records, the diagnostics publisher reads.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -22,11 +23,17 @@ class TickStats {
     // Over the whole run: the tick duration's 99th percentile (at most 1 % above the true
     // value: the upper edge of its bin, or the longest tick if less) and the longest tick.
     double run_p99_us = 0, run_max_us = 0;
+    // The last 1024 ticks' cost to their thread (RunOptions::measure_tick_cost; < 0: not measured).
+    double cpu_p50_us = -1, cpu_p99_us = -1;
+    double instructions_p50 = -1, instructions_p99 = -1;
   };
 
-  void record(double duration_us, double late_us = 0) {
+  // `cpu_us`, `instructions`: what the tick cost its thread, < 0 where not measured.
+  void record(double duration_us, double late_us = 0, double cpu_us = -1, double instructions = -1) {
     std::lock_guard<std::mutex> lock(mutex_);
     late_[next_ % late_.size()] = static_cast<float>(late_us);
+    cpu_[next_ % cpu_.size()] = static_cast<float>(cpu_us);
+    instructions_[next_ % instructions_.size()] = static_cast<float>(instructions);
     samples_[next_++ % samples_.size()] = static_cast<float>(duration_us);
     ++run_bins_[bin_of(duration_us)];
     run_max_us_ = std::max(run_max_us_, duration_us);
@@ -61,6 +68,12 @@ class TickStats {
     s.late_p50_us = at(0.50);
     s.late_p99_us = at(0.99);
     s.late_max_us = *std::max_element(scratch_.begin(), scratch_.end());
+    // A cost is reported only where every tick of the window had it measured.
+    scratch_.assign(cpu_.begin(), cpu_.begin() + n);
+    if (*std::min_element(scratch_.begin(), scratch_.end()) >= 0) s.cpu_p50_us = at(0.50), s.cpu_p99_us = at(0.99);
+    scratch_.assign(instructions_.begin(), instructions_.begin() + n);
+    if (*std::min_element(scratch_.begin(), scratch_.end()) >= 0)
+      s.instructions_p50 = at(0.50), s.instructions_p99 = at(0.99);
     s.run_max_us = run_max_us_;
     s.run_p99_us = std::min(run_max_us_, run_percentile(0.99));
     return s;
@@ -86,7 +99,7 @@ class TickStats {
   std::mutex mutex_;
   std::array<std::uint64_t, kRunBins> run_bins_{};
   double run_max_us_ = 0;
-  std::array<float, 1024> samples_{}, late_{};
+  std::array<float, 1024> samples_{}, late_{}, cpu_{}, instructions_{};
   std::vector<float> scratch_;
   std::uint64_t next_ = 0, ticks_ = 0, overruns_ = 0, window_ticks_ = 0;
 };

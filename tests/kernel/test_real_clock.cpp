@@ -52,6 +52,34 @@ TEST(TickReport, GivesTheP99OverTheWholeRunBesideTheLast1024Ticks) {
   EXPECT_LE(c.tick_max_us, c.run_tick_max_us);
 }
 
+TEST(TickReport, MeasuresEachTicksCostToItsThreadApartFromItsWallTimeWhenAsked) {
+  // Ticks that sleep 2 ms: 2 ms of wall time each, almost none of the thread's CPU time. The cost
+  // is what a monitor in another process cannot change, where a wall time can.
+  const std::string yaml =
+      "wysiwyf: 1\ndomain: 87\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 50ms}\n"
+      "components:\n  probe: {type: test_probe, rate: 1000, params: {tick_sleep_us: 2000}}\n";
+  Loader loader(test_search_dirs());
+  const PipelineSpec spec = load_pipeline_from_string(yaml, "test.yaml");
+  std::ostringstream log;
+  RunOptions options{"", false, &log};
+  options.measure_tick_cost = true;
+  const RunResult r = Runtime(spec, loader, options).run();
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.components.size(), 1u);
+  const ComponentReport& c = r.components[0];
+  EXPECT_GE(c.tick_p50_us, 2000.0);
+  EXPECT_GE(c.cpu_p50_us, 0.0);
+  EXPECT_LT(c.cpu_p99_us, 500.0) << "us of CPU for a tick that slept";
+  EXPECT_LE(c.cpu_p50_us, c.cpu_p99_us);
+  // Instructions where this machine's kernel counts them for a process (not in most VMs).
+  if (c.instructions_p50 >= 0) EXPECT_GT(c.instructions_p99, 0.0);
+  // Not asked for: not measured.
+  const RunResult plain = run_pipeline(yaml);
+  ASSERT_TRUE(plain.ok) << plain.error;
+  EXPECT_EQ(plain.components[0].cpu_p50_us, -1.0);
+  EXPECT_EQ(plain.components[0].instructions_p50, -1.0);
+}
+
 TEST(RealClock, SpinAndPriorityRunAndTheLatenessOfEveryTickIsReported) {
   // spin: wake 200 us early and busy-wait; priority: SCHED_FIFO if this process may (a warning
   // otherwise; the run goes on either way). What is checked is behaviour, not precision.
