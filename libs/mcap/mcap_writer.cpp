@@ -110,18 +110,21 @@ void Writer::write(std::uint16_t channel, std::uint32_t sequence, std::uint64_t 
 
 void Writer::flush_chunk() {
   if (chunk_.b.empty()) return;
-  compressor_.compress(chunk_.b.data(), chunk_.b.size(), compressed_);
-  ChunkIndex index{chunk_start_, chunk_end_, offset_, 0, 0, chunk_.b.size(), compressed_.size(), {}};
+  // The records as they go into the file: compressed, or (no compression) as they are.
+  const bool compress = compressor_.compression() != Compression::kNone;
+  if (compress) compressor_.compress(chunk_.b.data(), chunk_.b.size(), compressed_);
+  const std::vector<std::uint8_t>& stored = compress ? compressed_ : chunk_.b;
+  ChunkIndex index{chunk_start_, chunk_end_, offset_, 0, 0, chunk_.b.size(), stored.size(), {}};
   Bytes r;
-  r.b.reserve(compressed_.size() + 64 + chunk_index_.size() * 64);
+  r.b.reserve(stored.size() + 64 + chunk_index_.size() * 64);
   const auto at = r.open(kChunk);
   r.u64(chunk_start_);
   r.u64(chunk_end_);
   r.u64(chunk_.b.size());                           // uncompressed size
   r.u32(crc(0, chunk_.b.data(), chunk_.b.size()));  // uncompressed CRC
   r.str(compression_name(compressor_.compression()));
-  r.u64(compressed_.size());
-  r.put(compressed_.data(), compressed_.size());
+  r.u64(stored.size());
+  r.put(stored.data(), stored.size());
   r.close(at);
   records_bytes_ += chunk_.b.size();
   index.length = r.b.size();
