@@ -18,7 +18,9 @@ SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, 
   // a sim clock, where it is the time.)
   const std::int64_t stamp = m.header().stamp_ns();
   const SafetyConfig& c = gate_.config();
-  const double age = static_cast<double>(now_ns - stamp) * 1e-9;
+  // In doubles: a stamp from outside may be anything, and INT64_MIN would overflow the int64
+  // difference into "far in the future".
+  const double age = (static_cast<double>(now_ns) - static_cast<double>(stamp)) * 1e-9;
   const auto refuse = [&](const char* fmt, double a, double b) {
     char buf[200];
     std::snprintf(buf, sizeof buf, fmt, a, b);

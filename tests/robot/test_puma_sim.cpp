@@ -429,12 +429,14 @@ TEST(PumaSim, StaleFutureAndOutOfOrderSetpointsAreRefusedAndNeverMoveTheArm) {
   Eigen::Isometry3d away = ready;
   away.translation().x() -= 0.05;  // a valid pose 5 cm off: followed if it got through
   // The good stream goes on at 1 kHz; after each good setpoint an intruder's with a bad stamp.
-  const std::int64_t bad_stamps[] = {0, -1, 60 * kMs /*stale*/, -10 * kMs /*future*/, kMs / 2 /*out of order*/};
+  // (-1: the largest stamp; -2: the smallest, whose age overflows an int64 difference.)
+  const std::int64_t bad_stamps[] = {0, -1, -2, 60 * kMs /*stale*/, -10 * kMs /*future*/, kMs / 2 /*out of order*/};
   for (int i = 0; i < 500; ++i) {
     sim.send(ready);
-    const std::int64_t offset = bad_stamps[i % 5];
+    const std::int64_t offset = bad_stamps[i % 6];
     sim.sp.write(setpoint(offset == 0    ? 0
                           : offset == -1 ? std::numeric_limits<std::int64_t>::max()
+                          : offset == -2 ? std::numeric_limits<std::int64_t>::min()
                                          : sim.t - offset,
                           away));
     sim.tick();
