@@ -6,6 +6,8 @@
 // saw. `device_motion: state` is the paper's first prototype for comparison: the filter tracks
 // eye_T_dev and the robot's motion disturbs the background.
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string_view>
 #include <optional>
@@ -59,6 +61,14 @@ class MarkerTracker final : public Component {
     s.device_angular_accel = ctx.param<double>(
         "device_angular_accel_noise", 2.0,
         "device_motion: state only: the device's angular acceleration, rad/s^2 per sqrt(Hz)", Range{0, 10000});
+    // Whatever the lamps say, the camera cannot move faster than this: a fix that would move it
+    // farther since the last trusted estimate is refused (a head's top speed and turn rate).
+    s.motion.max_speed =
+        ctx.param<double>("max_camera_speed", 1.0, "the camera's top speed, m/s: a fix that moves it faster is refused",
+                          Range{0.01, 100});
+    s.motion.max_turn_rate = ctx.param<double>(
+        "max_camera_turn_rate", 3.0, "the camera's top turn rate, rad/s: a fix that turns it faster is refused",
+        Range{0.01, 1000});
     s.gate = ctx.param<double>(
         "gate", 13.8, "Mahalanobis gate, chi-square with 2 dof (13.8: 99.9 %; a huge value: no gate)", Range{1, 1e12});
     s.min_markers = ctx.param<int>("min_markers", 2, "lamps an image needs to update the filter", Range{1, 4});
@@ -133,10 +143,28 @@ class MarkerTracker final : public Component {
       return warn_once("no joint state yet: the device's pose is unknown; images are skipped until then");
     const Eigen::Isometry3d base_T_dev = model_->fk(q, dev_);
     const FrameResult& r = tracker_->process(image, layout, stamp, base_T_dev, *camera_);
+    if (r.refused != Refusal::kNone) report_refusal(r, stamp);
     publish(r, stamp);
   }
 
  private:
+  // In the diagnostics: logged the first time, counted every time.
+  void report_refusal(const FrameResult& r, std::int64_t stamp) {
+    char text[256];
+    if (r.refused == Refusal::kAmbiguous) {
+      std::snprintf(text, sizeof text,
+                    "refused a fix at t=%.3f s: its blobs could be more than one set of lamps (kept the prediction)",
+                    static_cast<double>(stamp) * 1e-9);
+      return warn_once("refused fix: ambiguous lamps", text);
+    }
+    std::snprintf(text, sizeof text,
+                  "refused a fix at t=%.3f s: it would move the camera %.0f mm and turn it %.1f deg in %.2f s "
+                  "(max_camera_speed %.2f m/s, max_camera_turn_rate %.2f rad/s)",
+                  static_cast<double>(stamp) * 1e-9, r.jump.distance_m * 1e3, r.jump.angle_rad * 180 / M_PI,
+                  r.since_trusted_s, tracker_->settings().motion.max_speed, tracker_->settings().motion.max_turn_rate);
+    warn_once("refused fix: the camera cannot move that fast", text);
+  }
+
   void read_joints(Time now) {
     while (joints_in_.take(joints_msg_)) {
       const robot::Vector6d q = msgs::joint_positions(joints_msg_);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace wysiwyf::vision {
@@ -98,18 +99,23 @@ std::optional<PlateFix> acquire_plate(const std::vector<Blob>& blobs, const Plat
                    {idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)],
                     idx[static_cast<std::size_t>(c)], idx[static_cast<std::size_t>(d)]},
                    plate, camera, settings.max_rms_px, fits);
-  if (fits.empty()) return std::nullopt;
-  double best_rms = fits.front().rms;
-  for (const auto& f : fits) best_rms = std::min(best_rms, f.rms);
+  // A fit whose cost is infinite is impossible (the caller knows where the camera cannot be):
+  // the near-equal ones are chosen among the rest.
+  std::vector<double> costs(fits.size());
+  double best_rms = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    costs[i] = cost(fits[i].eye_T_dev, fits[i].rms);
+    if (std::isfinite(costs[i])) best_rms = std::min(best_rms, fits[i].rms);
+  }
   const Fit* chosen = nullptr;
   double chosen_cost = 0;
   int plausible = 0;
-  for (const auto& f : fits) {
-    if (f.rms > best_rms + settings.ambiguity_px) continue;
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    if (!std::isfinite(costs[i]) || fits[i].rms > best_rms + settings.ambiguity_px) continue;
     ++plausible;
-    const double c = cost(f.eye_T_dev, f.rms);
-    if (!chosen || c < chosen_cost) chosen = &f, chosen_cost = c;
+    if (!chosen || costs[i] < chosen_cost) chosen = &fits[i], chosen_cost = costs[i];
   }
+  if (!chosen) return std::nullopt;
   return PlateFix{chosen->eye_T_dev, chosen->blob_of_marker, chosen->rms, plausible};
 }
 

@@ -6,7 +6,7 @@
 // show the plate's front to the camera remain. The square's four-fold symmetry and IPPE's
 // two-fold ambiguity leave several near-equal fits; `cost` picks among those whose reprojection
 // error is within `ambiguity_px` of the best (continuity with the last estimate, or which way
-// is up).
+// is up). An infinite cost rules a fit out before that (a camera pose that cannot be).
 #include <Eigen/Geometry>
 
 #include <array>

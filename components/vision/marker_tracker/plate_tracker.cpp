@@ -31,6 +31,9 @@ const FrameResult& PlateTracker::process(const cv::Mat& image, PixelLayout layou
   result_.matched.clear();
   result_.windows.clear();
   result_.rms_px = 0;
+  result_.refused = Refusal::kNone;
+  result_.jump = CameraMotion{};
+  result_.since_trusted_s = 0;
   base_T_dev_ = base_T_dev;
   if (s_.device_motion == DeviceMotion::kInput) {
     x_T_dev_ = base_T_dev;
@@ -45,6 +48,7 @@ const FrameResult& PlateTracker::process(const cv::Mat& image, PixelLayout layou
     ekf_.predict(dt);
     track(image, layout, camera);
   } else {
+    if (have_trusted_) ekf_.predict(dt);  // what the filter expects while the lamps are out of sight
     acquire(image, layout, camera);
   }
   if (has_estimate()) last_eye_T_base_ = eye_T_base(), have_last_ = true;
@@ -61,7 +65,7 @@ bool PlateTracker::predict_lamp(int i, const CameraModel& camera, PoseEkf::Predi
 }
 
 void PlateTracker::track(const cv::Mat& image, PixelLayout layout, const CameraModel& camera) {
-  accepted_.clear(), accepted_pixels_.clear(), accepted_ids_.clear();
+  matcher_.clear();
   for (int i = 0; i < 4; ++i) {
     PoseEkf::Prediction pred;
     if (!predict_lamp(i, camera, pred)) continue;
@@ -75,35 +79,22 @@ void PlateTracker::track(const cv::Mat& image, PixelLayout layout, const CameraM
     const cv::Rect window(static_cast<int>(std::lround(centre.x())) - half,
                           static_cast<int>(std::lround(centre.y())) - half, 2 * half + 1, 2 * half + 1);
     result_.windows.push_back(window);
+    matcher_.predict(i, pred);
     blobs_.clear();
     if (!detector_.detect_in(image, layout, window, blobs_)) continue;
-    result_.blobs += static_cast<int>(blobs_.size());
-    int best = -1;
-    double best_d2 = std::numeric_limits<double>::infinity();
-    Eigen::Vector2d best_ideal;
-    for (int b = 0; b < static_cast<int>(blobs_.size()); ++b) {
-      const Eigen::Vector2d ideal =
-          camera.undistort({blobs_[static_cast<std::size_t>(b)].u, blobs_[static_cast<std::size_t>(b)].v});
-      const double d2 = PoseEkf::mahalanobis2(pred, ideal);
-      if (d2 < best_d2) best = b, best_d2 = d2, best_ideal = ideal;
-    }
-    if (best >= 0 && best_d2 <= s_.gate) {
-      accepted_.push_back(pred);
-      accepted_pixels_.push_back(best_ideal);
-      accepted_ids_.push_back(i);
-      result_.matched.push_back(
-          MatchedLamp{i, blobs_[static_cast<std::size_t>(best)].u, blobs_[static_cast<std::size_t>(best)].v});
-      result_.rejected += static_cast<int>(blobs_.size()) - 1;
-    } else {
-      result_.rejected += static_cast<int>(blobs_.size());
-    }
+    for (const Blob& b : blobs_) matcher_.add_blob(b, camera.undistort({b.u, b.v}));
   }
-  if (static_cast<int>(accepted_.size()) >= s_.min_markers) {
+  result_.blobs = matcher_.blobs();
+  if (match_lamps() && static_cast<int>(accepted_.size()) >= s_.min_markers) {
+    const PoseEkf predicted = ekf_;
     ekf_.update(accepted_, accepted_pixels_);
-    result_.frames_without_fix = 0;
-    result_.rms_px = reprojection_rms(camera);
-    state_ = TrackState::kTracking;
-    return;
+    if (admit()) {
+      result_.frames_without_fix = 0;
+      result_.rms_px = reprojection_rms(camera);
+      state_ = TrackState::kTracking;
+      return;
+    }
+    ekf_ = predicted;  // the refused update never happened
   }
   ++result_.frames_without_fix;
   state_ = result_.frames_without_fix >= s_.lost_after ? TrackState::kLost : TrackState::kCoasting;
@@ -118,14 +109,29 @@ void PlateTracker::acquire(const cv::Mat& image, PixelLayout layout, const Camer
     const Eigen::Vector2d p = camera.undistort({b.u, b.v});
     b.u = p.x(), b.v = p.y();
   }
-  // Which of the near-equal fits: the one nearest the last estimate (the camera moves little
-  // while the plate is lost, and the device's motion is known), else the one that has the
-  // base's up axis pointing up in the image.
-  const Eigen::Isometry3d expected_eye_T_dev = last_eye_T_base_ * base_T_dev_;
+  // Which of the near-equal fits: the arm's joints say where the plate is in the base frame, so
+  // each fit says where the camera is. A fit that moves the camera farther than it can go since
+  // the last trusted estimate is no fit; of the others, the one nearest the last estimate (the
+  // camera moves little while the plate is lost), else nearest the set-up's prior pose, else
+  // the one that has the base's up axis pointing up in the image.
+  const Eigen::Isometry3d dev_T_base = base_T_dev_.inverse();
+  const bool have_reference = have_last_ || s_.has_prior;
+  const Eigen::Isometry3d expected_eye_T_dev = (have_last_ ? last_eye_T_base_ : s_.prior_eye_T_base) * base_T_dev_;
   const Eigen::Matrix3d dev_R_base = base_T_dev_.linear().transpose();
   const Eigen::Vector3d up = s_.up_in_base.normalized();
+  const double since_trusted = static_cast<double>(last_stamp_ - trusted_stamp_) * 1e-9;
+  int impossible = 0;
+  CameraMotion nearest_impossible{std::numeric_limits<double>::infinity(), 0};
   auto cost = [&](const Eigen::Isometry3d& eye_T_dev, double rms) {
-    if (have_last_) {
+    if (have_trusted_) {
+      const CameraMotion jump = CameraMotion::between(trusted_eye_T_base_, eye_T_dev * dev_T_base);
+      if (!jump.possible(since_trusted, s_.motion)) {
+        if (jump.distance_m < nearest_impossible.distance_m) nearest_impossible = jump;
+        ++impossible;
+        return std::numeric_limits<double>::infinity();
+      }
+    }
+    if (have_reference) {
       const double angle = Eigen::AngleAxisd(expected_eye_T_dev.linear().transpose() * eye_T_dev.linear()).angle();
       return angle + (eye_T_dev.translation() - expected_eye_T_dev.translation()).norm() / 0.1 + 0.01 * rms;
     }
@@ -135,9 +141,14 @@ void PlateTracker::acquire(const cv::Mat& image, PixelLayout layout, const Camer
   const auto fix = acquire_plate(ideal, plate_, camera, cost, s_.acquisition);
   if (!fix) {
     if (acquire_from_guess(camera)) return;
+    if (impossible > 0 && result_.refused == Refusal::kNone) {
+      result_.jump = nearest_impossible, result_.since_trusted_s = since_trusted;
+      refuse(Refusal::kJump);
+    }
     ++result_.frames_without_fix;
     return;
   }
+  const PoseEkf before = ekf_;
   const Eigen::Isometry3d dev_T_x = x_T_dev_.inverse();
   PoseEkf::Matrix6d dev_cov = PoseEkf::Matrix6d::Zero();
   dev_cov.diagonal() << Eigen::Vector3d::Constant(s_.start_sigma_m * s_.start_sigma_m),
@@ -156,6 +167,11 @@ void PlateTracker::acquire(const cv::Mat& image, PixelLayout layout, const Camer
     result_.matched.push_back(MatchedLamp{i, blobs_[blob].u, blobs_[blob].v});
   }
   ekf_.update(accepted_, accepted_pixels_);
+  if (!admit()) {
+    ekf_ = before;  // still lost: the next image starts from the filter's own prediction
+    ++result_.frames_without_fix;
+    return;
+  }
   result_.rms_px = reprojection_rms(camera);
   result_.acquired = true;
   result_.frames_without_fix = 0;
@@ -164,48 +180,86 @@ void PlateTracker::acquire(const cv::Mat& image, PixelLayout layout, const Camer
 
 bool PlateTracker::acquire_from_guess(const CameraModel& camera) {
   if (!have_last_ && !s_.has_prior) return false;
-  const Eigen::Isometry3d guess = have_last_ ? last_eye_T_base_ : s_.prior_eye_T_base;
+  const PoseEkf before = ekf_;
   PoseEkf::Matrix6d cov = PoseEkf::Matrix6d::Zero();
   cov.diagonal() << Eigen::Vector3d::Constant(s_.prior_sigma_m * s_.prior_sigma_m),
       Eigen::Vector3d::Constant(s_.prior_sigma_rad * s_.prior_sigma_rad);
   // The guess is uncertain about the camera: its errors are those of eye_T_base, carried to x.
   const Eigen::Isometry3d base_T_x = x_T_base_.inverse();
-  ekf_.reset(guess * base_T_x, frames::compose_covariance(cov, guess, base_T_x), s_.start_velocity_sigma,
-             s_.start_angular_sigma);
-  match_blobs(camera);
-  if (static_cast<int>(accepted_.size()) < std::max(2, s_.min_markers)) return false;
-  ekf_.update(accepted_, accepted_pixels_);
-  result_.rms_px = reprojection_rms(camera);
-  result_.acquired = true;
-  result_.frames_without_fix = 0;
-  state_ = TrackState::kTracking;
+  // With the device's motion as a known input, the filter's own prediction of the camera first,
+  // as it is: lamps that were only too dim to see are where it expects them, and it goes on as
+  // if it had never lost them. Then the same prediction as uncertain as the prior more, its
+  // velocities kept (fresh ones, unseen along the directions that two lamps do not pin, would
+  // let the pose wander there). Otherwise the last estimate, or the prior, from rest.
+  const bool resume = have_trusted_ && s_.device_motion == DeviceMotion::kInput;
+  for (int attempt = resume ? 0 : 1; attempt < 2; ++attempt) {
+    ekf_ = before;
+    if (resume && attempt == 1) {
+      ekf_.widen_pose(frames::compose_covariance(cov, ekf_.pose(), base_T_x));
+    } else if (!resume) {
+      const Eigen::Isometry3d guess = have_last_ ? last_eye_T_base_ : s_.prior_eye_T_base;
+      ekf_.reset(guess * base_T_x, frames::compose_covariance(cov, guess, base_T_x), s_.start_velocity_sigma,
+                 s_.start_angular_sigma);
+    }
+    matcher_.clear();
+    for (const Blob& b : blobs_) matcher_.add_blob(b, camera.undistort({b.u, b.v}));
+    for (int i = 0; i < 4; ++i) {
+      PoseEkf::Prediction pred;
+      if (predict_lamp(i, camera, pred)) matcher_.predict(i, pred);
+    }
+    if (!match_lamps() || static_cast<int>(accepted_.size()) < std::max(2, s_.min_markers)) continue;
+    ekf_.update(accepted_, accepted_pixels_);
+    if (!admit()) continue;
+    result_.refused = Refusal::kNone;  // an earlier attempt's refusal no longer stands
+    result_.rms_px = reprojection_rms(camera);
+    result_.acquired = true;
+    result_.frames_without_fix = 0;
+    state_ = TrackState::kTracking;
+    return true;
+  }
+  ekf_ = before;  // still lost: the next image starts from the same prediction
+  result_.matched.clear();
+  return false;
+}
+
+bool PlateTracker::match_lamps() {
+  accepted_.clear(), accepted_pixels_.clear(), accepted_ids_.clear();
+  result_.matched.clear();
+  const LampMatch m = matcher_.solve(ekf_, s_.gate, s_.ambiguity);
+  result_.rejected = matcher_.blobs() - m.matched;
+  if (m.ambiguous) {
+    refuse(Refusal::kAmbiguous);
+    return false;
+  }
+  for (int i = 0; i < 4; ++i) {
+    const int b = m.blob_of_lamp[static_cast<std::size_t>(i)];
+    if (b < 0) continue;
+    accepted_.push_back(matcher_.prediction(i));
+    accepted_pixels_.push_back(matcher_.ideal(b));
+    accepted_ids_.push_back(i);
+    result_.matched.push_back(MatchedLamp{i, matcher_.blob(b).u, matcher_.blob(b).v});
+  }
   return true;
 }
 
-void PlateTracker::match_blobs(const CameraModel& camera) {
-  accepted_.clear(), accepted_pixels_.clear(), accepted_ids_.clear();
-  result_.matched.clear();
-  std::vector<bool> taken(blobs_.size(), false);
-  for (int i = 0; i < 4; ++i) {
-    PoseEkf::Prediction pred;
-    if (!predict_lamp(i, camera, pred)) continue;
-    int best = -1;
-    double best_d2 = s_.gate;
-    Eigen::Vector2d best_ideal;
-    for (std::size_t b = 0; b < blobs_.size(); ++b) {
-      const Eigen::Vector2d ideal = camera.undistort({blobs_[b].u, blobs_[b].v});
-      const double d2 = PoseEkf::mahalanobis2(pred, ideal);
-      if (d2 <= best_d2) best = static_cast<int>(b), best_d2 = d2, best_ideal = ideal;
+bool PlateTracker::admit() {
+  const Eigen::Isometry3d estimate = eye_T_base();
+  if (have_trusted_) {
+    const double since = static_cast<double>(last_stamp_ - trusted_stamp_) * 1e-9;
+    const CameraMotion jump = CameraMotion::between(trusted_eye_T_base_, estimate);
+    if (!jump.possible(since, s_.motion)) {
+      result_.jump = jump, result_.since_trusted_s = since;
+      refuse(Refusal::kJump);
+      return false;
     }
-    if (best < 0 || taken[static_cast<std::size_t>(best)]) continue;  // none, or already the match of another lamp
-    taken[static_cast<std::size_t>(best)] = true;
-    accepted_.push_back(pred);
-    accepted_pixels_.push_back(best_ideal);
-    accepted_ids_.push_back(i);
-    result_.matched.push_back(
-        MatchedLamp{i, blobs_[static_cast<std::size_t>(best)].u, blobs_[static_cast<std::size_t>(best)].v});
   }
-  result_.rejected = static_cast<int>(blobs_.size() - accepted_.size());
+  trusted_eye_T_base_ = estimate, trusted_stamp_ = last_stamp_, have_trusted_ = true;
+  return true;
+}
+
+void PlateTracker::refuse(Refusal why) {
+  result_.refused = why;
+  result_.matched.clear();  // none of this image's lamps were used
 }
 
 double PlateTracker::reprojection_rms(const CameraModel& camera) const {

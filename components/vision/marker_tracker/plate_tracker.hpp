@@ -6,6 +6,13 @@
 // until a PnP fix restarts the filter (or, with fewer than four lamps in view, until enough of
 // them appear where the last estimate or the set-up's prior pose predicts them).
 //
+// No estimate moves the camera farther than it can go (motion_gate.hpp): an update, a PnP fix or
+// a fix from the last estimate that would is refused and said so (FrameResult::refused). Blobs
+// are given to lamps all together (lamp_matcher.hpp), and an image whose blobs could be more
+// than one set of lamps is not used. Among PnP's near-equal fits (the coplanar lamps' two-fold
+// ambiguity, sharpest face-on and edge-on) the arm's kinematics choose: base_T_dev is known, so
+// each fit says where the camera is, and the one nearest where it was (or the prior) wins.
+//
 // The filter's state (paper section 5.1):
 //   DeviceMotion::kInput  eye_T_base. The device's motion base_T_dev (joints + robot model) is a
 //                         known input: lamp i is seen at eye_T_base * base_T_dev * dev_p_i. A
@@ -22,6 +29,8 @@
 
 #include "camera_model.hpp"
 #include "bright_blobs/blob_detector.hpp"
+#include "lamp_matcher.hpp"
+#include "motion_gate.hpp"
 #include "plate_acquisition.hpp"
 #include "plate_markers.hpp"
 #include "frames/pose_covariance.hpp"
@@ -31,6 +40,9 @@ namespace wysiwyf::vision {
 
 enum class DeviceMotion { kInput, kState };
 enum class TrackState { kLost, kTracking, kCoasting };
+// Why an image's fix was not used: none refused; it would move the camera farther than it can go
+// (kJump); its blobs could be more than one set of lamps (kAmbiguous).
+enum class Refusal { kNone, kJump, kAmbiguous };
 
 struct TrackerSettings {
   DeviceMotion device_motion = DeviceMotion::kInput;
@@ -50,6 +62,10 @@ struct TrackerSettings {
   Eigen::Isometry3d prior_eye_T_base = Eigen::Isometry3d::Identity();
   double prior_sigma_m = 0.02, prior_sigma_rad = 0.02;
   double start_velocity_sigma = 0.3, start_angular_sigma = 1.0;
+  MotionLimits motion;  // how fast the camera can move: no estimate jumps farther
+  // Another assignment of blobs to lamps whose joint squared Mahalanobis distance is within this
+  // of the best one's (a likelihood ratio above e^-2) is as plausible: the image is not used.
+  double ambiguity = 4.0;
   AcquisitionSettings acquisition;
   BlobDetector::Settings detector;
 };
@@ -67,6 +83,9 @@ struct FrameResult {
   std::vector<cv::Rect> windows;
   double rms_px = 0;
   int frames_without_fix = 0;
+  Refusal refused = Refusal::kNone;
+  CameraMotion jump;           // kJump: how far the refused estimate would have moved the camera
+  double since_trusted_s = 0;  // kJump: in this long since the last estimate the tracker trusted
 };
 
 class PlateTracker {
@@ -95,9 +114,13 @@ class PlateTracker {
   // Without a PnP fix: start the filter at the last estimate (or the prior) with a broad
   // covariance and match the frame's blobs to the lamps it predicts. False when too few match.
   bool acquire_from_guess(const CameraModel& camera);
-  // Matches blobs_ (image pixels) to the lamps the filter predicts, within the gate, each blob
-  // to one lamp at most; fills accepted_*, result_.matched and result_.rejected.
-  void match_blobs(const CameraModel& camera);
+  // Matches the blobs in matcher_ to the lamps the filter predicts; fills accepted_*,
+  // result_.matched and result_.rejected. False when the match is ambiguous (refused).
+  bool match_lamps();
+  // Whether the estimate after this image's update is one the camera can have reached since the
+  // last trusted estimate: then it becomes the trusted one; else result_ says it was refused.
+  bool admit();
+  void refuse(Refusal why);
   // The prediction of lamp i through the filter, dome included; false when it cannot be seen.
   bool predict_lamp(int i, const CameraModel& camera, PoseEkf::Prediction& out) const;
   double reprojection_rms(const CameraModel& camera) const;
@@ -115,6 +138,10 @@ class PlateTracker {
   bool have_last_ = false;
   std::int64_t last_stamp_ = 0;
   bool have_stamp_ = false;
+  Eigen::Isometry3d trusted_eye_T_base_ = Eigen::Isometry3d::Identity();  // the last admitted estimate
+  std::int64_t trusted_stamp_ = 0;
+  bool have_trusted_ = false;
+  LampMatcher matcher_;
   std::vector<Blob> blobs_;
   std::vector<PoseEkf::Prediction> accepted_;
   std::vector<Eigen::Vector2d> accepted_pixels_;

@@ -1,5 +1,6 @@
 #include "pose_ekf.hpp"
 
+#include <algorithm>
 #include <cassert>
 
 #include "frames/pose_covariance.hpp"
@@ -71,6 +72,21 @@ bool PoseEkf::predict_pixel(const Eigen::Vector3d& x_p, const Eigen::Vector3d& e
   out.S = out.H * P_ * out.H.transpose();
   out.S.diagonal().array() += noise_.pixel * noise_.pixel;
   return true;
+}
+
+double PoseEkf::joint_mahalanobis2(const Prediction* const predictions[], const Eigen::Vector2d pixels[],
+                                   int count) const {
+  const int m = std::min(count, kMaxRows / 2);
+  if (m <= 0) return 0;
+  RowsByStates H(2 * m, kStates);
+  Rows y(2 * m);
+  for (int i = 0; i < m; ++i) {
+    H.middleRows<2>(2 * i) = predictions[i]->H;
+    y.segment<2>(2 * i) = pixels[i] - predictions[i]->pixel;
+  }
+  RowsByRows S = H * P_ * H.transpose();
+  S.diagonal().array() += noise_.pixel * noise_.pixel;
+  return y.dot(S.ldlt().solve(y));
 }
 
 void PoseEkf::update(const std::vector<Prediction>& predictions, const std::vector<Eigen::Vector2d>& pixels) {

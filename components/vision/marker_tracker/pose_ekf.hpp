@@ -43,6 +43,9 @@ class PoseEkf {
   // standard deviations.
   void reset(const Eigen::Isometry3d& eye_T_x, const Matrix6d& pose_cov, double velocity_sigma, double angular_sigma);
   void predict(double dt_s);
+  // The pose made more uncertain by `added` (over dt, dtheta), the velocities and what is known
+  // of them kept: the pose has been unseen for a while, the camera's dynamics are the same.
+  void widen_pose(const Matrix6d& added) { P_.topLeftCorner<6, 6>() += added; }
   // The pixel of point x_p (in frame x) displaced by eye_offset (eye frame, not estimated: the
   // lamp's dome, see plate_markers.hpp). False when the point is behind the camera.
   bool predict_pixel(const Eigen::Vector3d& x_p, const Eigen::Vector3d& eye_offset, const CameraModel& camera,
@@ -52,6 +55,10 @@ class PoseEkf {
     const Eigen::Vector2d y = pixel - p.pixel;
     return y.dot(p.S.ldlt().solve(y));
   }
+  // Squared Mahalanobis distance of several measured (ideal) pixels from their predictions taken
+  // together: their errors are correlated through the pose's, so a set of pixels that each lie
+  // near their own prediction may still be far from any one pose. At most 8 pixels.
+  double joint_mahalanobis2(const Prediction* const predictions[], const Eigen::Vector2d pixels[], int count) const;
   // One update with all accepted measurements: pixels[i] is the measurement of predictions[i].
   void update(const std::vector<Prediction>& predictions, const std::vector<Eigen::Vector2d>& pixels);
 
