@@ -16,6 +16,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "demo_runs.hpp"
 #include "display_support.hpp"
 #include "netft_rdt/rdt_emulator.hpp"
 #include "puma_controller_emulator/controller_emulator.hpp"
@@ -27,8 +28,6 @@
 namespace wysiwyf::test {
 
 namespace {
-
-const std::string kPipelines = std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/";
 
 // The lines of a file that are not comments or blank.
 std::vector<std::string> content_lines(const std::string& path) {
@@ -71,53 +70,6 @@ TEST(DemoPipelines, SimAndRealDifferByOneLineAndNothingSimulatedLeaksIntoTheReal
       EXPECT_EQ(w.message.find("no component of this pipeline publishes topic '"), std::string::npos)
           << "an input the real hardware leaves dangling: " << w.str();
   }
-}
-
-// Runs a shipped simulated demo as scripts/demo does (the overrides added) and checks what every
-// demo promises: the user's script runs to its end with no fault, and every contact is a hit with
-// the plate still >= 100 ms before the finger and <= 1 mm and <= 1 deg off the feature. Returns the
-// run's log.
-std::string run_demo_hitting_every_contact(const std::string& file, std::vector<std::string> overrides,
-                                           int expected_contacts) {
-  Loader loader({WYSIWYF_COMPONENT_DIR});
-  overrides.insert(overrides.end(), {"dds.transport=local", "clock.pace=0"});
-  const PipelineSpec spec = load_pipeline(kPipelines + file, overrides);
-  std::ostringstream log;
-  RunResult result;
-  {
-    Runtime runtime(spec, loader, RunOptions{"", false, &log});
-    result = runtime.run();
-  }
-  const std::string text = log.str();
-  EXPECT_TRUE(result.ok) << result.error << text;
-  EXPECT_NE(result.stop_reason.find("the user's script is done"), std::string::npos) << result.stop_reason;
-  EXPECT_EQ(text.find("-> fault"), std::string::npos) << text;
-  const std::regex line(
-      R"(\[metrics\] contact (\d+) \(([^)]*)\): (hit|MISS), plate still (-?\d+) ms before the finger, )"
-      R"(([0-9.]+) mm / ([0-9.]+) deg)");
-  int contacts = 0;
-  for (std::sregex_iterator it(text.begin(), text.end(), line), end; it != end; ++it) {
-    const auto& m = *it;
-    ++contacts;
-    std::printf("[measured] %s contact %s (%s): %s, plate still %s ms before the finger, %s mm / %s deg off\n",
-                file.c_str(), m[1].str().c_str(), m[2].str().c_str(), m[3].str().c_str(), m[4].str().c_str(),
-                m[5].str().c_str(), m[6].str().c_str());
-    EXPECT_EQ(m[3].str(), "hit") << m[0];
-    EXPECT_GE(std::stoi(m[4].str()), 100) << m[0];
-    EXPECT_LE(std::stod(m[5].str()), 1.0) << m[0];
-    EXPECT_LE(std::stod(m[6].str()), 1.0) << m[0];
-  }
-  EXPECT_EQ(contacts, expected_contacts) << text;
-  return text;
-}
-
-// The paper's experiment (hardware/sim.yaml's user) on the whole loop, as scripts/demo runs it.
-TEST(DemoPipelines, TheSimulatedExperimentHitsEveryContact) {
-  const auto dir = display_scratch();
-  const std::string text = run_demo_hitting_every_contact(
-      "demo-sim.yaml", {"domain=78", "record.params.path=" + (dir / "demo.mp4").string()}, 2);
-  EXPECT_NE(text.find("[supervisor] surface -> admittance"), std::string::npos);
-  EXPECT_TRUE(std::filesystem::exists(dir / "demo.mp4"));
 }
 
 // demo-two-objects.yaml (issue 16): the plate goes from one object to the other, and the user
