@@ -1,8 +1,8 @@
 // The shipped display pipelines: demo-sim.yaml (the paper's experiment, scripts/demo) and
 // demo-real.yaml (the same display on puma_driver, ft_netft and two cameras), which differ by one
 // line. Both validate; nothing that only a simulator has (sim/ topics, simulator components)
-// reaches the real one's graph; the simulated experiment hits every contact with the plate still
-// at least 100 ms before the finger and within 1 mm and 1 deg of the feature; the real one runs
+// reaches the real one's graph (the simulated experiment's contacts and figures:
+// test_demo_figures.cpp); the two-object demo hits both objects; the real one runs
 // against the emulated controller and the emulated Net F/T, tracking the hand on recorded stereo
 // video, with no fault.
 #include <gtest/gtest.h>
