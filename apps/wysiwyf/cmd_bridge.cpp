@@ -9,7 +9,9 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -54,22 +56,35 @@ fs::path find_web_root(const std::optional<std::string>& option) {
 // One bridged topic: its channel, and a reader of raw CDR while someone wants it.
 class BridgedTopic final : public DataReaderListener {
  public:
+  // `stamped`: the type's first member is a Header (idl_schemas.hpp), so each sample carries its
+  // time on the pipeline's clock; `clock`: the newest such time seen on any topic (0: none yet).
   BridgedTopic(Session& session, bridge::WsServer& server, bridge::DashboardFeed& feed, std::string topic,
-               TopicInfo info, std::uint32_t channel)
+               TopicInfo info, std::uint32_t channel, bool stamped, std::atomic<std::uint64_t>& clock)
       : session_(session),
         server_(server),
         feed_(feed),
         topic_(std::move(topic)),
         info_(std::move(info)),
-        channel_(channel) {}
+        channel_(channel),
+        stamped_(stamped),
+        clock_(clock) {}
 
+  // Each sample goes out stamped on the pipeline's clock (its own stamp, else the pipeline's
+  // newest time, else the wall clock), as the Time messages tell Foxglove that clock.
   void on_data_available(DataReader* reader) override {
     SampleInfo si;
     while (reader->take_next_sample(&sample_, &si) == ReturnCode_t::RETCODE_OK) {
       if (!si.valid_data) continue;
-      const std::uint64_t now = wall_ns();
-      server_.publish(channel_, now, sample_.bytes.data(), sample_.bytes.size());
-      if (to_dashboard) feed_.on_sample(topic_, info_.type, sample_.bytes, now);
+      std::uint64_t t = stamp_of(sample_.bytes);
+      if (t > 0) {
+        for (std::uint64_t seen = clock_.load(); t > seen && !clock_.compare_exchange_weak(seen, t);) {
+        }
+      } else {
+        t = clock_.load();
+      }
+      if (t == 0) t = wall_ns();
+      server_.publish(channel_, t, sample_.bytes.data(), sample_.bytes.size());
+      if (to_dashboard) feed_.on_sample(topic_, info_.type, sample_.bytes, t);
     }
   }
   // A writer whose QoS this reader cannot match (a replay's after the live writer's): the main
@@ -120,6 +135,17 @@ class BridgedTopic final : public DataReaderListener {
   std::string topic_;
   TopicInfo info_;
   std::uint32_t channel_;
+  // A stamped sample's stamp (little-endian CDR: the encapsulation, then the Header's int64 ns),
+  // 0 where there is none or it is not a time on the pipeline's clock (negative).
+  std::uint64_t stamp_of(const std::vector<std::uint8_t>& cdr) const {
+    if (!stamped_ || cdr.size() < 12 || cdr[1] != 0x01) return 0;
+    std::int64_t ns = 0;
+    std::memcpy(&ns, cdr.data() + 4, sizeof(ns));
+    return ns > 0 ? static_cast<std::uint64_t>(ns) : 0;
+  }
+
+  bool stamped_;
+  std::atomic<std::uint64_t>& clock_;
   RawCdr sample_;
   DataReader* reader_ = nullptr;
   std::mutex refused_mutex_;
@@ -188,9 +214,12 @@ int cmd_bridge(Args args) {
             << std::flush;
 
   Subscriber* subscriber = s.participant->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+  s.discovery.name_participant(*s.participant);  // (its readers in the connection graph)
   std::map<std::string, std::unique_ptr<BridgedTopic>> topics;
   std::uint32_t next_channel = 1;
   bool told_too_many = false;
+  std::atomic<std::uint64_t> pipeline_clock{0};  // (before the topics that write it)
+  std::uint64_t clock_sent = 0;
   const auto start = Clock::now();
   while (!stop_signal_received() && (duration == 0 || Clock::now() - start < std::chrono::duration<double>(duration))) {
     // New topics as writers announce them: a channel each, with its type's IDL as the schema.
@@ -214,7 +243,8 @@ int cmd_bridge(Args args) {
       channel.schema_name = info.type;
       channel.schema = schema ? schema->text : "";
       server.advertise(channel);
-      topics.emplace(topic, std::make_unique<BridgedTopic>(s, server, feed, topic, info, channel.id));
+      topics.emplace(topic, std::make_unique<BridgedTopic>(s, server, feed, topic, info, channel.id,
+                                                           schema && schema->stamped, pipeline_clock));
     }
     // Readers for what is wanted now, none for the rest.
     const auto dashboard_topics = feed.wanted_topics();
@@ -231,6 +261,19 @@ int cmd_bridge(Args args) {
         bridged->want(bridged->to_dashboard || fox.count(bridged->channel()), subscriber, now->second);
     }
     feed.flush();
+    // Who publishes and subscribes what, by participant name; and the pipeline's clock.
+    bridge::ConnectionGraph graph;
+    for (const auto& [topic, info] : discovered) {
+      auto& publishers = graph.published[topic];
+      auto& subscribers = graph.subscribed[topic];
+      for (const auto& w : info.writers) publishers.insert(s.discovery.participant_of(w));
+      for (const auto& r : info.readers) subscribers.insert(s.discovery.participant_of(r));
+    }
+    server.connection_graph(std::move(graph));
+    if (const std::uint64_t now = pipeline_clock.load(); now != clock_sent) {
+      server.time(now);
+      clock_sent = now;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   server.stop();                               // no server callback runs after this

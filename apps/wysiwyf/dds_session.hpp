@@ -71,9 +71,35 @@ class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
     cv_.notify_all();
   }
 
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+    std::ostringstream prefix;
+    prefix << info.info.m_guid.guidPrefix;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (info.status == S::REMOVED_PARTICIPANT || info.status == S::DROPPED_PARTICIPANT)
+      participants_.erase(prefix.str());
+    else
+      participants_[prefix.str()] = info.info.m_participantName.to_string();
+  }
+
   std::map<std::string, TopicInfo> topics() {
     std::lock_guard<std::mutex> lock(mutex_);
     return topics_;
+  }
+  // Names a participant that discovery does not report (this process's own).
+  void name_participant(const eprosima::fastdds::dds::DomainParticipant& p) {
+    std::ostringstream prefix;
+    prefix << p.guid().guidPrefix;
+    std::lock_guard<std::mutex> lock(mutex_);
+    participants_[prefix.str()] = p.get_qos().name().to_string();
+  }
+  // The name a participant announced, by an endpoint's GUID ("prefix|entity"); the GUID itself
+  // where the participant is not known (yet).
+  std::string participant_of(const std::string& endpoint_guid) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = participants_.find(endpoint_guid.substr(0, endpoint_guid.find('|')));
+    return it == participants_.end() || it->second.empty() ? endpoint_guid : it->second;
   }
   // Waits until some writer announces `topic`; its info, or nullopt at the deadline.
   std::optional<TopicInfo> wait_for_writer(const std::string& topic, Clock::time_point deadline) {
@@ -93,6 +119,7 @@ class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
   std::mutex mutex_;
   std::condition_variable cv_;
   std::map<std::string, TopicInfo> topics_;
+  std::map<std::string, std::string> participants_;  // GUID prefix -> announced name
 };
 
 struct Session {

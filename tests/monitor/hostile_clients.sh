@@ -6,7 +6,9 @@
 #  2. HTTP paths outside the web root (absolute, `..`, encoded, devices, hidden files) get a 404
 #     and none of the file's bytes; the dashboard's own files are still served;
 #  3. the bridge is still up, and the official Foxglove client (@foxglove/ws-protocol) still
-#     subscribes and decodes the pipeline's topics.
+#     subscribes and decodes the pipeline's topics;
+#  4. the same client gets the connection graph (who publishes and reads what, by participant
+#     name) and Time messages on the pipeline's (sim) clock, which the messages are stamped on.
 # Usage: hostile_clients.sh BUILD_DIR SOURCE_DIR DOMAIN
 set -euo pipefail
 build=$1 src=$2 domain=$3
@@ -26,9 +28,11 @@ fail() { echo "FAIL: $*"; echo "--- bridge log"; cat "$work/bridge.log"; exit 1;
 "$cli" run "$src/config/pipelines/admittance-push.yaml" --set domain="$domain" --set dds.transport=local \
   --set clock.duration=600s --no-progress >"$work/run.log" 2>&1 &
 pids+=($!)
+disown
 "$cli" bridge --domain "$domain" --transport local --port 0 >"$work/bridge.log" 2>&1 &
 bridge=$!
 pids+=($!)
+disown
 for _ in $(seq 100); do grep -q "ws://" "$work/bridge.log" && break; sleep 0.1; done
 port=$(sed -n 's|.*ws://127.0.0.1:\([0-9]*\).*|\1|p' "$work/bridge.log" | head -1)
 [[ -n $port ]] || fail "the bridge did not say where it listens"
@@ -73,4 +77,22 @@ assert s["header"]["stamp_ns"] > 0, s
 print("ok: robot/wrench and robot/setpoint decoded (force.x", w["wrench"]["force"]["x"], ")")
 EOF
 alive "the official client"
+
+echo "== 4. the connection graph and the pipeline's clock (Foxglove's connectionGraph and time)"
+node "$js/graph_and_time.mjs" "ws://127.0.0.1:$port" 30 robot/setpoint >"$work/graph.json" ||
+  { cat "$work/graph.json"; fail "no connection graph, Time messages or robot/setpoint"; }
+python3 - "$work/graph.json" <<'EOF' || fail "the connection graph or the clock"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert {"connectionGraph", "time"} <= set(d["capabilities"]), d["capabilities"]
+pub, sub = d["published"]["robot/setpoint"], d["subscribed"]["robot/setpoint"]
+assert len(pub) == 1 and pub[0].startswith("admittance-push/"), pub
+assert "wysiwyf-cli" in sub, sub  # (the tools' participant: this bridge)
+t, m = d["times"], d["messages"]
+assert t == sorted(t) and t[-1] > t[0], t
+# The sim clock (from 0, seconds of the run), not the wall clock, for both.
+assert t[-1] < 600e9 and max(m) < 600e9 and min(m) > 0, (t[-1], max(m))
+print(f"ok: robot/setpoint published by {pub} and read by {sub}; Time {t[0]/1e9:.2f}..{t[-1]/1e9:.2f} s (sim)")
+EOF
+alive "the connection graph"
 echo "PASS: the bridge answered every hostile frame and path and still serves"

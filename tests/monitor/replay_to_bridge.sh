@@ -67,7 +67,12 @@ EOF
 echo "== 3. another writer, of other QoS, on the same topic"
 # admittance-push writes robot/setpoint with shared ownership: the reader the exclusive writers
 # shaped refuses it, and the bridge reads the topic again with the new writer's QoS and says so.
-kill -9 "${pids[-1]}"
+# A client stays subscribed across the change, so the bridge's reader stays open through it.
+FOXGLOVE_CLIENT_MESSAGES=1000000 node "$js/foxglove_client.mjs" "ws://127.0.0.1:$port" 60 robot/setpoint \
+  >/dev/null 2>&1 &
+pids+=($!)
+sleep 2
+kill -9 "${pids[-2]}"  # (play)
 "$cli" run "$src/config/pipelines/admittance-push.yaml" --set domain="$domain" --set dds.transport=local \
   --set clock.duration=60s --no-progress >"$work/push.log" 2>&1 &
 pids+=($!)

@@ -9,7 +9,10 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "bridge/client_requests.hpp"
+#include "bridge/connection_graph.hpp"
 #include "bridge/web_files.hpp"
 
 namespace wysiwyf::bridge {
@@ -28,6 +31,34 @@ TEST(BridgeRequests, FoxgloveSubscribeAndUnsubscribeAreRead) {
   const auto unsub = parse_foxglove_request(R"({"op":"unsubscribe","subscriptionIds":[3, 12345]})");
   ASSERT_EQ(unsub.op, Fox::kUnsubscribe) << unsub.problem;
   EXPECT_EQ(unsub.unsubscribe, (std::vector<std::uint32_t>{3, 12345}));
+}
+
+TEST(BridgeRequests, TheConnectionGraphIsSubscribedAndUnsubscribed) {
+  EXPECT_EQ(parse_foxglove_request(R"({"op":"subscribeConnectionGraph"})").op, Fox::kSubscribeGraph);
+  EXPECT_EQ(parse_foxglove_request(R"({"op":"unsubscribeConnectionGraph"})").op, Fox::kUnsubscribeGraph);
+}
+
+// The whole graph from nothing, then only what changed; a topic nobody publishes or reads any
+// more is removed.
+TEST(BridgeRequests, AConnectionGraphUpdateCarriesWhatChanged) {
+  ConnectionGraph a;
+  a.published = {{"robot/setpoint", {"demo/display/1"}}, {"robot/wrench", {"demo/robot/2"}}};
+  a.subscribed = {{"robot/setpoint", {"demo/robot/2"}}, {"robot/wrench", {}}};
+  const auto full = nlohmann::json::parse(connection_graph_update({}, a));
+  EXPECT_EQ(full["op"], "connectionGraphUpdate");
+  EXPECT_EQ(full["publishedTopics"].size(), 2u);
+  EXPECT_EQ(full["subscribedTopics"][0]["subscriberIds"][0], "demo/robot/2");
+  EXPECT_TRUE(full["removedTopics"].empty());
+  EXPECT_EQ(connection_graph_update(a, a), "");
+  ConnectionGraph b = a;
+  b.published.erase("robot/wrench");
+  b.subscribed.erase("robot/wrench");
+  b.subscribed["robot/setpoint"].insert("wysiwyf-cli");
+  const auto diff = nlohmann::json::parse(connection_graph_update(a, b));
+  EXPECT_TRUE(diff["publishedTopics"].empty());
+  ASSERT_EQ(diff["subscribedTopics"].size(), 1u);
+  EXPECT_EQ(diff["subscribedTopics"][0]["subscriberIds"].size(), 2u);
+  EXPECT_EQ(diff["removedTopics"], nlohmann::json::array({"robot/wrench"}));
 }
 
 // The frames that killed the bridge (an unchecked conversion threw on the I/O thread), each

@@ -180,9 +180,15 @@ FoxgloveRequest parse_foxglove_request(std::string_view text) {
     parse_subscribe(m, r);
   } else if (op == "unsubscribe") {
     parse_unsubscribe(m, r);
+  } else if (op == "subscribeConnectionGraph") {
+    r.op = FoxgloveRequest::Op::kSubscribeGraph;
+  } else if (op == "unsubscribeConnectionGraph") {
+    r.op = FoxgloveRequest::Op::kUnsubscribeGraph;
   } else {
     r.op = FoxgloveRequest::Op::kUnsupported;
-    r.problem = "op " + excerpt(op) + " is not supported by this server (it only streams: subscribe, unsubscribe)";
+    r.problem = "op " + excerpt(op) +
+                " is not supported by this server (it streams: subscribe, unsubscribe, subscribeConnectionGraph, "
+                "unsubscribeConnectionGraph)";
   }
   return r;
 }

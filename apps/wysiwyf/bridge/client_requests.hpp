@@ -5,6 +5,7 @@
 // request becomes a `problem` that the server sends back to that client in a status message.
 //   Foxglove (foxglove.websocket.v1): {"op":"subscribe","subscriptions":[{"id":N,"channelId":N}...]}
 //                                     {"op":"unsubscribe","subscriptionIds":[N...]}
+//                                     {"op":"subscribeConnectionGraph"}, {"op":"unsubscribeConnectionGraph"}
 //   dashboard (wysiwyf.dashboard.v1): {"op":"plot"|"unplot","topic":"...","field":"..."}
 #include <chrono>
 #include <cstddef>
@@ -26,7 +27,7 @@ struct Subscription {
 };
 
 struct FoxgloveRequest {
-  enum class Op { kSubscribe, kUnsubscribe, kUnsupported, kInvalid };
+  enum class Op { kSubscribe, kUnsubscribe, kSubscribeGraph, kUnsubscribeGraph, kUnsupported, kInvalid };
   Op op = Op::kInvalid;
   std::vector<Subscription> subscriptions;  // kSubscribe
   std::vector<std::uint32_t> unsubscribe;   // kUnsubscribe: subscription ids

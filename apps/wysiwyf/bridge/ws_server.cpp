@@ -56,6 +56,7 @@ struct WsServer::Impl {
   tcp::acceptor acceptor{io};
   // I/O thread only.
   std::map<std::uint32_t, Channel> channels;
+  ConnectionGraph graph;
   std::set<std::shared_ptr<WsSession>> sessions;
   // Any thread.
   std::unique_ptr<std::atomic<int>[]> subscriber_counts { new std::atomic<int>[ kMaxChannels ]() };
@@ -77,6 +78,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
       : ws_(std::move(stream)), server_(std::move(server)), protocol_(std::move(protocol)) {}
 
   bool foxglove() const { return protocol_ == kFoxglove; }
+  bool graph_subscribed() const { return graph_subscribed_; }
 
   void accept(http::request<http::string_body> req) {
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
@@ -137,7 +139,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
       send_text(
           to_text(json{{"op", "serverInfo"},
                        {"name", server_->options.name},
-                       {"capabilities", json::array()},
+                       {"capabilities", json::array({"connectionGraph", "time"})},
                        {"metadata", json{{"wysiwyf", "DDS topics as CDR with their OMG IDL"}}},
                        {"sessionId", std::to_string(std::chrono::system_clock::now().time_since_epoch().count())}}));
       std::string channels = R"({"op":"advertise","channels":[)";
@@ -222,6 +224,12 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
       if (refused == 1) status(2, "subscribe: " + first);
       if (refused > 1)
         status(2, "subscribe: " + std::to_string(refused) + " subscriptions refused, the first: " + first);
+    } else if (r.op == FoxgloveRequest::Op::kSubscribeGraph) {
+      graph_subscribed_ = true;  // the whole graph now, then what changes
+      const std::string full = connection_graph_update({}, server_->graph);
+      if (!full.empty()) send_text(full);
+    } else if (r.op == FoxgloveRequest::Op::kUnsubscribeGraph) {
+      graph_subscribed_ = false;
     } else if (r.op == FoxgloveRequest::Op::kUnsubscribe) {
       for (const std::uint32_t id : r.unsubscribe) {
         auto it = channel_of_subscription_.find(id);
@@ -279,7 +287,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   RequestBudget budget_{kRequestsPerSecond, kRequestBurst};
   std::deque<Frame> queue_;
   std::size_t queued_bytes_ = 0;
-  bool writing_ = false, closed_ = false, warned_drops_ = false;
+  bool writing_ = false, closed_ = false, warned_drops_ = false, graph_subscribed_ = false;
 };
 
 void WsServer::Impl::accept() {
@@ -350,6 +358,26 @@ void WsServer::unadvertise(std::uint32_t channel_id) {
     const std::string text = to_text(json{{"op", "unadvertise"}, {"channelIds", {channel_id}}});
     for (const auto& s : impl->sessions)
       if (s->foxglove()) s->send_text(text);
+  });
+}
+
+void WsServer::connection_graph(ConnectionGraph graph) {
+  net::post(impl_->io, [impl = impl_, graph = std::move(graph)]() mutable {
+    const std::string update = connection_graph_update(impl->graph, graph);
+    impl->graph = std::move(graph);
+    if (update.empty()) return;
+    for (const auto& s : impl->sessions)
+      if (s->foxglove() && s->graph_subscribed()) s->send_text(update);
+  });
+}
+
+void WsServer::time(std::uint64_t ns) {
+  auto frame = std::make_shared<std::string>(9, '\0');
+  (*frame)[0] = 0x02;  // Time: opcode, then the timestamp as uint64 little-endian
+  for (int i = 0; i < 8; ++i) (*frame)[1 + i] = static_cast<char>((ns >> (8 * i)) & 0xff);
+  net::post(impl_->io, [impl = impl_, frame] {
+    for (const auto& s : impl->sessions)
+      if (s->foxglove()) s->send_binary(frame, true);
   });
 }
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "client_requests.hpp"
+#include "connection_graph.hpp"
 
 namespace wysiwyf::bridge {
 
@@ -63,6 +64,11 @@ class WsServer {
   void unadvertise(std::uint32_t channel_id);
   // Message data to the clients subscribed to `channel_id` (copied; returns at once).
   void publish(std::uint32_t channel_id, std::uint64_t receive_ns, const std::uint8_t* data, std::size_t size);
+  // The domain's graph now: sent (what changed) to the Foxglove clients subscribed to it.
+  void connection_graph(ConnectionGraph graph);
+  // The pipeline's clock now (ns; sim time on the sim clock): a Time message to every Foxglove
+  // client (the `time` capability), so Foxglove's clock follows the pipeline's.
+  void time(std::uint64_t ns);
   // A status message to every Foxglove client (level 0 info, 1 warning, 2 error).
   void status_to_foxglove(int level, const std::string& message);
   // How many Foxglove subscriptions `channel_id` has (0: nobody wants it; cheap, any thread).

@@ -11,7 +11,7 @@ import WebSocket from "ws";
 const { FoxgloveClient } = wsProtocol;
 
 const [url, seconds, ...topics] = process.argv.slice(2);
-const perTopic = 3; // messages to decode per topic
+const perTopic = Number(process.env.FOXGLOVE_CLIENT_MESSAGES ?? 3); // messages to decode per topic
 const result = { server: null, channels: {}, messages: {}, statuses: [] };
 const summarise = (k, x) =>
   typeof x === "bigint" ? Number(x) : ArrayBuffer.isView(x) ? { bytes: x.length, sum: x.reduce((a, b) => a + b, 0) } : x;
