@@ -1,8 +1,12 @@
-// video_sink writes an MP4; the camera component reads it back through OpenCV's decoding path.
+// video_sink writes an MP4 that browsers play (H.264 in the boxes); the camera component reads it
+// back through OpenCV's decoding path.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string_view>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -13,23 +17,93 @@
 
 namespace wysiwyf::test {
 
-TEST(Video, AnMp4WrittenByVideoSinkReadsBackThroughTheCamera) {
-  const auto dir = std::filesystem::path(WYSIWYF_TEST_SCRATCH_DIR) / "video";
+namespace {
+
+// 12 frames of 320x240, each a different grey, written by video_sink at 25 fps into DIR/clip.mp4.
+std::string write_clip(const std::string& dir_name) {
+  const auto dir = std::filesystem::path(WYSIWYF_TEST_SCRATCH_DIR) / dir_name;
   std::filesystem::remove_all(dir);
   const std::string file = (dir / "clip.mp4").string();
-  {
-    Harness sink("video_sink", "{path: " + file + ", fps: 25}", 25);
-    auto in = sink.feed<msg::Image>("image");
-    sink.activate();
-    msg::Image f;
-    f.width(320), f.height(240), f.encoding("rgb8"), f.step(320 * 3);
-    for (int i = 0; i < 12; ++i) {
-      f.data().assign(320 * 240 * 3, static_cast<std::uint8_t>(20 * i));  // each frame a different grey
-      in.write(f);
-      sink.tick(Time{i * 40'000'000LL});
-    }
-    sink.deactivate();
+  Harness sink("video_sink", "{path: " + file + ", fps: 25}", 25);
+  auto in = sink.feed<msg::Image>("image");
+  sink.activate();
+  msg::Image f;
+  f.width(320), f.height(240), f.encoding("rgb8"), f.step(320 * 3);
+  for (int i = 0; i < 12; ++i) {
+    f.data().assign(320 * 240 * 3, static_cast<std::uint8_t>(20 * i));
+    in.write(f);
+    sink.tick(Time{i * 40'000'000LL});
   }
+  sink.deactivate();
+  return file;
+}
+
+std::uint32_t be32(std::string_view s, std::size_t at) {
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<std::uint8_t>(s.at(at + i));
+  return v;
+}
+
+// The payload of the first ISO BMFF box of type TYPE among the boxes that fill DATA (an MP4 file,
+// or the payload of a container box); empty if there is none.
+std::string_view box(std::string_view data, std::string_view type) {
+  std::size_t at = 0;
+  while (at + 8 <= data.size()) {
+    std::uint64_t size = be32(data, at), header = 8;
+    if (size == 1) size = (std::uint64_t{be32(data, at + 8)} << 32 | be32(data, at + 12)), header = 16;
+    if (size == 0) size = data.size() - at;  // the last box, to the end of the file
+    if (size < header || at + size > data.size()) return {};
+    if (data.substr(at + 4, 4) == type) return data.substr(at + header, size - header);
+    at += size;
+  }
+  return {};
+}
+
+}  // namespace
+
+// The report's video plays in a browser: Chromium and Firefox decode H.264 in MP4 (8-bit 4:2:0,
+// Baseline, Main or High profile) and not MPEG-4 Part 2 ('mp4v'). Read from the file's boxes:
+// moov/trak/mdia/minf/stbl/stsd holds the track's sample entry, 'avc1' with its avcC record.
+TEST(Video, TheSinksMp4IsH264ThatBrowsersDecode) {
+  const std::string file = write_clip("codec");
+  std::ifstream in(file, std::ios::binary);
+  const std::string mp4{std::istreambuf_iterator<char>(in), {}};
+  ASSERT_GT(mp4.size(), 8u);
+  EXPECT_EQ(mp4.substr(4, 4), "ftyp");
+  std::string_view stbl = mp4;
+  for (const char* type : {"moov", "trak", "mdia", "minf", "stbl"}) {
+    stbl = box(stbl, type);
+    ASSERT_FALSE(stbl.empty()) << "no " << type << " box on the way to stsd";
+  }
+  const std::string_view stsd = box(stbl, "stsd");
+  ASSERT_GE(stsd.size(), 16u);
+  EXPECT_EQ(be32(stsd, 4), 1u) << "one sample entry";
+  const std::string_view entry_type = stsd.substr(12, 4);
+  ASSERT_EQ(entry_type, "avc1") << "the video is '" << entry_type << "', which browsers do not play";
+  // A VisualSampleEntry: 78 bytes of fields (width and height at 24 and 26), then its boxes.
+  const std::string_view entry = box(stsd.substr(8), "avc1");
+  ASSERT_GT(entry.size(), 78u);
+  EXPECT_EQ(be32(entry, 24), 320u << 16 | 240u);
+  const std::string_view avcc = box(entry.substr(78), "avcC");
+  ASSERT_GE(avcc.size(), 7u);
+  EXPECT_EQ(avcc[0], 1) << "avcC version";
+  const int profile = static_cast<std::uint8_t>(avcc[1]);
+  EXPECT_TRUE(profile == 66 || profile == 77 || profile == 100) << "profile_idc " << profile;
+  if (profile == 100) {  // High: after the SPS and PPS, the chroma format and the bit depths
+    std::size_t at = 6;
+    for (int sps = avcc[5] & 31; sps > 0; --sps)
+      at += 2 + (std::uint8_t(avcc.at(at)) << 8 | std::uint8_t(avcc.at(at + 1)));
+    for (int pps = std::uint8_t(avcc.at(at++)); pps > 0; --pps)
+      at += 2 + (std::uint8_t(avcc.at(at)) << 8 | std::uint8_t(avcc.at(at + 1)));
+    ASSERT_GE(avcc.size(), at + 3) << "a High profile avcC without its chroma format";
+    EXPECT_EQ(avcc[at] & 3, 1) << "chroma_format_idc: 4:2:0 (yuv420p)";
+    EXPECT_EQ(avcc[at + 1] & 7, 0) << "8-bit luma";
+    EXPECT_EQ(avcc[at + 2] & 7, 0) << "8-bit chroma";
+  }
+}
+
+TEST(Video, AnMp4WrittenByVideoSinkReadsBackThroughTheCamera) {
+  const std::string file = write_clip("video");
   ASSERT_TRUE(std::filesystem::exists(file));
   Harness cam("camera", "{source: " + file + ", backend: ffmpeg, at_end: stop}", 25);
   auto out = cam.watch<msg::Image>("image");
@@ -48,7 +122,7 @@ TEST(Video, AnMp4WrittenByVideoSinkReadsBackThroughTheCamera) {
   }
   EXPECT_EQ(means.size(), 12u);
   EXPECT_NE(cam.stop_request().find("end of"), std::string::npos) << cam.stop_request();
-  // The frames come back in order: each one near its grey (MPEG-4 through YUV 4:2:0 is lossy, a few levels).
+  // The frames come back in order: each one near its grey (H.264 through YUV 4:2:0 is lossy, a few levels).
   for (std::size_t i = 0; i < means.size(); ++i) EXPECT_NEAR(means[i], 20.0 * i, 6.0) << "frame " << i;
 }
 

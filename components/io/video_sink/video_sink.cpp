@@ -1,4 +1,4 @@
-// video_sink: writes an image stream to an MP4 file (OpenCV's FFmpeg backend) or to numbered
+// video_sink: writes an image stream to an MP4 file (H.264, OpenCV's FFmpeg backend) or to numbered
 // PNG frames, at the frame rate of the stream.
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -55,11 +55,7 @@ class VideoSink final : public Component {
       if (!cv::imwrite((std::filesystem::path(path_) / name).string(), bgr))
         throw std::runtime_error("cannot write PNG frames into " + path_);
     } else {
-      if (!writer_.isOpened()) {
-        size_ = bgr.size();
-        if (!writer_.open(path_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_))
-          throw std::runtime_error("cannot open " + path_ + " for writing with OpenCV's FFmpeg backend");
-      }
+      if (!writer_.isOpened()) open(bgr.size());
       if (bgr.size() != size_) {  // a video has one frame size
         reject(in_, "a frame of another size than the first (" + std::to_string(size_.width) + "x" +
                         std::to_string(size_.height) + ")");
@@ -68,6 +64,17 @@ class VideoSink final : public Component {
       writer_.write(bgr);
     }
     ++written_;
+  }
+
+  // H.264 ('avc1': FFmpeg's libx264, High profile, yuv420p, which OpenCV asks of every lossy codec)
+  // is what browsers decode, so the run report's video plays in its page; MPEG-4 Part 2 ('mp4v')
+  // is kept as a fallback for an FFmpeg built without an H.264 encoder, which browsers do not play.
+  void open(cv::Size size) {
+    size_ = size;
+    if (writer_.open(path_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('a', 'v', 'c', '1'), fps_, size_)) return;
+    if (!writer_.open(path_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_))
+      throw std::runtime_error("cannot open " + path_ + " for writing with OpenCV's FFmpeg backend");
+    warn_once("mp4v", "FFmpeg has no H.264 encoder here: " + path_ + " is MPEG-4 Part 2, which browsers do not play");
   }
 
   std::string path_, format_;
