@@ -161,7 +161,9 @@ TEST(BridgeRequests, TheBudgetRefusesAFloodAndSaysSoOncePerBurst) {
 class WebFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    base_ = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / "web_files";
+    // A folder of this test's own (ctest runs the cases in parallel, each in its own process).
+    base_ = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / "web_files" /
+            ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(base_);
     root_ = base_ / "dashboard";
     fs::create_directories(root_ / "vendor" / "uplot");

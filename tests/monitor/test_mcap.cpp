@@ -29,8 +29,13 @@ std::string label(Compression c) { return c == Compression::kNone ? "none" : com
 void PrintTo(Compression c, std::ostream* os) { *os << label(c); }  // (gtest's names of the cases)
 namespace {
 
+// A file of this test's own (ctest runs the cases in parallel, each in its own process).
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / "mcap";
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string test = std::string(info->test_suite_name()) + "." + info->name();
+  for (char& c : test)
+    if (c == '/') c = '_';
+  const fs::path dir = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / "mcap" / test;
   fs::create_directories(dir);
   return dir / name;
 }
