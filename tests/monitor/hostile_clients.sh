@@ -12,30 +12,14 @@
 # Usage: hostile_clients.sh BUILD_DIR SOURCE_DIR DOMAIN
 set -euo pipefail
 build=$1 src=$2 domain=$3
-cli=$build/bin/wysiwyf
-js=$build/npm/monitor
-[[ -d $js/node_modules/ws ]] || { echo "FAIL: $js/node_modules has no ws: scripts/test installs tests/monitor/js (npm ci)"; exit 1; }
-cp "$src"/tests/monitor/js/*.mjs "$js/"
-work=$(mktemp -d)
-pids=()
-cleanup() {
-  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
-  rm -rf "$work"
-}
-trap cleanup EXIT
+source "$src/tests/monitor/bridge_test_setup.sh"
 fail() { echo "FAIL: $*"; echo "--- bridge log"; cat "$work/bridge.log"; exit 1; }
 
 "$cli" run "$src/config/pipelines/admittance-push.yaml" --set domain="$domain" --set dds.transport=local \
   --set clock.duration=600s --no-progress >"$work/run.log" 2>&1 &
 pids+=($!)
 disown
-"$cli" bridge --domain "$domain" --transport local --port 0 >"$work/bridge.log" 2>&1 &
-bridge=$!
-pids+=($!)
-disown
-for _ in $(seq 100); do grep -q "ws://" "$work/bridge.log" && break; sleep 0.1; done
-port=$(sed -n 's|.*ws://127.0.0.1:\([0-9]*\).*|\1|p' "$work/bridge.log" | head -1)
-[[ -n $port ]] || fail "the bridge did not say where it listens"
+start_bridge
 alive() { kill -0 "$bridge" 2>/dev/null || fail "the bridge died after $1"; }
 
 echo "== 1. malformed frames"

@@ -12,26 +12,11 @@
 # Usage: replay_to_bridge.sh BUILD_DIR SOURCE_DIR DOMAIN
 set -euo pipefail
 build=$1 src=$2 domain=$3
-cli=$build/bin/wysiwyf
-js=$build/npm/monitor
-[[ -d $js/node_modules/@foxglove/ws-protocol ]] ||
-  { echo "FAIL: $js/node_modules has no @foxglove/ws-protocol: scripts/test installs tests/monitor/js (npm ci)"; exit 1; }
-cp "$src"/tests/monitor/js/*.mjs "$js/"
-work=$(mktemp -d)
-pids=()
-cleanup() {
-  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
-  rm -rf "$work"
-}
-trap cleanup EXIT
+source "$src/tests/monitor/bridge_test_setup.sh"
 fail() { echo "FAIL: $*"; for f in bridge record play; do echo "--- $f"; tail -20 "$work/$f.log" 2>/dev/null; done; exit 1; }
 dds=(--domain "$domain" --transport local)
 
-"$cli" bridge "${dds[@]}" --port 0 >"$work/bridge.log" 2>&1 &
-pids+=($!)
-for _ in $(seq 100); do grep -q "ws://" "$work/bridge.log" && break; sleep 0.1; done
-port=$(sed -n 's|.*ws://127.0.0.1:\([0-9]*\).*|\1|p' "$work/bridge.log" | head -1)
-[[ -n $port ]] || fail "the bridge did not say where it listens"
+start_bridge
 
 echo "== 1. live: the pipeline, the recorder and the official client on the bridge"
 "$cli" record --all -o "$work/live.mcap" "${dds[@]}" --duration 12 >"$work/record.log" 2>&1 &
