@@ -102,6 +102,40 @@ TEST(MarkerTrackerContinuity, NoJumpWhenThePlateEdgeOnIsLostAndFoundFromTwoLamps
       << "each blob named for the lamp it is";
 }
 
+TEST(MarkerTrackerContinuity, TwoLampsKeepAStillCameraNearerAlongTheLineOfSight) {
+  // The plate on the cube's -y face for 3 s, lamps 0 and 1 too dim to find: lamps 2 and 3 pin the
+  // camera along its line of sight least, and their small biases pull it there. The camera
+  // stands still. A filter whose velocity persists (velocity_time 0: constant velocity) learns a
+  // velocity from that pull and carries the pose on with it, image after image; with the
+  // camera's motions short (the default), only the pull itself is left.
+  const std::string on_the_face = std::to_string((kOnTheFace - 0.5) * 0.04);
+  Rig rig(std::string("{plate: cloth, light_variation: 0, ") + kDemoView + ", hidden_markers: [" + on_the_face +
+              ", 100, 0,  " + on_the_face + ", 100, 1]}",
+          {std::string("{") + kDemoPrior + "}", std::string("{") + kDemoPrior + ", velocity_time: 0}"});
+  double start[2] = {0, 0}, drift[2] = {0, 0}, worst[2] = {0, 0};
+  for (int k = 0; k < kOnTheFace + 75; ++k) {
+    rig.step(k, k < kOnTheFace ? parked(k * 0.04) : on_the_minus_y_face());
+    if (k < kOnTheFace) continue;
+    const Eigen::Vector3d truth = drawn_face(rig.truth_base());
+    for (std::size_t m = 0; m < 2; ++m) {
+      const auto& tr = rig.tracker(m);
+      ASSERT_TRUE(tr.has_pose) << "tracker " << m << ", frame " << k;
+      const Eigen::Vector3d error = 1e3 * (drawn_face(tr.base) - truth);  // mm
+      const double along = error.dot(truth.normalized());
+      if (k == kOnTheFace) start[m] = along;
+      drift[m] = std::max(drift[m], std::abs(along - start[m]));
+      worst[m] = std::max(worst[m], error.norm());
+    }
+  }
+  std::cout << "two lamps for 3 s, still camera: the face drawn moves along the line of sight by " << drift[0]
+            << " mm (at most " << worst[0] << " mm from the truth); with a persisting velocity " << drift[1] << " mm ("
+            << worst[1] << " mm)\n";
+  EXPECT_EQ(rig.tracker(0).obs.ids().size(), 2u) << "tracking on lamps 2 and 3";
+  EXPECT_LE(drift[0], 0.55);
+  EXPECT_LE(worst[0], 0.6);
+  EXPECT_GE(drift[1], 1.5 * drift[0]) << "the persisting velocity carries the pose farther";
+}
+
 TEST(MarkerTrackerContinuity, RefusesAFixThatMovesTheCameraFasterThanItCanAndSaysSo) {
   // For 0.4 s the trackers are told joints with the waist 0.5 rad off (a faulty encoder): the
   // lamps are not where the filter expects them, the plate is lost, and the PnP fixes that

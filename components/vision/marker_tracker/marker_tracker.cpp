@@ -54,6 +54,12 @@ class MarkerTracker final : public Component {
         ctx.param<double>("accel_noise", 3e-4, "the camera's acceleration, m/s^2 per sqrt(Hz)", Range{1e-7, 100});
     s.noise.angular_accel = ctx.param<double>(
         "angular_accel_noise", 3e-4, "the camera's angular acceleration, rad/s^2 per sqrt(Hz)", Range{1e-7, 1000});
+    // How long the camera's velocity lasts: it moves in short motions (a head turning, a stand
+    // nudged) and is still in between. A velocity that persisted would carry the estimate along
+    // the line of sight, which four lamps on a small plate pin least.
+    s.noise.velocity_time = ctx.param<double>(
+        "velocity_time", 0.2, "how long the camera's velocity lasts (correlation time), s; 0: constant velocity",
+        Range{0, 1000});
     s.device_accel = ctx.param<double>("device_accel_noise", 1.0,
                                        "device_motion: state only: the device's acceleration the filter must absorb, "
                                        "m/s^2 per sqrt(Hz)",

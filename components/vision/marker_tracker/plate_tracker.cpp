@@ -9,12 +9,14 @@ namespace wysiwyf::vision {
 namespace {
 
 // The filter's process noise: the camera's motion, plus the device's when the device is in the
-// state (independent accelerations: the densities add).
+// state (independent accelerations: the densities add; the device moves at sustained speeds, so
+// that state's velocity persists).
 EkfNoise filter_noise(const TrackerSettings& s) {
   EkfNoise n = s.noise;
   if (s.device_motion == DeviceMotion::kState) {
     n.accel = std::hypot(n.accel, s.device_accel);
     n.angular_accel = std::hypot(n.angular_accel, s.device_angular_accel);
+    n.velocity_time = 0;
   }
   return n;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 #include "frames/pose_covariance.hpp"
 
@@ -38,20 +39,35 @@ void PoseEkf::reset(const Eigen::Isometry3d& eye_T_x, const Matrix6d& pose_cov, 
 
 void PoseEkf::predict(double dt) {
   if (!(dt > 0)) return;
-  const Eigen::Matrix3d dR = exp_so3(w_ * dt);
-  eye_T_x_.translation() += v_ * dt;
+  // dv = -v / tau dt + white acceleration: over dt the velocity decays by a and moves the pose by
+  // v * lever (tau = 0: a = 1, lever = dt, constant velocity).
+  const double tau = noise_.velocity_time;
+  const double a = tau > 0 ? std::exp(-dt / tau) : 1.0;
+  const double lever = tau > 0 ? tau * (1 - a) : dt;
+  const Eigen::Matrix3d dR = exp_so3(w_ * lever);
+  eye_T_x_.translation() += v_ * lever;
   eye_T_x_.linear() = dR * eye_T_x_.linear();
+  v_ *= a, w_ *= a;
   StateMatrix F = StateMatrix::Identity();
-  F.block<3, 3>(0, 6).diagonal().setConstant(dt);
+  F.block<3, 3>(0, 6).diagonal().setConstant(lever);
   F.block<3, 3>(3, 3) = dR;
-  F.block<3, 3>(3, 9).diagonal().setConstant(dt);
-  // White acceleration over dt: per axis [dt^3/3 dt^2/2; dt^2/2 dt] times the spectral density.
+  F.block<3, 3>(3, 9).diagonal().setConstant(lever);
+  F.block<3, 3>(6, 6).diagonal().setConstant(a);
+  F.block<3, 3>(9, 9).diagonal().setConstant(a);
+  // The white acceleration integrated over dt, per axis: [pp pv; pv vv] times its spectral
+  // density (constant velocity: [dt^3/3 dt^2/2; dt^2/2 dt]; decaying: the same integrals weighted
+  // by the decay).
+  double pp = dt * dt * dt / 3, pv = dt * dt / 2, vv = dt;
+  if (tau > 0) {
+    vv = tau / 2 * (1 - a * a);
+    pv = tau * tau / 2 * (1 - a) * (1 - a);
+    pp = tau * tau * (dt - 2 * tau * (1 - a) + tau / 2 * (1 - a * a));
+  }
   StateMatrix Q = StateMatrix::Zero();
   const double qa = noise_.accel * noise_.accel, qw = noise_.angular_accel * noise_.angular_accel;
-  const double d3 = dt * dt * dt / 3, d2 = dt * dt / 2;
   for (int i = 0; i < 3; ++i) {
-    Q(i, i) = d3 * qa, Q(i, 6 + i) = Q(6 + i, i) = d2 * qa, Q(6 + i, 6 + i) = dt * qa;
-    Q(3 + i, 3 + i) = d3 * qw, Q(3 + i, 9 + i) = Q(9 + i, 3 + i) = d2 * qw, Q(9 + i, 9 + i) = dt * qw;
+    Q(i, i) = pp * qa, Q(i, 6 + i) = Q(6 + i, i) = pv * qa, Q(6 + i, 6 + i) = vv * qa;
+    Q(3 + i, 3 + i) = pp * qw, Q(3 + i, 9 + i) = Q(9 + i, 3 + i) = pv * qw, Q(9 + i, 9 + i) = vv * qw;
   }
   P_ = F * P_ * F.transpose() + Q;
 }

@@ -3,7 +3,9 @@
 // paper's first variant) with a constant-velocity model, measured through the pixels of points
 // known in frame x. Error state (12): [dt, dtheta, dv, dw] with t = t^ + dt, R = exp(dtheta) R^
 // (rotation errors in eye coordinates), v and w the translational and angular velocity in eye
-// coordinates. Process noise: white acceleration of the given spectral densities.
+// coordinates. Process noise: white acceleration of the given spectral densities, driving
+// velocities that either persist (constant velocity) or decay with a correlation time (a first
+// order Gauss-Markov velocity: a camera that moves in short motions and is otherwise still).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -18,6 +20,11 @@ struct EkfNoise {
   double accel = 3e-4;          // m/s^2 per sqrt(Hz): translational acceleration
   double angular_accel = 3e-4;  // rad/s^2 per sqrt(Hz)
   double pixel = 0.1;           // px: a centroid's measurement noise (sigma)
+  // s: how long a velocity lasts (its correlation time). A camera on a stand or a head moves in
+  // short motions and is still in between: a velocity that persists for seconds would carry the
+  // pose along whatever direction the lamps pin least (along the line of sight). 0: constant
+  // velocity, for a state that moves at sustained speeds.
+  double velocity_time = 0.2;
 };
 
 class PoseEkf {
