@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -135,13 +134,10 @@ class BridgedTopic final : public DataReaderListener {
   std::string topic_;
   TopicInfo info_;
   std::uint32_t channel_;
-  // A stamped sample's stamp (little-endian CDR: the encapsulation, then the Header's int64 ns),
-  // 0 where there is none or it is not a time on the pipeline's clock (negative).
+  // A stamped sample's stamp, 0 where there is none or it is not a time on the pipeline's clock.
   std::uint64_t stamp_of(const std::vector<std::uint8_t>& cdr) const {
-    if (!stamped_ || cdr.size() < 12 || cdr[1] != 0x01) return 0;
-    std::int64_t ns = 0;
-    std::memcpy(&ns, cdr.data() + 4, sizeof(ns));
-    return ns > 0 ? static_cast<std::uint64_t>(ns) : 0;
+    const auto ns = stamped_ ? header_stamp(cdr) : std::nullopt;
+    return ns && *ns > 0 ? static_cast<std::uint64_t>(*ns) : 0;
   }
 
   bool stamped_;

@@ -158,11 +158,8 @@ class TopicRecorder final : public DataReaderListener {
       // a std_msgs::Header (sim time on the sim clock: what play --into replays by); else when
       // DDS says it was written.
       std::uint64_t publish = static_cast<std::uint64_t>(info.source_timestamp.to_ns());
-      if (stamped_ && sample_.bytes.size() >= 12) {
-        std::int64_t stamp = 0;
-        std::memcpy(&stamp, sample_.bytes.data() + 4, 8);  // after the encapsulation header
-        if (sample_.bytes[1] == 0x01 && stamp >= 0) publish = static_cast<std::uint64_t>(stamp);
-      }
+      if (const auto stamp = stamped_ ? header_stamp(sample_.bytes) : std::nullopt; stamp && *stamp >= 0)
+        publish = static_cast<std::uint64_t>(*stamp);
       if (rec_.enqueue({channel_, sequence_++, now, publish, std::move(sample_.bytes)})) ++messages;
       sample_.bytes = {};
     }

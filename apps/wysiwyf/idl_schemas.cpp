@@ -1,6 +1,7 @@
 #include "idl_schemas.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -131,6 +132,13 @@ std::optional<IdlSchema> idl_schema(const std::string& type_name, std::string& s
   append(c, it->second, done, schema.text);
   schema.stamped = c.files.at(it->second).structs.at(type_name);
   return schema;
+}
+
+std::optional<std::int64_t> header_stamp(const std::vector<std::uint8_t>& cdr) {
+  if (cdr.size() < 12 || cdr[1] != 0x01) return std::nullopt;
+  std::int64_t stamp = 0;
+  std::memcpy(&stamp, cdr.data() + 4, sizeof(stamp));  // after the encapsulation header
+  return stamp;
 }
 
 }  // namespace wysiwyf::cli
