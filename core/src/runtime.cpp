@@ -190,13 +190,10 @@ struct Runtime::Impl final : RunHost {
     const detail::TickCost c0 = options.measure_tick_cost ? detail::thread_cost_now() : detail::TickCost{};
     guarded(
         slot, [now] { return "tick at t=" + std::to_string(now.ns) + " ns"; }, [&] { slot.component->tick(now); });
-    if (options.measure_tick_cost) {
-      const detail::TickCost cost = detail::thread_cost_now() - c0;
-      slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us, cost.cpu_us,
-                        cost.instructions);
-    } else {
-      slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us);
-    }
+    const detail::TickCost cost =
+        options.measure_tick_cost ? detail::thread_cost_now() - c0 : detail::TickCost{-1, -1};  // (-1: not measured)
+    slot.stats.record(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), late_us, cost.cpu_us,
+                      cost.instructions);
     if (flush_after_tick) bridge->flush_soon();  // DDS sends what the tick wrote, on its own thread
   }
   bool flush_after_tick = false;  // real clock: each tick wakes the publisher; sim clock: each step
