@@ -61,6 +61,18 @@ void World::apply_impulse(const ActiveContact& contact, const Vec3& j, const std
 }
 
 void World::set_state(int i, const BodyState& s) { state_.set_body(model_, i, s); }
+
+void World::copy_state_from(const World& other) {
+  if (other.body_count() != body_count() || other.model_.dynamic != model_.dynamic)
+    throw std::invalid_argument("World::copy_state_from: the other world has other bodies");
+  state_ = other.state_;
+  state_.restart = true;  // (this world's integrators have not seen that state)
+}
+
+bool World::watching(int i) const {
+  return std::any_of(state_.watched.begin(), state_.watched.end(),
+                     [i](const ContactFeature& f) { return f.a == i || f.b == i; });
+}
 double World::energy() const { return state_.energy(model_); }
 
 std::size_t World::evaluate_resting(const std::vector<Pose>& poses, bool within_step) {

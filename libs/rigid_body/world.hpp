@@ -77,6 +77,14 @@ class World {
   const BodyModel& model(int i) const { return model_.bodies[i]; }
   const BodyState& state(int i) const { return state_.bodies[i]; }
   void set_state(int i, const BodyState& s);
+  // Takes `other`'s state: its time, bodies, wrenches and contacts; the integrator starts over
+  // from it. `other` must have the same bodies (throws otherwise). For looking ahead of a world
+  // in a second one without disturbing it.
+  void copy_state_from(const World& other);
+  // Whether a gap of body i is watched (a feature of it near another body's but apart): an impact
+  // of it may come within the next steps. Bodies further apart than WorldParams::margin are not.
+  bool watching(int i) const;
+  double margin() const { return model_.params.margin; }
   BodyKinematics kinematics(int i) const { return BodyKinematics(model_.bodies[i], state_.bodies[i]); }
   const std::vector<ActiveContact>& resting_contacts() const { return state_.resting; }
   // Body i sleeps: at rest, left out of the integration (WorldParams::sleep_after).

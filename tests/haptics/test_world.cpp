@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "rigid_body/world.hpp"
 
@@ -218,6 +220,33 @@ TEST(World, ACubePushedIntoAWallStopsWithoutPenetrating) {
   for (const auto& c : w.resting_contacts())
     if (c.feature.b == 2 || c.feature.a == 2) wall_force += c.force;
   EXPECT_NEAR(wall_force, 5.0, 1e-3) << "the wall pushes back with the push";
+}
+
+TEST(World, ACopyOfItsStateGoesOnAsItWouldAndLeavesItUntouched) {
+  BodyModel wall;
+  wall.name = "wall";
+  wall.dynamic = false;
+  wall.half_extents = Vec3(0.05, 1.0, 0.5);
+  // The cube's face 5 cm from the wall's (x = 0.5), pushed with 1 N: it meets the wall after
+  // sqrt(2 0.05 / 1) = 316 ms at 0.32 m/s.
+  const std::vector<BodyModel> models{cube(1.0, 0.0), table(), wall};
+  const std::vector<BodyState> initial{at(Vec3(0.35, 0, 0.1)), at(Vec3(0, 0, -0.05)), at(Vec3(0.55, 0, 0.49))};
+  World w(models, initial), reference(models, initial), ahead(models, initial);
+  for (World* x : {&w, &reference}) x->set_external_wrench(0, Vec3(1.0, 0, 0), Vec3::Zero());
+  for (int i = 0; i < 200; ++i) w.step(1e-3), reference.step(1e-3);
+  EXPECT_FALSE(w.watching(0)) << "3 cm from the wall, more than the margin";
+  for (int i = 0; i < 90; ++i) w.step(1e-3), reference.step(1e-3);
+  EXPECT_TRUE(w.watching(0)) << "8 mm from the wall, within the margin";
+  ahead.copy_state_from(w);
+  EXPECT_EQ(ahead.time(), w.time());
+  for (int i = 0; i < 40; ++i) ahead.step(1e-3);  // across the impact
+  for (int i = 0; i < 40; ++i) w.step(1e-3), reference.step(1e-3);
+  EXPECT_NEAR(w.state(0).x.x() + 0.1, 0.5, 1e-4) << "stopped at the wall";
+  EXPECT_NEAR(ahead.state(0).x.x(), w.state(0).x.x(), 1e-7) << "the look-ahead saw the same impact";
+  EXPECT_EQ(w.state(0).x, reference.state(0).x) << "copying from it changed nothing of it";
+  EXPECT_EQ(w.state(0).P, reference.state(0).P);
+  World other({cube()}, {at(Vec3(0, 0, 1))});
+  EXPECT_THROW(other.copy_state_from(w), std::invalid_argument);
 }
 
 // A corner that crosses a face near its rim and is past the rim by the end of the integrator's
