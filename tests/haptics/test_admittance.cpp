@@ -1,8 +1,10 @@
 // The user's wrench path, scenes, and the admittance_sim component driven like the robot would.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 #include "scene/tool_load.hpp"
@@ -94,7 +96,8 @@ msg::WrenchStamped sensor_reading_of_push(const std::string& scene, double newto
 }
 
 TEST(AdmittanceSim, AUserPushAccelerateTheCubeByFOverMAndTheSetpointFollows) {
-  Harness h("admittance_sim", "{scene: scenes/cube_on_table.yaml}", 1000);
+  // (the object's own motion: no preview window)
+  Harness h("admittance_sim", "{scene: scenes/cube_on_table.yaml, preview_window: 0}", 1000);
   auto wrench = h.feed<msg::WrenchStamped>("wrench");
   auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
   auto objects = h.watch<msg::ObjectState>("objects");
@@ -153,9 +156,10 @@ TEST(AdmittanceSim, EachObjectsContactNormalsPointOutOfTheOtherBodyIntoIt) {
     EXPECT_NEAR(c.normal().z(), std::string(c.other().c_str()) == "table" ? 1.0 : -1.0, 1e-6) << c.other().c_str();
 }
 
-// The user's push through the sensor path on a scene; returns the setpoint after 501 ms.
+// The user's push through the sensor path on a scene; returns the setpoint after 501 ms (the
+// object's own motion: no preview window).
 msg::CartesianSetpoint push_for_501ms(const std::string& scene, double newtons) {
-  Harness h("admittance_sim", "{scene: " + scene + "}", 1000);
+  Harness h("admittance_sim", "{scene: " + scene + ", preview_window: 0}", 1000);
   auto wrench = h.feed<msg::WrenchStamped>("wrench");
   auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
   h.activate();
@@ -196,6 +200,69 @@ TEST(AdmittanceSim, ANonFiniteWrenchIsIgnored) {
   ASSERT_TRUE(setpoints.take_latest(sp));
   EXPECT_TRUE(std::isfinite(sp.pose().position().x()));
   EXPECT_NEAR(sp.pose().position().x(), 0.7, 1e-6);  // the cube did not move
+}
+
+// A push of 0.5 N into the wall of cube_against_wall (frictionless): the device face (x = 0.7)
+// meets it at x = 0.6 after sqrt(2 0.1 / 0.5) = 632 ms at 0.32 m/s and stops within a step.
+// Returns per tick the setpoint's x and speed and the held face's x and speed.
+struct PushIntoWall {
+  std::vector<double> setpoint_x, setpoint_v, face_x, face_v;
+};
+PushIntoWall push_into_wall(const std::string& preview_window) {
+  Harness h("admittance_sim", "{scene: scenes/cube_against_wall.yaml, preview_window: " + preview_window + "}", 1000);
+  auto wrench = h.feed<msg::WrenchStamped>("wrench");
+  auto setpoints = h.watch<msg::CartesianSetpoint>("setpoint");
+  auto objects = h.watch<msg::ObjectState>("objects");
+  h.activate();
+  const msg::WrenchStamped w = sensor_reading_of_push("scenes/cube_against_wall.yaml", 0.5);
+  PushIntoWall r;
+  for (int i = 0; i < 800; ++i) {
+    wrench.write(w);
+    h.tick(Time{i * kMs});
+    msg::CartesianSetpoint sp;
+    msg::ObjectState o;
+    EXPECT_TRUE(setpoints.take_latest(sp) && objects.take_latest(o));
+    r.setpoint_x.push_back(sp.pose().position().x());
+    r.setpoint_v.push_back(sp.twist().linear().x());
+    r.face_x.push_back(o.pose().position().x() + 0.1);
+    r.face_v.push_back(o.twist().linear().x());
+  }
+  return r;
+}
+
+TEST(AdmittanceSim, TheSetpointBrakesAheadOfAnImpactAndArrivesWhereTheObjectStopsNeverPastIt) {
+  const PushIntoWall r = push_into_wall("0.04");
+  std::size_t impact = 100;  // the first tick the face is stopped, once it has moved
+  while (impact < r.face_v.size() && std::abs(r.face_v[impact]) > 1e-3) ++impact;
+  ASSERT_GT(impact, 600u);
+  ASSERT_LT(impact, 700u);
+  const double speed = std::abs(r.face_v[impact - 1]);
+  EXPECT_NEAR(speed, 0.316, 0.01);
+  double most_apart = 0;
+  for (std::size_t i = 0; i < r.setpoint_x.size(); ++i) {
+    EXPECT_GE(r.setpoint_x[i], 0.6 - 1e-6) << "past the face where the object stops, at tick " << i;
+    most_apart = std::max(most_apart, std::abs(r.setpoint_x[i] - r.face_x[i]));
+  }
+  // The window's average of a path that stops: at most (speed change) x window / 8 from it, and
+  // braking from half a window before the impact at (speed change) / window.
+  EXPECT_LE(most_apart, speed * 0.04 / 8 + 1e-5);
+  EXPECT_GT(most_apart, speed * 0.04 / 8 * 0.8) << "the setpoint did not brake ahead";
+  EXPECT_NEAR(std::abs(r.setpoint_v[impact - 1]), speed / 2, 0.02) << "half the speed left at the impact";
+  EXPECT_NEAR(std::abs(r.setpoint_v[impact - 15]), speed * 0.875, 0.02) << "braking since 20 ms before it";
+  EXPECT_NEAR(std::abs(r.setpoint_v[impact - 25]), speed, 0.02) << "not braking 25 ms before it";
+  // Away from the impact the average of a uniformly accelerated path is that path, a window^2 / 24
+  // ahead (a = 0.5 m/s^2: 33 um), and once the window has passed the impact, the stopped face.
+  EXPECT_NEAR(r.setpoint_x[300], r.face_x[300] - 0.5 * 0.04 * 0.04 / 24, 2e-6);
+  EXPECT_NEAR(r.setpoint_x[impact + 25], 0.6, 1e-6);
+  EXPECT_NEAR(r.setpoint_v[impact + 25], 0.0, 1e-6);
+}
+
+TEST(AdmittanceSim, WithoutAPreviewWindowTheSetpointIsTheObjectsOwnMotion) {
+  const PushIntoWall r = push_into_wall("0");
+  for (std::size_t i = 0; i < r.setpoint_x.size(); ++i) {
+    ASSERT_NEAR(r.setpoint_x[i], r.face_x[i], 1e-12) << i;
+    ASSERT_NEAR(r.setpoint_v[i], r.face_v[i], 1e-12) << i;
+  }
 }
 
 }  // namespace wysiwyf::haptics

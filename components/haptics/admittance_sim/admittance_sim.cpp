@@ -9,10 +9,18 @@
 // admittance display mode, attaches the device to the feature the surface planner chose, at the
 // pose where the device is, so the first setpoint is the last one the arm had). Detached, the
 // user's wrench does not act on the object and no setpoint is published.
+//
+// The setpoint is the held object's motion averaged over a short window centred on now, the
+// future half from a look-ahead world (setpoint_preview.hpp): the arm brakes ahead of an impact
+// and arrives with the object instead of running past it. It is led by the arm's give under the
+// user's push (arm_yield.hpp), learned from the plate's measured pose.
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <utility>
 
+#include "arm_yield.hpp"
+#include "setpoint_preview.hpp"
 #include "scene/scene.hpp"
 #include "rigid_body/world.hpp"
 #include "scene/tool_load.hpp"
@@ -44,6 +52,18 @@ class AdmittanceSim final : public Component {
       integrator_ = Integrator::kAdams;
     else if (integrator != "runge_kutta")
       ctx.reject("integrator", "'" + integrator + "' is neither runge_kutta nor adams");
+    preview_window_ = ctx.param<double>(
+        "preview_window", 0.04,
+        "s, the window the setpoint averages the object's motion over, centred on now (the future half looked "
+        "ahead): the arm brakes ahead of impacts; 0 sends the object's motion as it is",
+        Range{0, 0.2});
+    yield_rate_ = ctx.param<double>(
+        "yield_rate", 5.0,
+        "1/s, how fast the arm's compliance under the user's push is learned from device_pose (0: not learned, the "
+        "setpoint not led)",
+        Range{0, 1000});
+    max_compliance_ = ctx.param<double>("max_compliance", 1e-3, "m/N, the most the learned compliance may be",
+                                        Range{0, 0.01});
     attached_ = ctx.param<bool>("attached_at_start", true,
                                 "the scene's device attachment holds from the start (false: wait for `attach`)");
     attach_in_ =
@@ -77,6 +97,11 @@ class AdmittanceSim final : public Component {
     p.atol = rtol_ * 1e-2;
     p.integrator = integrator_;
     world_ = std::make_unique<World>(scene_.models, scene_.initial, p);
+    const auto half = static_cast<std::size_t>(std::lround(0.5 * preview_window_ / dt_));
+    preview_ = std::make_unique<SetpointPreview>(half, dt_);
+    ahead_ = half > 0 ? std::make_unique<World>(scene_.models, scene_.initial, p) : nullptr;
+    preview_->restart(pose_of(*world_, body_) * obj_T_dev_);
+    yield_ = std::make_unique<ArmYield>(yield_rate_, max_compliance_, kMinYieldForce);
     contact_names_.clear();
     for (const BodyModel& m : scene_.models) contact_names_.emplace_back(m.name);
   }
@@ -97,13 +122,16 @@ class AdmittanceSim final : public Component {
     }
     while (device_pose_.take(device_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
-      if (T.matrix().allFinite())
-        measured_base_T_dev_ = T, have_device_pose_ = true;
-      else
+      if (T.matrix().allFinite()) {
+        const std::int64_t stamp = device_msg_.header().stamp_ns();
+        if (attached_ && have_device_pose_ && stamp > device_stamp_)
+          yield_->measured(stamp, T.translation(), user_force_, static_cast<double>(stamp - device_stamp_) * 1e-9);
+        measured_base_T_dev_ = T, have_device_pose_ = true, device_stamp_ = stamp;
+      } else
         reject(device_pose_, "a non-finite pose");
     }
     const int body = body_;
-    const Eigen::Isometry3d base_T_obj = pose_of(body);
+    const Eigen::Isometry3d base_T_obj = pose_of(*world_, body);
     // The sensor is where the robot holds it; if the robot lags or holds, that is not where the
     // object says, and the tool's weight must be removed in the sensor's true orientation.
     const Eigen::Isometry3d base_T_dev = have_device_pose_ ? measured_base_T_dev_ : base_T_obj * obj_T_dev_;
@@ -115,6 +143,7 @@ class AdmittanceSim final : public Component {
                                                       scene_.device.tool_mass, scene_.device.tool_com, scene_.gravity)
                                 : BodyWrench{};
     world_->set_external_wrench(body, user.force, user.torque);
+    user_force_ = user.force;
     // STEP 2-6.
     const StepReport report = world_->step(dt_);
     if (report.integration_failures > 0)
@@ -141,24 +170,84 @@ class AdmittanceSim final : public Component {
     body_ = body;
     obj_T_dev_ = msgs::to_isometry(attach_msg_.obj_T_dev());
     attached_ = true;
+    preview_->restart(pose_of(*world_, body_) * obj_T_dev_);
+    smooth_ = false;
+    yield_->restart();
     log("attached to " + scene_.models[body].name + " (" + attach_msg_.feature().c_str() + ")");
   }
 
-  Eigen::Isometry3d pose_of(int body) const {
+  static Eigen::Isometry3d pose_of(const World& world, int body) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = world_->state(body).q.normalized().toRotationMatrix();
-    T.translation() = world_->state(body).x;
+    T.linear() = world.state(body).q.normalized().toRotationMatrix();
+    T.translation() = world.state(body).x;
     return T;
+  }
+
+  // The held device pose over the next half window. Where the held body may hit something within
+  // it (a gap of it watched, or faster than the margin in the window), from the world as it is
+  // now with the user's wrench held, in a second world (a step that cannot be integrated holds
+  // the bodies where they were); elsewhere its motion is smooth over milliseconds and is
+  // extrapolated at its current velocity and acceleration, for a tenth of the cost.
+  void look_ahead() {
+    std::vector<Eigen::Isometry3d>& future = preview_->future();
+    const auto k = world_->kinematics(body_);
+    const Eigen::Isometry3d base_T_obj = pose_of(*world_, body_);
+    // (the acceleration of the last tick, where that was smooth too: not across an impact)
+    const Eigen::Vector3d accel = smooth_ ? Eigen::Vector3d((k.v - last_v_) / dt_) : Eigen::Vector3d::Zero();
+    last_v_ = k.v;
+    const double horizon = dt_ * static_cast<double>(future.size());
+    smooth_ = !(world_->watching(body_) || k.v.norm() * horizon > 0.5 * world_->margin());
+    if (!smooth_) {
+      // Steps of kLookAheadStride ticks (the integrator finds an impact inside one to the same
+      // tolerance), the ticks between them interpolated.
+      ahead_->copy_state_from(*world_);
+      Eigen::Isometry3d before = pose_of(*world_, body_) * obj_T_dev_;
+      for (std::size_t done = 0; done < future.size();) {
+        const std::size_t n = std::min(kLookAheadStride, future.size() - done);
+        ahead_->step(dt_ * static_cast<double>(n));
+        const Eigen::Isometry3d after = pose_of(*ahead_, body_) * obj_T_dev_;
+        const Eigen::Quaterniond q0(before.linear()), q1(after.linear());
+        for (std::size_t i = 1; i <= n; ++i) {
+          const double f = static_cast<double>(i) / static_cast<double>(n);
+          Eigen::Isometry3d& pose = future[done + i - 1];
+          pose.linear() = q0.slerp(f, q1).toRotationMatrix();
+          pose.translation() = (1 - f) * before.translation() + f * after.translation();
+        }
+        before = after;
+        done += n;
+      }
+      return;
+    }
+    for (std::size_t i = 0; i < future.size(); ++i) {
+      const double tau = dt_ * static_cast<double>(i + 1);
+      Eigen::Isometry3d T = base_T_obj;
+      T.translation() += k.v * tau + 0.5 * tau * tau * accel;
+      const Eigen::Vector3d turn = k.omega * tau;
+      if (turn.norm() > 0) T.linear() = Eigen::AngleAxisd(turn.norm(), turn.normalized()) * T.linear();
+      future[i] = T * obj_T_dev_;
+    }
   }
 
   void publish(Time now) {
     if (attached_) {
       const auto k = world_->kinematics(body_);
-      const Eigen::Isometry3d base_T_dev = pose_of(body_) * obj_T_dev_;
+      const Eigen::Isometry3d base_T_dev = pose_of(*world_, body_) * obj_T_dev_;
       fill_header(setpoint_msg_.header(), now.ns, seq_, "base");
       setpoint_msg_.child_frame_id("dev");
-      msgs::to_msg(base_T_dev, setpoint_msg_.pose());
-      msgs::to_msg(k.point_velocity(base_T_dev.translation(), world_->state(body_).x), k.omega, setpoint_msg_.twist());
+      yield_->object_at(now.ns, base_T_dev.translation());
+      PreviewedSetpoint sp;
+      if (ahead_) {
+        preview_->record(base_T_dev);
+        look_ahead();
+        sp = preview_->setpoint();
+      } else {
+        sp.pose = base_T_dev;
+        sp.linear = k.point_velocity(base_T_dev.translation(), world_->state(body_).x);
+        sp.angular = k.omega;
+      }
+      sp.pose.translation() += yield_->lead(user_force_);
+      msgs::to_msg(sp.pose, setpoint_msg_.pose());
+      msgs::to_msg(sp.linear, sp.angular, setpoint_msg_.twist());
       setpoint_msg_.source("admittance");
       setpoint_msg_.sensed_ns(sensed_ns_);
       setpoint_.write(setpoint_msg_);
@@ -171,7 +260,7 @@ class AdmittanceSim final : public Component {
       const auto ki = world_->kinematics(i);
       fill_header(object_msg_.header(), now.ns, seq_, "v_env");
       object_msg_.child_frame_id(world_->model(i).name);
-      msgs::to_msg(pose_of(i), object_msg_.pose());
+      msgs::to_msg(pose_of(*world_, i), object_msg_.pose());
       msgs::to_msg(ki.v, ki.omega, object_msg_.twist());
       // (the last message's contacts are written over: no message built and copied per contact)
       std::vector<msg::Contact>& out = object_msg_.contacts();
@@ -215,6 +304,17 @@ class AdmittanceSim final : public Component {
   msg::Attachment attach_msg_;
   Input<msg::Attachment> attach_in_;
   std::unique_ptr<World> world_;
+  double preview_window_ = 0.02;
+  std::unique_ptr<SetpointPreview> preview_;
+  std::unique_ptr<World> ahead_;  // the look-ahead (none without a preview window)
+  Eigen::Vector3d last_v_ = Eigen::Vector3d::Zero();  // the held body's velocity a tick ago
+  static constexpr std::size_t kLookAheadStride = 4;  // ticks per step of the look-ahead world
+  static constexpr double kMinYieldForce = 1.0;        // N: weaker pushes teach nothing of the arm's give
+  double yield_rate_ = 5, max_compliance_ = 1e-3;
+  std::unique_ptr<ArmYield> yield_;
+  Vec3 user_force_ = Vec3::Zero();  // the user's force on the held body, the last tick's (base frame)
+  std::int64_t device_stamp_ = 0;   // of the last measured device pose
+  bool smooth_ = false;  // the last tick's motion was extrapolated (no impact could come)
   SensorReading reading_;
   bool have_device_pose_ = false;
   Eigen::Isometry3d measured_base_T_dev_ = Eigen::Isometry3d::Identity();
