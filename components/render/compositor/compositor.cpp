@@ -7,6 +7,7 @@
 // a keyed pixel on the device shows only where the real depth puts something nearer than the
 // device (a finger on the plate), so depth decides only between the hand and the virtual scene.
 #include <array>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -141,6 +142,12 @@ class Compositor final : public Component {
     device_margin_ = static_cast<float>(ctx.param<double>(
         "device_margin", 0.0, "m a keyed pixel on the device must be nearer than the device to count as hand",
         Range{0, 0.1}));
+    device_edge_px_ = ctx.param<int>(
+        "device_edge_px", 0,
+        "px: a keyed pixel on the device shows only where the real depth puts something nearer than the device at "
+        "every pixel within this distance along its row too (stereo matching along the rows spreads a near edge's "
+        "depth sideways over the far side by about half its window: without this the device shows beside a finger)",
+        Range{0, 32});
     match_frames_ = ctx.param<bool>(
         "match_frames", false,
         "composite only layers of one camera frame: the scene (stamped with its eye_T_base's frame), the hand, and "
@@ -180,6 +187,7 @@ class Compositor final : public Component {
       const bool z_key = use_depth_ && !d.real.empty() && same_size(scene_depth_in_, scene_depth_, w, h);
       if (z_key) d.virt = image::view(scene_depth_.image);
       if (same_size(device_in_, device_, w, h)) d.device = image::view(device_.image);
+      if (device_edge_px_ > 0 && !d.device.empty() && !d.real.empty()) shrink_nearer(d);
       cv::Mat shown;
       if (publish_shown_) {
         shown = image::allocate(shown_msg_, static_cast<int>(w), static_cast<int>(h), "mono8");
@@ -194,6 +202,22 @@ class Compositor final : public Component {
   }
 
  private:
+  // The device's depth where something nearer than it shows through, less device_edge_px_ on
+  // either side, along the rows, of every edge of that region inside the device: there the device
+  // hides whatever the real depth says (device_margin then plays no further part). Along the
+  // rows only: the pair's disparity is horizontal, and a fingertip pointing up keeps its length.
+  void shrink_nearer(Depths& d) {
+    cv::subtract(d.device, d.real, gap_);
+    cv::Mat shows = (d.real > 0.0f) & (gap_ > d.device_margin);  // nearer than the device
+    shows |= d.device <= 0.0f;                                   // (off the device: no edge to shrink from)
+    const int k = 2 * device_edge_px_ + 1;
+    cv::erode(shows, shows_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, 1)));
+    d.device.copyTo(device_shrunk_);
+    device_shrunk_.setTo(0.0f, shows_);
+    d.device = device_shrunk_;
+    d.device_margin = std::numeric_limits<float>::infinity();
+  }
+
   // An input image and whether it can be used (a rejected one is not, until the next arrives).
   struct Stream {
     msg::Image image;
@@ -273,6 +297,8 @@ class Compositor final : public Component {
   }
 
   bool use_depth_ = true;
+  int device_edge_px_ = 0;
+  cv::Mat gap_, shows_, device_shrunk_;  // shrink_nearer's
   float margin_ = 0.0f, device_margin_ = 0.0f;
   bool publish_shown_ = false;
   bool match_frames_ = false;
