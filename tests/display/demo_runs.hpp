@@ -7,6 +7,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "wysiwyf/loader.hpp"
@@ -17,12 +18,9 @@ namespace wysiwyf::test {
 
 inline const std::string kPipelines = std::string(WYSIWYF_CONFIG_DIR) + "/pipelines/";
 
-// Runs a shipped simulated demo as scripts/demo does (the overrides added) and checks what every
-// demo promises: the user's script runs to its end with no fault, and every contact is a hit with
-// the plate still >= 100 ms before the finger and <= 1 mm and <= 1 deg off the feature. Returns the
-// run's log.
-inline std::string run_demo_hitting_every_contact(const std::string& file, std::vector<std::string> overrides,
-                                                  int expected_contacts) {
+// Runs a shipped simulated demo as scripts/demo does (the overrides added) and checks that the
+// user's script runs to its end with no fault. Returns the run's log.
+inline std::string run_demo(const std::string& file, std::vector<std::string> overrides) {
   Loader loader({WYSIWYF_COMPONENT_DIR});
   overrides.insert(overrides.end(), {"dds.transport=local", "clock.pace=0"});
   const PipelineSpec spec = load_pipeline(kPipelines + file, overrides);
@@ -36,6 +34,14 @@ inline std::string run_demo_hitting_every_contact(const std::string& file, std::
   EXPECT_TRUE(result.ok) << result.error << text;
   EXPECT_NE(result.stop_reason.find("the user's script is done"), std::string::npos) << result.stop_reason;
   EXPECT_EQ(text.find("-> fault"), std::string::npos) << text;
+  return text;
+}
+
+// run_demo, and what every demo promises: every contact is a hit with the plate still >= 100 ms
+// before the finger and <= 1 mm and <= 1 deg off the feature. Returns the run's log.
+inline std::string run_demo_hitting_every_contact(const std::string& file, std::vector<std::string> overrides,
+                                                  int expected_contacts) {
+  const std::string text = run_demo(file, std::move(overrides));
   const std::regex line(
       R"(\[metrics\] contact (\d+) \(([^)]*)\): (hit|MISS), plate still (-?\d+) ms before the finger, )"
       R"(([0-9.]+) mm / ([0-9.]+) deg)");

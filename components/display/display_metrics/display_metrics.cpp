@@ -423,10 +423,13 @@ class DisplayMetrics final : public Component {
         << ", \"p99_mm\": " << number(r.p99_mm()) << ", \"max_mm\": " << number(r.max_mm())
         << ", \"max_deg\": " << number(r.max_deg()) << ", \"onset_max_mm\": " << number(r.onset_max_mm())
         << ", \"onset_max_deg\": " << number(r.onset_max_deg()) << ", \"peak_force_n\": " << number(r.peak_force_n())
-        << ", \"push_force_n\": " << number(r.push_force_n()) << "}";
+        << ", \"push_force_n\": " << number(r.push_force_n()) << ", \"overshoot_mm\": " << number(r.overshoot_mm())
+        << "}";
     }
+    double overshoot = 0;
+    for (const auto& r : registrations_) overshoot = std::max(overshoot, r.overshoot_mm());
     j << "\n    ],\n    \"run\": {\"samples\": " << run_.mm.samples() << ", " << figures(run_.mm, "mm")
-      << ", \"max_deg\": " << number(run_.deg.max()) << "}\n  },\n";
+      << ", \"max_deg\": " << number(run_.deg.max()) << ", \"overshoot_mm\": " << number(overshoot) << "}\n  },\n";
     j << "  \"visual_registration\": {\"images\": " << visual_mm_.samples() << ", " << figures(visual_mm_, "mm") << ", "
       << figures(visual_px_, "px") << "},\n";
     j << "  \"bleed_through\": {\"images\": " << bleed_px_.samples() << ", \"images_with_any\": " << bleed_frames_
@@ -554,6 +557,7 @@ class DisplayMetrics final : public Component {
     std::int64_t since = 0, measured_until = 0;
     RegistrationStats all, onset;
     double peak_force = -1;  // N, the user's largest force while attached (-1: no wrench)
+    double overshoot = 0;    // m, the plate's deepest past the held face (along its normal, into the object)
   };
 
   void start_attachment(std::int64_t t) {
@@ -581,7 +585,9 @@ class DisplayMetrics final : public Component {
                                     [](std::int64_t v, const Sample&s) { return v < s.t; });
          it != plate_.end() && it->t <= t; ++it) {
       const Sample& s = *it;
-      const RegistrationError e = registration_error(at(object, s.t)->pose * a.obj_T_dev, s.pose);
+      const Eigen::Isometry3d want = at(object, s.t)->pose * a.obj_T_dev;
+      const RegistrationError e = registration_error(want, s.pose);
+      a.overshoot = std::max(a.overshoot, -(want.inverse() * s.pose.translation()).z());  // (z: out of the face)
       last_haptic_mm_ = e.mm;
       a.all.add(e, s.t);
       run_.add(e, s.t);
@@ -605,6 +611,7 @@ class DisplayMetrics final : public Component {
     r.onset_max_deg(a.onset.deg.max());
     r.peak_force_n(a.peak_force);
     r.push_force_n(push_force_);
+    r.overshoot_mm(a.overshoot * 1e3);
     registration_out_.write(r);
     registrations_.push_back(r);
     log("contact " + std::to_string(contact_) + " (" + a.feature + ") attached " +
@@ -613,7 +620,7 @@ class DisplayMetrics final : public Component {
         std::to_string(r.max_mm()) + " mm (at " + std::to_string(static_cast<double>(a.all.mm.max_at()) * 1e-9) +
         " s) / " + std::to_string(r.max_deg()) + " deg; onset max " + std::to_string(r.onset_max_mm()) + " mm / " +
         std::to_string(r.onset_max_deg()) + " deg; peak force " + std::to_string(r.peak_force_n()) + " N (push " +
-        std::to_string(r.push_force_n()) + " N)");
+        std::to_string(r.push_force_n()) + " N); deepest past the face " + std::to_string(r.overshoot_mm()) + " mm");
     attachment_.reset();
   }
 
