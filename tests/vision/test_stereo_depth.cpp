@@ -281,6 +281,30 @@ TEST(StereoDepth, NearestPointIsTheHandsPartNearestTheCamera) {
   EXPECT_LT(position(rig.hand).z(), centroid.z() - 0.01);
 }
 
+// hand_point tip: the pointing fingertip (the hand pose's origin), wherever the hand is in view,
+// at the image's left edge too (where the matcher once had no disparity for 140 px).
+TEST(StereoDepth, TipIsThePointingFingertipAcrossTheViewAndAtTheImagesLeftEdge) {
+  StereoRig rig("{baseline: " + std::to_string(kBaseline) + ", hand_point: tip}");
+  double worst = 0;
+  for (const auto& [a, b, roll, tilt] : std::vector<std::array<double, 4>>{{0, 0, 0, 0},
+                                                                           {0.15, -0.1, 0.8, 0.3},
+                                                                           {-0.2, 0.1, -1.2, -0.4},
+                                                                           {0.1, 0.2, 2.0, 0.5},
+                                                                           {-0.1, -0.2, 0.4, -0.6},
+                                                                           {-0.42, 0.0, 0.2, 0.0},
+                                                                           {-0.42, 0.15, -0.5, 0.3}}) {
+    const Eigen::Isometry3d base_T_hand = hand_in_view(0.6, a, b, roll, tilt);
+    rig.shoot(base_T_hand, true);
+    if (::testing::Test::HasFatalFailure()) return;
+    const Eigen::Vector3d tip = base_T_hand.translation(), palm = base_T_hand * kPalmCentre;
+    const double error = (position(rig.hand) - tip).norm();
+    std::cout << "hand at image offset (" << a << ", " << b << "): tip error " << error * 1000 << " mm (the palm centre "
+              << (position(rig.hand) - palm).norm() * 1000 << " mm away)\n";
+    worst = std::max(worst, error);
+  }
+  EXPECT_LE(worst, 0.025) << "the fingertip, not the palm 12 cm behind it";
+}
+
 TEST(StereoDepth, LeavesTheKeyedPlateOutOfTheHandGivenEyeTDev) {
   // The arm as demo-sim starts it: the plate (not blue: the keyer keeps it) facing the camera.
   msg::JointState joints;

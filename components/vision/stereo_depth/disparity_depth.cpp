@@ -59,8 +59,18 @@ void DisparityDepth::compute(const cv::Mat& left, const cv::Mat& right, double f
   }
   const double f = fx * l->cols / left.cols;
   prepare(f, baseline);
-  matcher_->compute(*l, *r, disparity_);
-  disparity_.convertTo(disparity_f_, CV_32F, 1.0 / cv::StereoMatcher::DISP_SCALE);
+  // The matchers leave the left image's first min_disparity + num_disparities columns unmatched
+  // (their search would leave the right image): a fifth of the width at the demo's range, where a
+  // hand waiting at the image's edge was lost. Both images are widened by that much on the left,
+  // edge pixels repeated, so each pixel of the image is searched over every disparity that stays
+  // inside the right image; one whose match would lie outside it finds only repeated edge pixels,
+  // which the uniqueness and left-right checks refuse.
+  const int pad = min_disparity_ + num_disparities_;
+  cv::copyMakeBorder(*l, padded_left_, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+  cv::copyMakeBorder(*r, padded_right_, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+  matcher_->compute(padded_left_, padded_right_, padded_disparity_);
+  padded_disparity_(cv::Rect(pad, 0, l->cols, l->rows))
+      .convertTo(disparity_f_, CV_32F, 1.0 / cv::StereoMatcher::DISP_SCALE);
   cv::Mat& out = s_.downscale > 1 ? small_depth_ : depth;
   cv::divide(f * baseline, disparity_f_, out);  // Z = f B / d (0 where d is 0)
   // Unmatched pixels come back below min_disparity; keep only the configured depth range.

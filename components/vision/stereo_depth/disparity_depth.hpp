@@ -38,7 +38,8 @@ class DisparityDepth {
   cv::Ptr<cv::StereoMatcher> matcher_;
   double prepared_for_ = -1;  // fx_matched * baseline the matcher's range was set for
   int min_disparity_ = 0, num_disparities_ = 16;
-  cv::Mat small_left_, small_right_, disparity_, disparity_f_, small_depth_, invalid_;
+  cv::Mat small_left_, small_right_, padded_left_, padded_right_, padded_disparity_, disparity_f_, small_depth_,
+      invalid_;
 };
 
 }  // namespace wysiwyf::vision

@@ -3,8 +3,11 @@
 // (alpha) and have a depth, back-projected through the pinhole; those inside the device's box are
 // dropped when its pose is known (the keyer keeps the plate, its lamps and knob: they are not
 // blue); those farther than `band` from the median depth of the rest too (cloth seen through the
-// matte's edge, mismatches); then either the centroid of what is left (the visible surface's
-// centre) or the centroid of its nearest fraction (the part of the hand closest to the camera).
+// matte's edge, mismatches); then the centroid of what is left (the visible surface's centre),
+// the centroid of its nearest fraction (the part of the hand closest to the camera), or the
+// pointing fingertip: along the hand's longest axis (its points' principal direction), the end
+// whose cross-section is the thinner by far is a finger, and the centroid of the last tip_fraction
+// of the points there is its tip (a hand with no finger out: the centroid).
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
@@ -18,8 +21,10 @@ struct Intrinsics {
 };
 
 struct HandPointOptions {
-  bool nearest = false;  // false: centroid of the inliers; true: centroid of their nearest fraction
+  enum class Point { kCentroid, kNearest, kTip };
+  Point point = Point::kCentroid;
   double nearest_fraction = 0.1;
+  double tip_fraction = 0.03;  // of the inliers: the fingertip's
   double band = 0.08;              // m either side of the median depth
   int min_alpha = 128;             // 0..255: from this alpha a pixel is hand
   int min_pixels = 300;            // fewer hand pixels with depth: no estimate
@@ -30,6 +35,7 @@ struct HandPoint {
   Eigen::Vector3d eye_p_hand;  // m, eye frame
   int pixels = 0;              // inliers used
   double median_depth = 0;     // m
+  bool tip = false;            // the point is a fingertip (Point::kTip found a finger)
 };
 
 // depth: CV_32FC1 (0: unknown); alpha: CV_8UC1, same size; dev_T_eye: the device's pose, when

@@ -45,10 +45,14 @@ class StereoDepth final : public Component {
     s.speckle_window =
         ctx.param<int>("speckle_window", 100,
                        "disparity blobs smaller than this (px, matched size) are dropped (0: none)", Range{0, 10000});
-    hand_.nearest =
-        ctx.param_choice("hand_point", "centroid",
-                         "centroid: centre of the hand's visible surface; nearest: of its part nearest the camera",
-                         {"centroid", "nearest"}) == "nearest";
+    const std::string point = ctx.param_choice(
+        "hand_point", "centroid",
+        "centroid: centre of the hand's visible surface; nearest: of its part nearest the camera; tip: the pointing "
+        "fingertip (the centroid where no finger points out)",
+        {"centroid", "nearest", "tip"});
+    hand_.point = point == "tip"       ? HandPointOptions::Point::kTip
+                  : point == "nearest" ? HandPointOptions::Point::kNearest
+                                       : HandPointOptions::Point::kCentroid;
     hand_.nearest_fraction = ctx.param<double>(
         "nearest_fraction", 0.1, "hand_point nearest: this fraction of the hand's pixels", Range{0.001, 1});
     hand_.band = ctx.param<double>(
