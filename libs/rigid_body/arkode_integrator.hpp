@@ -4,8 +4,8 @@
 // nothing but its first stage: the step size history is kept (ERKStepReset). Under a push held
 // for the step a resting or sliding box moves along a quadratic, which a third-order method
 // integrates exactly: a 1 ms haptic step is one step of four right-hand sides, where CVODE's
-// Adams, restarted at order 1, took 3.6 steps and 5.3 right-hand sides and was further off the
-// exact motion. (ERKStep rather than ARKStep, whose explicit path takes a fifth right-hand side
+// Adams, restarted at order 1, takes several steps and more right-hand sides and stays further
+// off the exact motion. (ERKStep rather than ARKStep, whose explicit path takes a fifth right-hand side
 // after each reset.)
 #include <arkode/arkode_erkstep.h>
 

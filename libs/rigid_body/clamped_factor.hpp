@@ -2,7 +2,7 @@
 // The Cholesky factor L (A_CC = L L^T) of the clamped contacts' block of the LCP matrix, kept up
 // to date as the pivoting clamps and releases contacts: a contact clamped appends a row from the
 // forward solve its direction needed anyway, one released is taken out by Givens rotations. Each
-// costs O(|C|^2) where factorising A_CC anew at every pivot cost O(|C|^3) (Baraff 1994, section 6,
+// costs O(|C|^2) where factorising A_CC anew at every pivot would cost O(|C|^3) (Baraff 1994, section 6,
 // keeps his factorisation incremental for the same reason). The pivoting keeps C non-singular, so
 // the factor exists; an append whose pivot round-off has eaten reports it, and the caller
 // factorises afresh.

@@ -175,7 +175,7 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       // Over no face: beside an edge or corner of the other box, above the planes of the faces
       // that meet there. Within a step it can come over one of them and into it, so those within
       // the margin are watched too (World: an impact only once the corner is
-      // over the face); a corner moving in from here went up to 0.5 mm deep unseen.
+      // over the face); unwatched, a corner moving in from here would sink into it unseen.
       for (int face = 0; face < 6; ++face) {
         const int axis = face / 2, j = (axis + 1) % 3, k = (axis + 2) % 3;
         const double side = (face % 2) ? 1.0 : -1.0;
@@ -218,7 +218,7 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       ContactFeature f{ContactKind::kEdgeEdge, a, b, ea, eb, 1};
       // Strictly inside both edges: a contact at an edge's end is a vertex-face contact. Apart,
       // the lines' closest points may still be beyond an end by up to the margin and come inside
-      // within the step (measured: 1.7 mm deep unseen): watched, an impact only once inside (World).
+      // within the step, and then deep (unseen unless watched): watched, an impact only once inside (World).
       const EdgePair pair = edge_pair(f.sign, a0, da, b0, db, poses[a].omega, poses[b].omega);
       ContactPoint c = pair.c;
       c.valid = within_edges(pair, -1e-6);
@@ -230,9 +230,9 @@ void find_candidates(int a, int b, const std::vector<BodyModel>& models, const s
       if (c.n.dot(c.p - poses[b].x) < 0) f.sign = -1, c.n = -c.n, c.ndot = -c.ndot, c.gap = -c.gap;  // out of b
       // (the watched cone: whether it may become a contact is World's call, in kContactCone)
       if (!separates(f, c, poses, kWatchedCone)) {
-        // The normal e_a x e_b / |e_a x e_b| turns 1/sin faster than the edges: edges crossing at
-        // sine 0.2 while a box spins turned it 0.3 rad in a step, from outside the cone to 0.1 mm
-        // deep. Watched as well: a pair whose normal, as it turns now, is in the cone a horizon on.
+        // The normal e_a x e_b / |e_a x e_b| turns 1/sin faster than the edges: for edges crossing
+        // at a small sine on a spinning box it can turn from outside the cone to a crossing within
+        // one step. Watched as well: a pair whose normal, as it turns now, is in the cone a horizon on.
         ContactPoint ahead = c;
         ahead.n = (c.n + horizon * c.ndot).normalized();
         if (!separates(f, ahead, poses, kWatchedCone)) continue;

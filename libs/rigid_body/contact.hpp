@@ -74,9 +74,10 @@ constexpr double kContactCone = 1e-6;
 constexpr double kCrossingEdges = 0.1;
 constexpr double kFaceEdgeCone = 0.02;
 // A feature watched while the boxes are apart: they turn within a step, and an edge pair outside
-// its cone at the step's start can be inside it, and crossing, by the step's end (measured in
-// landing piles: 0.0074 outside, 0.027 inside 1 ms later, 1 mm deep; 0.05 was not enough for
-// every one of 12 random piles, 0.2 was). Its gap closing counts as an impact only inside kContactCone.
+// its cone at the step's start can be inside it, and crossing, by the step's end (in landing
+// piles, from outside the cone to a millimetre deep within 1 ms). 0.2 watches every such pair of
+// test_many_bodies' random piles (docs/design/contact-watching.md). Its gap closing counts as an
+// impact only inside kContactCone.
 constexpr double kWatchedCone = 0.2;
 
 // Every feature pair between body a (dynamic) and body b closer than `margin`. A corner within

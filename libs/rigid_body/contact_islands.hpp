@@ -19,11 +19,11 @@ class IslandGrouping {
   // index or -1 (WorldModel::slot). `previous`: the contacts the islands' warm starts (their
   // clamped sets) index into; each contact clamped there is clamped in its new island's warm
   // start, and each one still touching takes its friction along (the start of the next friction
-  // rounds: where contacts came or went elsewhere, every contact's rounds started from nothing,
-  // 20-odd, not 1-2). Where the contacts are the same, in the same places, the caller carries
-  // both as they are. (The LCP checks a warm start and goes on from what of it holds: a wrong one costs only
-  // pivots. Kept only for islands of unchanged size, a pushed pile's 28-contact island, whose
-  // contacts come and go, started from nothing in a fifth of its solves: 49 pivots each.)
+  // rounds, which settle in one or two from it, where contacts came or went elsewhere too).
+  // Where the contacts are the same, in the same places, the caller carries both as they are.
+  // (The LCP checks a warm start and goes on from what of it holds: a wrong one costs only
+  // pivots, so an island whose contacts come and go keeps the warm start of those it still has
+  // rather than pivoting from nothing.)
   void group(std::vector<ActiveContact>& contacts, const std::vector<int>& slot, std::vector<ContactIsland>& islands,
              const std::vector<ActiveContact>& previous);
 

@@ -141,7 +141,7 @@ void ContactSystem::free_terms(const ActiveContact* active, std::size_t live, co
     Vec3 a_rel = Vec3::Zero(), v_rel = Vec3::Zero();  // of a's point relative to b's
     // The contact point's motion on each moving body, b's with the opposite sign: the transpose
     // of apply_at_contact. (Its own loop: through for_each_moving_body GCC 12 vectorises the
-    // cross products worse, 10 instructions more per contact.)
+    // cross products worse.)
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? active[i].feature.a : active[i].feature.b;
       if (model.slot[body] < 0) continue;  // a static body's points neither move nor accelerate

@@ -35,9 +35,9 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
   // With stick_first every contact with friction is first asked to stick: to meet its target
   // (bt: stop sliding by the horizon) within its cone; one that cannot slides at the rim, against
   // its velocity if it slides (maximal dissipation), else along the force it needed. A sliding
-  // contact is no exception: mu f_n against its velocity, held for a whole step, reversed a slow
-  // one within the step (a spinning cube's corners swapped direction every step and it never
-  // stopped); one that the cone can stop within the horizon stops.
+  // contact is no exception: mu f_n against its velocity, held for a whole step, would reverse a
+  // slow one within the step (a spinning cube's corners would swap direction every step and it
+  // would never stop); one that the cone can stop within the horizon stops.
   for (Eigen::Index i = 0; i < m; ++i) {
     const Eigen::Vector2d v = vt.segment<2>(2 * i);
     // (a frictionless contact: a slider with no force)
@@ -71,8 +71,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     // a friction force tilts the body, and the touching contacts' forces change to stop the tilt.
     // With the Schur complement S = Att - Atn_T Ann_TT^+ Ant_T in place of Att (and the load
     // moved to match), the friction found is already the one that holds after the next normal
-    // solve, as long as the touching set stays: the rounds settle in one or two, not the
-    // twenty-odd of plain alternation (which converges by about 0.6 a round). (Ann_TT^+: the
+    // solve, as long as the touching set stays: the rounds settle in one or two, where plain
+    // alternation (Att in place of S) converges only geometrically. (Ann_TT^+: the
     // least forces that answer it; redundant contacts share the answer.) S and Z depend on the
     // touching set only: kept with its factor (bind_factor), for as long as the solve lasts.
     const auto nt = static_cast<Eigen::Index>(touching_.size());
@@ -90,8 +90,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
         for (Eigen::Index i = 0; i < nt; ++i) AntC_.row(i) = Ant.row(touching_[static_cast<std::size_t>(i)]);
         // Z^T Z = Atn_T Ann_TT^+ Ant_T; Z ft: how the touching forces answer a friction force.
         // Z = F Ant_T through the half inverse F (F^T F = Ann_TT^+; anticipate_sliders needs it
-        // too): a product in place of a solve for each of the 2m columns (-7 % of the friction
-        // solve's time in pushed piles).
+        // too): a product in place of a solve for each of the 2m columns.
         identity_.setIdentity(nt, nt);
         set.inverse.half_solve(identity_, F_);
         Z_.noalias() = F_ * AntC_;
@@ -105,7 +104,7 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
     if (r.iterations == 1) {
       // What the forces this LCP answered do: the friction it saw (the last step's, mostly) and its
       // normal forces. A first round that keeps that friction has settled: a step of a resting
-      // stack takes one round, not two.
+      // stack ends in its first round.
       f_ << r.fn, ft_seen_;
       effect_prev_.noalias() = A * f_;
     }
@@ -168,8 +167,8 @@ FrictionResult FrictionSolver::solve(LcpSolver& lcp, const Eigen::MatrixXd& A, c
       x_ = weight_.cwiseProduct(y_);
       // Contacts that slide fast and cannot stick start to slide first: the forces that would
       // stop them within the step load the contacts around them beyond their cones too (a box
-      // sliding over a resting one took the lower box's table friction to its rim, twice what
-      // held it, dragging it backwards); those are asked again once the fast ones slide.
+      // sliding over a resting one would take the lower box's table friction to its rim, twice
+      // what holds it, and drag it backwards); those are asked again once the fast ones slide.
       bool fast_beyond = false;
       for (Eigen::Index a = 0; a < k && !fast_beyond; a += 2) {
         const Eigen::Index i = stick_rows_[static_cast<std::size_t>(a)] / 2;
@@ -284,7 +283,7 @@ void FrictionSolver::anticipate_sliders(const Eigen::VectorXd& mu, FrictionResul
   // K the stick solve's linear map, a its answer without the sliders). Over the sliders:
   // lambda = mu (g - W_K a + (W_K G - W_S D) lambda), a linear system of their number.
   // Through the half inverse F (F^T F = Ann_TT^+, F Ant_T = Z): W x = F^T Z x, and only the
-  // sliders' rows of it are needed, F_S^T (Z x) (before: a solve with Ann_TT^+ for every slider).
+  // sliders' rows of it are needed, F_S^T (Z x): no solve with Ann_TT^+ for each slider.
   F_sliders_.resize(F_.rows(), ns);
   slider_cols_.resize(Z_.rows(), ns);  // Z D, less Z_K G below
   for (Eigen::Index j = 0; j < ns; ++j) {
@@ -410,8 +409,8 @@ void FrictionSolver::schur_columns(const Eigen::Ref<const Eigen::MatrixXd>& Att)
   if (missing == 0) return;
   const Eigen::Index nt = f.Z.rows();
   if (2 * missing > n) {
-    // S whole: one triangle and its mirror (a quarter less time than the full product on a
-    // pile's 56-80 rows).
+    // S whole: one triangle by a symmetric rank update, and its mirror (cheaper than the full
+    // product, which makes both triangles).
     f.S = Att;
     f.S.selfadjointView<Eigen::Lower>().rankUpdate(f.Z.transpose(), -1.0);
     f.S.triangularView<Eigen::StrictlyUpper>() = f.S.transpose();
@@ -480,13 +479,13 @@ void FrictionSolver::spread_normal_forces(const LcpResult& normal, double load, 
   // leaves the set (it carries nothing) for the rest to share the load: an active set, ending at
   // the least forces >= 0 over the contacts that carry them (a contact or two leave, in a pile).
   // Those move with the friction load as the touching set's answer to it, Ann_TT^+ Ant_T, which
-  // is what the rounds anticipate: before, the forces stopped at the first contact to reach zero
-  // and moved with the load in a way the anticipation did not see (the rounds of a box pushed
-  // through a pile converged by 0.2-0.3 a round instead of settling).
+  // is what the rounds anticipate (forces stopped at the first contact to reach zero would move
+  // with the load in a way the anticipation does not see, and the rounds would converge only
+  // geometrically instead of settling).
   touching_last_.swap(touching_);
   touching_.swap(touching_next_);
-  // (Where the last round's carrying set still carries the load, it is kept with its factor: in a
-  // settled jam each round had factored the touching set, then the same carrying set again.)
+  // (Where the last round's carrying set still carries the load, it is kept with its factor: a
+  // settled jam's round does not factor the touching set and then the same carrying set again.)
   if (last_set_carries(fn)) return;
   for (;;) {
     const auto nt = static_cast<Eigen::Index>(touching_.size());

@@ -49,10 +49,10 @@ class FrictionSolver {
   // vt: the contacts' tangential sliding velocities (2m), the direction a sliding contact's
   // friction opposes.
   // ft_start (2m, optional): friction forces to start the rounds from, such as the last step's
-  // answer; the rounds then settle in one or two instead of twenty-odd. clamped_start
+  // answer: where the contacts stay, the rounds then settle in one or two. clamped_start
   // (optional): the first normal LCP's warm start, such as the clamped set of the last
-  // right-hand side over the same contacts (from nothing, a 5-cube stack's LCP pivoted through
-  // its 20 contacts at every step: 12 % of the step).
+  // right-hand side over the same contacts, so that the LCP does not pivot through every
+  // contact from nothing at every step.
   FrictionResult solve(LcpSolver& lcp, const Eigen::MatrixXd& A, const Eigen::VectorXd& bn, const Eigen::VectorXd& bt,
                        const Eigen::VectorXd& mu, const Eigen::VectorXd& vt,
                        const Eigen::VectorXd& ft_start = Eigen::VectorXd(),
@@ -64,8 +64,9 @@ class FrictionSolver {
   double sliding_speed = 1e-3;
   // true: every contact is first asked to stick (friction held through a step: a fast slider
   // that the cone can stop within the step stops). false: a contact sliding faster than
-  // sliding_speed slides from the start, at mu f_n against its velocity (World's impacts: asked
-  // to stick first, a falling pile drove a corner 2.9 mm into the table; not yet understood).
+  // sliding_speed slides from the start, at mu f_n against its velocity. World's impacts use
+  // false: with every contact asked to stick first, a falling pile's impacts can drive a corner
+  // into the table (docs/design/friction-staggered-rounds.md).
   bool stick_first = true;
 
   // Staggered rounds. With the touching set's answer anticipated, a round changes what the
@@ -73,21 +74,20 @@ class FrictionSolver {
   // reaches zero): what the forces do is judged with the normal forces the touching set will
   // answer the round's friction with, and a round whose friction is within every cone of those
   // (which then solve the normal LCP for it) is the answer: a sticking cube, or a pushed stack,
-  // started from the last step's friction settles in 1 round, a cold start in 2 (plain
-  // alternation, Att in place of S, took about 27, converging by 0.6 a round). The friction is
-  // held through a step, so 1e-8 of the loads (1e-7 N on a 1 kg cube) is far below anything a
-  // hand could feel.
+  // settles in one round started from the last step's friction and in two from none. The
+  // friction is held through a step, so 1e-8 of the loads (1e-7 N on a 1 kg cube) is far below
+  // anything a hand could feel.
   int max_rounds = 40;
   double tolerance = 1e-8;  // change of A [fn; ft] between rounds, relative to the loads, that ends them
   // Rounds without the change halving that end them unsettled: a cycle (the normal forces under
-  // fast sliders, whose friction mu f_n moves with them, switching between sets: in a pile with a
-  // box pulled out of it, three sets of 23, 12 and 10 sliders in turn, every round 1-7 % of the
-  // loads) goes on as long as it is let, and its last round is as good as any; a contraction
-  // halves it within two rounds. (6, before: three more rounds, each a pile's LCP and stick solve.)
+  // fast sliders, whose friction mu f_n moves with them, switching between sets in turn, as in a
+  // pile with a box pulled out of it) goes on as long as it is let, and its last round is as good
+  // as any; a contraction halves the change within two rounds, so three rounds without it tell a
+  // cycle, and every round more would be another LCP and stick solve for nothing.
   int stall_rounds = 3;
   // A two-round cycle (the forces and what they do repeat every other round: a jam's touching set
   // alternating between two) ended as soon as it shows, on the answer the stall would end on
-  // (false: at the stall). A pile's jam pulled on: 5 rounds a step for 40 steps on end.
+  // (false: at the stall). A jam in a pulled pile can cycle so at every step for many steps.
   bool end_two_round_cycles = true;
 
  private:
@@ -107,18 +107,16 @@ class FrictionSolver {
     long used = 0;  // when last bound (0: holds no set of this solve)
   };
   // Binds factor() to touching_'s: the one kept, or made in place of the least recently used. A
-  // jam's rounds can alternate between two touching sets, one contact more or less (38 contacts,
-  // nothing sliding: 35, 38, 35, 38 carrying contacts, stopped unsettled after five rounds, for
-  // 40 steps on end); the set of two rounds before comes back with its factor and S.
+  // jam's rounds can alternate between two touching sets, one contact more or less, nothing
+  // sliding, for many steps on end; the set of two rounds before comes back with its factor and S.
   void bind_factor();
   TouchingFactors& factor() { return factors_[bound_]; }
   // Makes the columns of factor()'s S = Att - Z^T Z that the sticking rows (stick_rows_) read: S
   // is read along the sticking rows only (their system, their load, the sliders' effect on
   // them), and S is symmetric, so their columns are all it needs. Where the stickers are few
-  // (an impact, most contacts sliding from the start: 0-15 sticking rows of 56-80), only those
-  // columns are made, each exactly the mirror of its row (on the same problems, impacts' solves
-  // 0.92x); where more than half the rows stick (most resting solves), S whole by one symmetric
-  // rank update, a quarter cheaper per entry.
+  // (an impact, most contacts sliding from the start), only those columns are made, each exactly
+  // the mirror of its row; where more than half the rows stick (most resting solves), S whole by
+  // one symmetric rank update, cheaper per entry than column by column.
   void schur_columns(const Eigen::Ref<const Eigen::MatrixXd>& Att);
 
   // The normal forces the friction is bounded by: the LCP's, spread over redundant touching
@@ -136,14 +134,14 @@ class FrictionSolver {
   // The first round's shortcut: where no contact slides with friction and the frictionless normal
   // forces (the LCP's, seen with no friction load) leave the tangential rows within the rounds'
   // tolerance, no friction is the answer: what the stick solve would find does less than a
-  // settled round may leave undone. (A resting box of a pile, not pushed: 7 of 8 island solves
-  // in a pushed pile, each a Schur complement and a stick solve less.) Sets r.ft to zero.
+  // settled round may leave undone. (A resting box of a pile, not pushed: most island solves of
+  // a pushed pile, each spared a Schur complement and a stick solve.) Sets r.ft to zero.
   bool without_friction_settles(const Eigen::MatrixXd& A, const LcpResult& normal, const Eigen::VectorXd& bt,
                                 const Eigen::VectorXd& mu, double load, FrictionResult& r);
 
   // The sliders' magnitudes lambda = mu f_n' with f_n' the touching set's answer to the friction
-  // lambda d itself and to the stickers' answer to it (a linear system over the sliders, where
-  // rounds converged by 0.3-0.6 each: 15-26 rounds a step for a pile pushed along); into r.ft,
+  // lambda d itself and to the stickers' answer to it (a linear system over the sliders, solved
+  // at once: left to the rounds, a pushed pile's sliders converge only geometrically); into r.ft,
   // the stickers' friction with them, unless a slider would be pressed off. Needs the round's
   // touching set (factor()), ft_seen_ and the last stick solve (stick_rows_,
   // weight_, stick_inverse_, x_).
@@ -154,7 +152,7 @@ class FrictionSolver {
   // friction (the touching contacts in compression at zero acceleration, the others not closing;
   // what the next round's LCP would find, its A f being unique) and every contact is within its
   // cone of them, no slider's friction moving with them. If so, sets r.fn to them: the next
-  // round, an LCP and a stick solve, would only repeat this one (a pushed stack: 1 round, not 2).
+  // round, an LCP and a stick solve, would only repeat this one (a pushed stack ends in one round).
   bool anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load, FrictionResult& r);
 
   // Workspace, kept between solves (no allocation once the sizes have been seen).

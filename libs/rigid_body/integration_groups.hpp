@@ -2,8 +2,9 @@
 // The bodies a World integrates together (world.hpp): those that a resting contact or a watched
 // feature joins, directly or through other bodies (a static body joins none: a table under two
 // cubes leaves them apart). Each group has an integrator of its own, so an impact restarts, and
-// a hard stretch of contact shortens the steps of, only the bodies it concerns (16 boxes landing
-// one after another restarted all 16 at every impact). Within a haptic step each group is
+// a hard stretch of contact shortens the steps of, only the bodies it concerns (with one
+// integrator for all, 16 boxes landing one after another would restart all 16 at every impact).
+// Within a haptic step each group is
 // integrated from the step's start to its end before the next: no force or impact passes between
 // groups within a step, since two bodies that could meet within it are watched, so grouped.
 // The groups that watch no feature (nothing of theirs can hit anything within the step) are

@@ -1,8 +1,8 @@
 #pragma once
 // The least-norm least-squares solution x = B^+ c of a symmetric positive semi-definite system,
 // singular where contacts are redundant (a face's four corners: three would hold it). The friction
-// solve needs it for every active set it tries: a complete orthogonal decomposition (a column-
-// pivoted QR of all k rows, then one more of R) was 36 % of a 5-cube stack's step. Here P^T B P =
+// solve needs it for every active set it tries, so it must be cheap (a complete orthogonal
+// decomposition, two pivoted QRs, is not: docs/design/psd-pseudo-inverse.md). Here P^T B P =
 // G G^T by a Cholesky factorisation with symmetric pivoting that stops at B's rank r (LAPACK's
 // dpstrf; Higham, "Cholesky factorization of a positive semidefinite matrix", 1990), G = [G1; G2]
 // with G1 r x r lower triangular. B's null space is spanned by N = P [-G1^-T G2^T; I]; a right-
@@ -10,9 +10,9 @@
 // projected off it again: the least-norm one. The projections cost (k - r)-sized solves, k - r
 // being the redundant rows, mostly few: no Householder reflections. The kernels are plain loops
 // over G^T's columns (G's rows, contiguous): the systems have 2-60 rows, where Eigen's blocked
-// triangular and product kernels spent more setting up than computing (a pile's friction: 24 %
-// of its steps in here). Where the redundant rows are at least as many as the rank (a box pushed
-// through a pile: 54 sticking rows of rank 11), the projections cost more than the answer itself;
+// triangular and product kernels spend more setting up than computing. Where the redundant rows
+// are at least as many as the rank (a box pushed through a pile: 54 sticking rows of rank 11),
+// the projections cost more than the answer itself;
 // there B^+ = P G (G^T G)^-2 G^T P^T (G has full column rank), one r x r Cholesky factor instead of
 // the projections' (k - r) x (k - r) one: 2kr + 2r^2 a column, not 4(k - r)r + 2(k - r)^2 + r^2.
 #include <Eigen/Dense>

@@ -17,7 +17,7 @@ namespace wysiwyf::haptics {
 
 namespace {
 
-// (before the model's own checks, in the order they have always come)
+// (checked ahead of the model's own checks: a count mismatch is the error reported first)
 std::vector<BodyModel> one_state_each(std::vector<BodyModel>& models, const std::vector<BodyState>& initial) {
   if (models.size() != initial.size()) throw std::invalid_argument("World: one initial state per body expected");
   return std::move(models);
@@ -88,9 +88,9 @@ std::size_t World::evaluate_resting(const std::vector<Pose>& poses, bool within_
       ContactPoint& point = resting[i].point;
       point = point_of(resting[i].feature, poses);
       // Every resting contact faced its feature when the step began. Dropped where a trial stage
-      // finds it a hair past the rim, it came back at the next: its force switched on and off
-      // between the integrator's stages, a discontinuity that failed its error test until the
-      // step had shrunk (a pushed pile: 20-45 steps, 60-200 right-hand sides in one haptic step).
+      // finds it a hair past the rim, it would come back at the next: its force would switch on
+      // and off between the integrator's stages, a discontinuity that fails the error test until
+      // the step has shrunk (a pushed pile's haptic step would take dozens of integrator steps).
       // Within the step it keeps its force while within the margin; the next step's
       // classification drops it (supported at most one step, 1 ms, past the rim).
       if (!point.valid && within_step) {
@@ -297,9 +297,9 @@ bool World::collide_island(const ActiveContact* contacts, std::size_t count, con
 // Friction's staggered rounds can end (unsettled, or settled on a bounded cone) with a contact
 // still approaching: a tipping cube's far corners, swung down by the friction at the near ones.
 // The resting LCP that follows only keeps accelerations from closing, so such a contact would sink
-// at its speed for the whole step (measured: 0.2 mm, a cube hit at 0.4 m/s with mu 0.5). A
-// frictionless, fully inelastic impact over the same contacts takes that speed away; it never
-// changes a contact that already separates, so after a good impact it does nothing.
+// at its speed for the whole step. A frictionless, fully inelastic impact over the same contacts
+// takes that speed away; it never changes a contact that already separates, so after a good
+// impact it does nothing.
 bool World::stop_approach(const ActiveContact* contacts, std::size_t count) {
   std::vector<Pose>& poses = work_.after_impact_poses;
   state_.poses_of(model_, state_.bodies, poses);
@@ -360,8 +360,8 @@ void World::classify_contacts(double dt) {
   bool colliding = false;
   // A touching contact still open by g closes under the gap feedback (critically damped at ws)
   // without passing zero if it approaches no faster than ws g: that approach is the feedback's
-  // own, not an impact (taken as one, the contacts of a pushed pile, made at a few um, each took
-  // an impulse at every step while the feedback closed them: an impact a step for seconds).
+  // own, not an impact (taken as one, each contact of a pushed pile, made at a few um, would take
+  // an impulse at every step while the feedback closes it: an impact a step for seconds).
   const WorldParams& p = model_.params;
   const double closing_allowed = 2 * M_PI * p.stabilisation_hz;
   std::vector<std::uint64_t>& was_resting = work_.was_resting;  // (feature keys, sorted)
@@ -469,10 +469,10 @@ void World::integrate(double dt, bool friction) {
   if (restart) {
     groups_.form(model_, state_, [this](int bodies) { return make_integrator(bodies); });
     // The error test is an RMS over the state vector: over a group's bodies alone it is stricter
-    // than over the world's, as the world was integrated before groups, by sqrt(world / group).
-    // Scaled so that it stays the world's (a body alone in motion among sleeping ones is held to
-    // what it was): unscaled, a pushed pile's jammed group took 11 % more right-hand sides a step,
-    // each an LCP of 50-70 contacts.
+    // than over the whole world's state by sqrt(world / group). Scaled so that it stays the
+    // world's (a body alone in motion among sleeping ones is held to the world's tolerance, not a
+    // tighter one): unscaled, a pushed pile's jammed group would spend more right-hand sides a
+    // step, each an LCP of its contacts, on accuracy the tolerance does not ask for.
     const double world = static_cast<double>(model_.dynamic.size());
     for (std::size_t k = 0; k < groups_.size(); ++k) {
       IntegrationGroup& g = groups_.groups()[k];
@@ -575,8 +575,8 @@ bool World::first_closing(double t_start, double t_reached, std::size_t& feature
     if (!(gap_hi <= 0)) {
       // Facing its partner at the step's start and off it at the end, it may have closed in
       // between and left the face through the other body (a corner of a box tumbling onto
-      // another's face, 0.55 mm deep, in a step of 1 ms that nothing else shortened): the step's
-      // dense output is looked at within it.
+      // another's face within a 1 ms step that nothing else shortened): the step's dense output
+      // is looked at within it.
       if (gap_hi != not_facing || gap_lo == not_facing) continue;
       bool closed = false;
       for (int s = 1; s < kLeftFaceSamples && !closed; ++s) {

@@ -18,8 +18,8 @@
 // side would put its round-off into the integrator's error test); a contact that needs more than mu f_n
 // slides with the full mu f_n against its motion. The normal forces stay exact at every
 // right-hand side with the held friction as a load. At impacts, the impulses make each contact's
-// tangential velocity zero within mu times its normal impulse. Without friction the frictionless
-// LCP runs alone, as before.
+// tangential velocity zero within mu times its normal impulse. Without friction coefficients the
+// frictionless LCP runs alone.
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,7 +39,8 @@ namespace wysiwyf::haptics {
 // The haptic display's integration accuracy: the integrator's relative tolerance in admittance_sim (the
 // absolute one is 1e-2 of it). A cube pushed by a new noisy sample every 1 ms stays within 5 um
 // of its exact motion over 10 s (test_world), far below the robot's 0.1 mm repeatability and
-// the sensor noise's own effect; 1e-8 gives 0.5 um at about 1.4x the cost of a step.
+// the sensor noise's own effect: a tighter tolerance would buy accuracy no hand can feel at a
+// higher cost a step (docs/design/rigid-body-integration.md).
 constexpr double kHapticRtol = 1e-7;
 
 struct StepReport {

@@ -18,10 +18,11 @@ struct WorldParams {
   double contact_tolerance = 1e-5;  // gap below this: touching (above the scale of integration error)
   // Hysteresis: a contact resting at a step's end stays touching at the next step's start until
   // its gap passes this, unless it approaches faster than the gap feedback closes (then it is
-  // watched, to hit where it touches). Released at contact_tolerance, the corners of a pushed
-  // pile's rocking boxes, made at 8-10 um, left at 10-15 um a step or two later and came back by
-  // an impact, nearly every step (54 piles pushed: 0.091 impacts a step, 3e-5: 0.055). Within
-  // it, as within the tolerance, an opening contact's force still follows the gap feedback.
+  // watched, to hit where it touches). The corners of a pushed pile's rocking boxes lift a few um
+  // past contact_tolerance and come back a step or two later: released at contact_tolerance, each
+  // would come back by an impact; within the release the gap feedback sets it down
+  // (test_contact_hysteresis). Within it, as within the tolerance, an opening contact's force
+  // still follows the gap feedback.
   double contact_release = 3e-5;
   double margin = 0.01;  // features closer than this are watched (resting, or their gaps for impacts)
   // A corner within this of a face's rim counts as over the face, and a resting contact keeps its
@@ -35,27 +36,28 @@ struct WorldParams {
   // A touching contact approaching faster than this, plus ws times its gap (what the gap feedback
   // closes it at without overshoot), takes an (inelastic) impulse at the step's start. Left to
   // the gap feedback, an approach at v beyond that overshoots by v / (e ws) (ws the
-  // stabilisation's 2 pi 20 Hz): 26 um for a box that caught up at 8.8 mm/s, past the rim, where
-  // its corners went over to the faces beside. 0.1 mm/s overshoots by 0.3 um.
+  // stabilisation's 2 pi 20 Hz): tens of um at 10 mm/s, enough to carry a box's corners past the
+  // rim onto the faces beside; 0.1 mm/s overshoots by 0.3 um.
   double settle_speed = 1e-4;
   double stabilisation_hz = 20.0;  // Baumgarte feedback on resting gaps (0: off)
   // How the bodies' motion is integrated between events (ode_integrator.hpp):
   //  - kRungeKutta: ARKODE's explicit Bogacki-Shampine 3(2). A restart (every sensor sample, every
   //    impact) costs it nothing, and a box under a push held for the step moves along a quadratic,
   //    which it integrates exactly: the noisy-pushed cube's step is one step of 4 right-hand
-  //    sides (Adams: 3.6 steps, 5.3), its error over 10 s 2.4e-13 m (Adams: 4.4 um; test_world).
+  //    sides, its motion exact to round-off (test_world).
   //  - kAdams: CVODE's variable-order Adams-Moulton, orders up to 12: long smooth motion at tight
-  //    tolerances (test_world's torque-free tumbling box, rtol 1e-9: 27 ms, Runge-Kutta 300).
+  //    tolerances (test_world's torque-free tumbling box at rtol 1e-9), where its high orders take
+  //    far fewer steps (docs/design/rigid-body-integration.md).
   Integrator integrator = Integrator::kRungeKutta;
   // The Adams integrator's options (CVODE):
   double initial_step = 1e-6;  // s, CVODE's first step after a restart (0: CVODE estimates it)
-  // After a restart (every new sensor sample) CVODE lets each of its first steps grow 10x; the
-  // first order-2 step then fails its error test (measured: 4 of 10 right-hand sides a noisy
-  // haptic step were spent so). 4x passes.
+  // After a restart (every new sensor sample) CVODE lets each of its first steps grow tenfold;
+  // the first order-2 step then fails its error test, and a noisy haptic step spends right-hand
+  // sides on the failures. Growing fourfold, it passes.
   double restart_growth = 4.0;
   // CVODE's corrector stops when its estimated error is below this fraction of the local error
-  // test (CVODE's default 0.1): with 0.2 one fixed-point iteration does more often; the global
-  // error of the noisy push was unchanged to three digits.
+  // test (CVODE's default 0.1): with 0.2 one fixed-point iteration does more often, and the
+  // noisy push's global error stays the same to three digits.
   double nonlinear_convergence = 0.2;
   // An impact's time is found to where the closing gap is within this of zero: far below the
   // contact tolerance and the integration error of a position (rtol 1e-7 of a metre), so the
