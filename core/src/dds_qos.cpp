@@ -35,8 +35,8 @@ DomainParticipantQos participant_qos(const std::string& transport, const std::st
     throw std::invalid_argument("unknown DDS transport '" + transport +
                                 "'; expected default, local, shm, udp or loopback");
   // Fast DDS's built-in transports would do for "default", but with a 512 KB shared-memory
-  // segment a 640x480 frame does not fit, goes over UDP, and a frame burst overflowed the
-  // socket buffers: a recorder lost 10 % of every topic of the demo. Configured here instead.
+  // segment a 640x480 frame does not fit, goes over UDP, and a frame burst overflows the socket
+  // buffers: a recorder loses samples of every topic of the demo. Configured here instead.
   qos.transport().use_builtin_transports = false;
   if (uses_shared_memory(transport)) {
     auto shm = std::make_shared<SharedMemTransportDescriptor>();

@@ -494,7 +494,7 @@ class Parser {
     if (const YAML::Node m = n["params"]; m && !m.IsNull() && expect_map(m, file, label + " params")) {
       check_duplicates(m, file);
       for (auto it = m.begin(); it != m.end(); ++it) {
-        if (it->second.IsNull()) {  // `key: ~` removes a parameter set before: its default applies
+        if (it->second.IsNull()) {  // `key: ~` removes what an earlier layer set: its default applies
           c.params.erase(it->first.Scalar());
           c.param_keys.erase(it->first.Scalar());
           continue;
@@ -507,7 +507,7 @@ class Parser {
       check_duplicates(m, file);
       static const std::regex valid_topic("^[A-Za-z_][A-Za-z0-9_/]*$");
       for (auto it = m.begin(); it != m.end(); ++it) {
-        if (it->second.IsNull()) {  // `port: ~` removes a topic set before: the port's default applies
+        if (it->second.IsNull()) {  // `port: ~` removes what an earlier layer set: the port's default applies
           c.topics.erase(it->first.Scalar());
           c.topic_keys.erase(it->first.Scalar());
           continue;
