@@ -89,8 +89,8 @@ TEST(DemoFigures, TheSimulatedExperimentHitsEveryContactAndHoldsItsRegistrationF
   }
   ASSERT_EQ(figures.size(), 6u);
   check(figures);
-  // The user still feels the impact: the push into the wall peaks near 7.9 N (7.4 N today, braking
-  // ahead of it; 7.92 N when the setpoint stopped with the object), within 10 %.
+  // The user still feels the impact: the push into the wall peaks within 10 % of the 7.92 N it did
+  // when the setpoint stopped with the object, before it braked ahead.
   const json& first = s.at("haptic_registration").at("attachments").at(0);
   EXPECT_NEAR(first.at("peak_force_n").get<double>(), 7.92, 0.79);
 }
@@ -98,8 +98,9 @@ TEST(DemoFigures, TheSimulatedExperimentHitsEveryContactAndHoldsItsRegistrationF
 // The stereo hand (display/hand-stereo.yaml): no device pixel shown in any image, and its contacts.
 TEST(DemoFigures, TheStereoDemoShowsNoDevicePixelAndHoldsItsContacts) {
   const auto dir = scratch();
-  const std::string text = run_demo("demo-stereo.yaml", {"domain=86", "record.params.path=" + (dir / "demo.mp4").string(),
-                                                         "metrics.params.summary=" + (dir / "summary.json").string()});
+  const std::string text =
+      run_demo("demo-stereo.yaml", {"domain=86", "record.params.path=" + (dir / "demo.mp4").string(),
+                                    "metrics.params.summary=" + (dir / "summary.json").string()});
   const json s = read_summary(dir / "summary.json");
   ASSERT_TRUE(s.is_object()) << "summary.json is not JSON";
   int hits = 0;

@@ -298,8 +298,8 @@ TEST(StereoDepth, TipIsThePointingFingertipAcrossTheViewAndAtTheImagesLeftEdge) 
     if (::testing::Test::HasFatalFailure()) return;
     const Eigen::Vector3d tip = base_T_hand.translation(), palm = base_T_hand * kPalmCentre;
     const double error = (position(rig.hand) - tip).norm();
-    std::cout << "hand at image offset (" << a << ", " << b << "): tip error " << error * 1000 << " mm (the palm centre "
-              << (position(rig.hand) - palm).norm() * 1000 << " mm away)\n";
+    std::cout << "hand at image offset (" << a << ", " << b << "): tip error " << error * 1000
+              << " mm (the palm centre " << (position(rig.hand) - palm).norm() * 1000 << " mm away)\n";
     worst = std::max(worst, error);
   }
   EXPECT_LE(worst, 0.025) << "the fingertip, not the palm 12 cm behind it";

@@ -53,7 +53,7 @@ class AdmittanceSim final : public Component {
     else if (integrator != "runge_kutta")
       ctx.reject("integrator", "'" + integrator + "' is neither runge_kutta nor adams");
     preview_window_ = ctx.param<double>(
-        "preview_window", 0.04,
+        "preview_window", 0.03,
         "s, the window the setpoint averages the object's motion over, centred on now (the future half looked "
         "ahead): the arm brakes ahead of impacts; 0 sends the object's motion as it is",
         Range{0, 0.2});
@@ -62,8 +62,8 @@ class AdmittanceSim final : public Component {
         "1/s, how fast the arm's compliance under the user's push is learned from device_pose (0: not learned, the "
         "setpoint not led)",
         Range{0, 1000});
-    max_compliance_ = ctx.param<double>("max_compliance", 1e-3, "m/N, the most the learned compliance may be",
-                                        Range{0, 0.01});
+    max_compliance_ =
+        ctx.param<double>("max_compliance", 1e-3, "m/N, the most the learned compliance may be", Range{0, 0.01});
     attached_ = ctx.param<bool>("attached_at_start", true,
                                 "the scene's device attachment holds from the start (false: wait for `attach`)");
     attach_in_ =
@@ -306,15 +306,15 @@ class AdmittanceSim final : public Component {
   std::unique_ptr<World> world_;
   double preview_window_ = 0.02;
   std::unique_ptr<SetpointPreview> preview_;
-  std::unique_ptr<World> ahead_;  // the look-ahead (none without a preview window)
+  std::unique_ptr<World> ahead_;                      // the look-ahead (none without a preview window)
   Eigen::Vector3d last_v_ = Eigen::Vector3d::Zero();  // the held body's velocity a tick ago
   static constexpr std::size_t kLookAheadStride = 4;  // ticks per step of the look-ahead world
-  static constexpr double kMinYieldForce = 1.0;        // N: weaker pushes teach nothing of the arm's give
+  static constexpr double kMinYieldForce = 1.0;       // N: weaker pushes teach nothing of the arm's give
   double yield_rate_ = 5, max_compliance_ = 1e-3;
   std::unique_ptr<ArmYield> yield_;
   Vec3 user_force_ = Vec3::Zero();  // the user's force on the held body, the last tick's (base frame)
   std::int64_t device_stamp_ = 0;   // of the last measured device pose
-  bool smooth_ = false;  // the last tick's motion was extrapolated (no impact could come)
+  bool smooth_ = false;             // the last tick's motion was extrapolated (no impact could come)
   SensorReading reading_;
   bool have_device_pose_ = false;
   Eigen::Isometry3d measured_base_T_dev_ = Eigen::Isometry3d::Identity();

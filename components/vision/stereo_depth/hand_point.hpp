@@ -24,7 +24,7 @@ struct HandPointOptions {
   enum class Point { kCentroid, kNearest, kTip };
   Point point = Point::kCentroid;
   double nearest_fraction = 0.1;
-  double tip_fraction = 0.03;  // of the inliers: the fingertip's
+  double tip_fraction = 0.03;      // of the inliers: the fingertip's
   double band = 0.08;              // m either side of the median depth
   int min_alpha = 128;             // 0..255: from this alpha a pixel is hand
   int min_pixels = 300;            // fewer hand pixels with depth: no estimate
