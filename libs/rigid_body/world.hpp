@@ -95,9 +95,43 @@ class World {
 
  private:
   friend class OdeIntegrator;  // calls rhs()
+
+  // Contact search and classification at a step's start (world_contacts.cpp).
+  void classify_contacts(double dt);  // (dt: the step ahead, over which an edge pair may turn to face)
+  // Feature f at `poses`, a point within the rim of its face or edge still on it (every
+  // evaluation of the world's contacts: search, right-hand sides, watched gaps and impacts).
+  ContactPoint point_of(const ContactFeature& f, const std::vector<Pose>& poses) const;
+  // Whether a touching contact already listed is the same constraint as f at c.
+  bool twin_of_touching(const ContactFeature& f, const ContactPoint& c) const;
+
+  // The resting contacts' forces (world_forces.cpp).
+  // Evaluates the resting contacts at `poses` and moves those still facing to the front of their
+  // island; returns how many they are. within_step (a right-hand side): one that has left its
+  // face or edge since the step began, by less than the margin, still faces (see the .cpp).
+  std::size_t evaluate_resting(const std::vector<Pose>& poses, bool within_step);
+  // The resting contacts' friction for the next step of dt (held through it).
+  void update_friction(double dt);
+  // The state's derivative at y (the integrator's right-hand side).
   void rhs(const double* y, double* ydot);
+
+  // Integration of a step, group by group (world_integration.cpp, world_groups.cpp).
   // An integrator for a group of `bodies` dynamic bodies (WorldParams::integrator).
   std::unique_ptr<OdeIntegrator> make_integrator(int bodies);
+  // The step's work (the resting contacts' friction held through it or none); throws where it
+  // cannot go on.
+  void integrate(double dt, bool friction);
+  // One integration group's bodies (integrated_, integrator_) from state_.t to t_end, the state
+  // holding its contacts and watched features only; restart: its integrator starts over.
+  void integrate_group(double t_end, bool restart);
+  // The state's contacts and watched features shared out among the groups and gathered back
+  // (world_groups.cpp): the world's are kept in the workspace while each group's are the
+  // state's; a group that had no impact gives its contacts back where they were, one that had
+  // gives its new islands, and the gathered islands take the order IslandGrouping gives them.
+  void take_share(const IntegrationGroup& g, bool restart);
+  void give_back(const IntegrationGroup& g, bool impacted);
+  void gather_groups(bool any_impacted);
+
+  // Impacts (world_impacts.cpp).
   // The watched features' gaps at the state y (the margin for one that does not face its partner:
   // it cannot hit it).
   void watched_gaps_at(const double* y, std::vector<double>& gaps);
@@ -112,30 +146,6 @@ class World {
   static constexpr int kLeftFaceSamples = 16;
   // The impact at the current state (STEP 4-6), feature `hit` of the watched having closed.
   void impact(std::size_t hit);
-  // step's work (the resting contacts' friction held through it or none); throws where it
-  // cannot go on.
-  void integrate(double dt, bool friction);
-  // One integration group's bodies (integrated_, integrator_) from state_.t to t_end, the state
-  // holding its contacts and watched features only; restart: its integrator starts over.
-  void integrate_group(double t_end, bool restart);
-  // The state's contacts and watched features shared out among the groups and gathered back
-  // (world_groups.cpp): the world's are kept in the workspace while each group's are the
-  // state's; a group that had no impact gives its contacts back where they were, one that had
-  // gives its new islands, and the gathered islands take the order IslandGrouping gives them.
-  void take_share(const IntegrationGroup& g, bool restart);
-  void give_back(const IntegrationGroup& g, bool impacted);
-  void gather_groups(bool any_impacted);
-  // The bodies set to `bodies` at t, the contacts to be found again and the integrator started over.
-  void restart_from(double t, const std::vector<BodyState>& bodies);
-  void hold(double t, const std::string& why);
-  void classify_contacts(double dt);  // (dt: the step ahead, over which an edge pair may turn to face)
-  // Feature f at `poses`, a point within the rim of its face or edge still on it (every
-  // evaluation of the world's contacts: search, right-hand sides, watched gaps and impacts).
-  ContactPoint point_of(const ContactFeature& f, const std::vector<Pose>& poses) const;
-  // Impulse j (world frame, on body a) at the contact's point, added to both bodies' momenta.
-  void apply_impulse(const ActiveContact& contact, const Vec3& j, const std::vector<Pose>& poses);
-  // Whether a touching contact already listed is the same constraint as f at c.
-  bool twin_of_touching(const ContactFeature& f, const ContactPoint& c) const;
   // Applies the LCP impulses of eqs. (15)-(16) over `contacts` (grouped into `islands`) to the
   // bodies, island by island; returns false if one failed.
   bool collide(std::vector<ActiveContact>& contacts, const std::vector<ContactIsland>& islands);
@@ -143,17 +153,20 @@ class World {
   // After a frictional impact: a frictionless, inelastic one on the contacts still approaching.
   bool stop_approach(const ActiveContact* contacts, std::size_t count);
   static constexpr double kStillApproaching = 1e-9;  // m/s
-  // Evaluates the resting contacts at `poses` and moves those still facing to the front of their
-  // island; returns how many they are. within_step (a right-hand side): one that has left its
-  // face or edge since the step began, by less than the margin, still faces (see the .cpp).
-  std::size_t evaluate_resting(const std::vector<Pose>& poses, bool within_step);
-  // The resting contacts' friction for the next step of dt (held through it).
-  void update_friction(double dt);
+  // Impulse j (world frame, on body a) at the contact's point, added to both bodies' momenta.
+  void apply_impulse(const ActiveContact& contact, const Vec3& j, const std::vector<Pose>& poses);
+
+  // Sleeping islands (world_sleep.cpp).
   // Wakes every sleeping body of an island with one that moves, is pushed or is awake (an impact
   // or a new contact joined them), and, may_sleep (at a step's end), puts to sleep the islands
   // whose bodies have all been still for sleep_after; returns whether any body changed.
   bool settle_islands(bool may_sleep);
   bool all_asleep() const;
+
+  // A step that fails (world.cpp).
+  // The bodies set to `bodies` at t, the contacts to be found again and the integrator started over.
+  void restart_from(double t, const std::vector<BodyState>& bodies);
+  void hold(double t, const std::string& why);
 
   const WorldModel model_;
   WorldState state_;

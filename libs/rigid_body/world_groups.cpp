@@ -25,30 +25,32 @@ ContactIsland append_island(ContactIsland island, const std::vector<ActiveContac
 }  // namespace
 
 void World::take_share(const IntegrationGroup& g, bool restart) {
+  GroupShareWork& share = work_.share;
   state_.resting.clear();
   state_.islands.clear();
   for (const std::size_t k : g.islands)
-    state_.islands.push_back(append_island(work_.all_islands[k], work_.all_resting, state_.resting));
+    state_.islands.push_back(append_island(share.all_islands[k], share.all_resting, state_.resting));
   state_.watched.clear();
   state_.watched_gaps.clear();
   for (const std::size_t k : g.watched) {
-    state_.watched.push_back(work_.all_watched[k]);
-    if (!restart) state_.watched_gaps.push_back(work_.all_gaps[k]);  // (restarting: found again at the state)
+    state_.watched.push_back(share.all_watched[k]);
+    if (!restart) state_.watched_gaps.push_back(share.all_gaps[k]);  // (restarting: found again at the state)
   }
 }
 
 void World::give_back(const IntegrationGroup& g, bool impacted) {
+  GroupShareWork& share = work_.share;
   if (impacted) {  // its new islands, gathered below in place of its old ones
-    for (const std::size_t k : g.islands) work_.island_replaced[k] = 1;
+    for (const std::size_t k : g.islands) share.island_replaced[k] = 1;
     for (const ContactIsland& island : state_.islands)
-      work_.joined_islands.push_back(append_island(island, state_.resting, work_.joined_resting));
+      share.joined_islands.push_back(append_island(island, state_.resting, share.joined_resting));
   } else {  // the same contacts, each island where it was (their order within it may have changed)
     for (std::size_t j = 0; j < g.islands.size(); ++j) {
       const ContactIsland& now = state_.islands[j];
-      ContactIsland& was = work_.all_islands[g.islands[j]];
+      ContactIsland& was = share.all_islands[g.islands[j]];
       std::copy(state_.resting.begin() + static_cast<std::ptrdiff_t>(now.begin),
                 state_.resting.begin() + static_cast<std::ptrdiff_t>(now.end),
-                work_.all_resting.begin() + static_cast<std::ptrdiff_t>(was.begin));
+                share.all_resting.begin() + static_cast<std::ptrdiff_t>(was.begin));
       was.live = now.live;
       was.clamped = now.clamped;
       was.asleep = now.asleep;
@@ -58,23 +60,24 @@ void World::give_back(const IntegrationGroup& g, bool impacted) {
   // contacts (all of them after max_collisions_per_step).
   std::size_t still = 0;
   for (const std::size_t k : g.watched) {
-    if (still < state_.watched.size() && state_.watched[still] == work_.all_watched[k]) {
-      work_.all_gaps[k] = state_.watched_gaps[still++];
+    if (still < state_.watched.size() && state_.watched[still] == share.all_watched[k]) {
+      share.all_gaps[k] = state_.watched_gaps[still++];
     } else {
-      work_.watched_gone[k] = 1;
+      share.watched_gone[k] = 1;
     }
   }
 }
 
 void World::gather_groups(bool any_impacted) {
+  GroupShareWork& share = work_.share;
   state_.watched.clear();
   state_.watched_gaps.clear();
-  for (std::size_t k = 0; k < work_.all_watched.size(); ++k)
-    if (!work_.watched_gone[k])
-      state_.watched.push_back(work_.all_watched[k]), state_.watched_gaps.push_back(work_.all_gaps[k]);
+  for (std::size_t k = 0; k < share.all_watched.size(); ++k)
+    if (!share.watched_gone[k])
+      state_.watched.push_back(share.all_watched[k]), state_.watched_gaps.push_back(share.all_gaps[k]);
   if (!any_impacted) {  // every island where it was
-    state_.resting.swap(work_.all_resting);
-    state_.islands.swap(work_.all_islands);
+    state_.resting.swap(share.all_resting);
+    state_.islands.swap(share.all_islands);
     return;
   }
   // The islands of groups without impacts and of sleeping ones as they were, the impacted groups'
@@ -87,21 +90,21 @@ void World::gather_groups(bool any_impacted) {
         if (model_.slot[i] >= 0) lowest = std::min(lowest, i);
     return lowest;
   };
-  work_.island_order.clear();
-  for (std::size_t k = 0; k < work_.joined_islands.size(); ++k)
-    work_.island_order.push_back({lowest_body(work_.joined_resting, work_.joined_islands[k]), true, k});
-  for (std::size_t k = 0; k < work_.all_islands.size(); ++k)
-    if (!work_.island_replaced[k])
-      work_.island_order.push_back({lowest_body(work_.all_resting, work_.all_islands[k]), false, k});
-  std::sort(work_.island_order.begin(), work_.island_order.end());
+  share.island_order.clear();
+  for (std::size_t k = 0; k < share.joined_islands.size(); ++k)
+    share.island_order.push_back({lowest_body(share.joined_resting, share.joined_islands[k]), true, k});
+  for (std::size_t k = 0; k < share.all_islands.size(); ++k)
+    if (!share.island_replaced[k])
+      share.island_order.push_back({lowest_body(share.all_resting, share.all_islands[k]), false, k});
+  std::sort(share.island_order.begin(), share.island_order.end());
   state_.resting.clear();
-  work_.gathered_islands.clear();
-  for (const auto& place : work_.island_order) {
-    const std::vector<ActiveContact>& from = place.joined ? work_.joined_resting : work_.all_resting;
-    const ContactIsland& island = place.joined ? work_.joined_islands[place.index] : work_.all_islands[place.index];
-    work_.gathered_islands.push_back(append_island(island, from, state_.resting));
+  share.gathered_islands.clear();
+  for (const auto& place : share.island_order) {
+    const std::vector<ActiveContact>& from = place.joined ? share.joined_resting : share.all_resting;
+    const ContactIsland& island = place.joined ? share.joined_islands[place.index] : share.all_islands[place.index];
+    share.gathered_islands.push_back(append_island(island, from, state_.resting));
   }
-  state_.islands.swap(work_.gathered_islands);
+  state_.islands.swap(share.gathered_islands);
 }
 
 }  // namespace wysiwyf::haptics
