@@ -155,24 +155,32 @@ class FrictionSolver {
   // round, an LCP and a stick solve, would only repeat this one (a pushed stack ends in one round).
   bool anticipation_holds(const Eigen::VectorXd& bn, const Eigen::VectorXd& mu, double load, FrictionResult& r);
 
-  // Workspace, kept between solves (no allocation once the sizes have been seen).
+  // Workspace, kept between solves (no allocation once the sizes have been seen). The rounds':
   Eigen::MatrixXd Ann_, Bkk_;
-  Eigen::VectorXd c_, f_touching_, spread_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
+  Eigen::VectorXd c_, y_, x_, rhs_, weight_, f_, effect_, effect_prev_, ft_seen_, answer_;
   Eigen::VectorXd effect_before_, fn_before_, ft_before_;  // two rounds before
   Eigen::VectorXd fn_last_, ft_last_;                      // the last round's answer
-  Eigen::VectorXd bn_eff_, motion_, carried_, load_;
+  Eigen::VectorXd bn_eff_, load_;
   std::vector<bool> moving_, sliding_;                // per contact: sliding from the start, this round
-  std::vector<bool> touching_mask_;                   // per contact: in touching_
   std::vector<Eigen::Vector2d> against_, direction_;  // per contact: against its velocity, its friction's
   std::vector<Eigen::Index> stick_rows_;
   std::vector<int> sliding_now_;  // this pass's sliders (their friction loads the sticking rows)
-  std::vector<int> touching_, touching_next_, touching_last_;
-  std::vector<std::pair<int, Eigen::Index>> sliders_;  // anticipate_sliders': contact, place in touching_
-  Eigen::MatrixXd slider_cols_, slider_system_, stick_cols_, Z_sticking_;
-  Eigen::MatrixXd F_sliders_, identity_;  // (F's sliders' columns)
-  Eigen::VectorXd slider_rhs_, stick_free_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> slider_lu_;
+  std::vector<int> touching_;     // the round's touching set
   PsdPseudoInverse stick_inverse_;
+  Eigen::MatrixXd identity_;
+  // spread_normal_forces' and last_set_carries' (friction_touching.cpp).
+  struct CarryWorkspace {
+    Eigen::VectorXd f_touching, spread, motion, carried;
+    std::vector<int> next, last;  // the touching set being built; the last call's carrying set
+  } carry_;
+  // anticipate_sliders' and anticipation_holds' (friction_sliders.cpp).
+  struct SlideWorkspace {
+    std::vector<std::pair<int, Eigen::Index>> sliders;                // contact, place in touching_
+    Eigen::MatrixXd cols, system, stick_cols, Z_sticking, F_sliders;  // (F's sliders' columns)
+    Eigen::VectorXd rhs, stick_free;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    std::vector<bool> touching_mask;  // per contact: in touching_
+  } slide_;
   std::array<TouchingFactors, 4> factors_;  // (4: a two-set cycle and the spread's sets on the way)
   std::size_t bound_ = 0;                   // factors_[bound_]: touching_'s (bind_factor)
   long uses_ = 0;
