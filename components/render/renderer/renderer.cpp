@@ -33,8 +33,10 @@ class Renderer final : public Component {
     scene_path_ = ctx.param<std::string>("scene", "scenes/cube_on_table.yaml", "scene file (cwd, then config/)");
     camera_.near_m = ctx.param<double>("near", 0.02, "near clipping distance, m", Range{1e-4, 10});
     camera_.far_m = ctx.param<double>("far", 20.0, "far clipping distance, m", Range{0.1, 1000});
-    samples_ =
-        ctx.param<int>("samples", 1, "multisampling (anti-aliasing) samples; 4 costs 3.5x on llvmpipe", Range{1, 16});
+    samples_ = ctx.param<int>(
+        "samples", 1,
+        "multisampling (anti-aliasing) samples; each more costs render time (scripts/bench render measures it)",
+        Range{1, 16});
     background_ =
         ctx.param<std::array<double, 3>>("background", {0.08, 0.09, 0.12}, "background colour, RGB 0..1", Range{0, 1});
     eye_T_base_in_ = ctx.input<msg::PoseStamped>("eye_T_base", "where the camera is (the tracker)", Qos::sensor(4));
