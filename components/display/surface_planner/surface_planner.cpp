@@ -9,12 +9,10 @@
 //   the face the plate is on, across, out through the target face: never through the space the
 //   hand comes from) -> progress along it at the speed speed and separation monitoring allows.
 //
-// Speed and separation monitoring (ISO/TS 15066, robot::SsmParams): every tick, for each part of
-// the arm (ArmClearance: upper arm, forearm, wrist, sensor, plate, knob) the separation S to the
-// hand and how fast the planned motion would carry the part toward it; the path speed is the
-// largest at which no part approaches faster than the protective distance allows at its S. Within
-// the protective distance an approaching motion stops (WAITING); moving away is always allowed.
-// Without a tracked hand the arm moves at speed_without_hand at most.
+// Speed and separation monitoring (ISO/TS 15066, SeparationMonitor): every tick, the path speed is
+// the largest at which no part of the arm approaches the hand faster than the protective distance
+// allows; within it an approaching motion stops (WAITING). Without a tracked hand the arm moves at
+// speed_without_hand at most.
 //
 // Outside surface mode (the supervisor's DisplayMode) it follows what the arm was last commanded
 // (robot/setpoint), so that when surface mode comes back it starts from there, without a step.
@@ -26,11 +24,11 @@
 #include <memory>
 
 #include "arm_clearance/arm_clearance.hpp"
-#include "arm_clearance/speed_separation.hpp"
 #include "feature_choice.hpp"
 #include "hand_filter.hpp"
 #include "placement.hpp"
 #include "plate_path.hpp"
+#include "separation_monitor.hpp"
 #include "scene/scene.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -41,7 +39,6 @@ namespace wysiwyf::display {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double seconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
 
@@ -127,6 +124,7 @@ class SurfacePlanner final : public Component {
       model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "dev");
       clearance_ = std::make_unique<robot::ArmClearance>(*model_, scene_.device.plate_half,
                                                          scene_.device.knob_offset.z(), 0.015);
+      monitor_ = std::make_unique<SeparationMonitor>(*model_, *clearance_, ssm_, finger_radius_, speed_without_hand_);
     } catch (const std::exception& e) {
       ctx.reject("scene", e.what());
     }
@@ -181,11 +179,12 @@ class SurfacePlanner final : public Component {
       replan_ = false;
       if (target_feature_) plan(*target_feature_, planned_obj_);
     }
-    const double ssm = !hand_known    ? without_hand_kappa()
-                       : path_.done() ? (measure_separation(hand), 1.0)
-                                      : ssm_kappa(hand);
+    const double ssm = !hand_known    ? monitor_->kappa_without_hand(path_)
+                       : path_.done() ? (monitor_->measure(q_, hand), 1.0)
+                                      : monitor_->kappa(path_, q_, hand);
     const double target = replan_ ? 0.0 : std::min(1.0, ssm_margin_ * ssm);
-    kappa_ = target < kappa_ ? std::max(target, braking_kappa()) : std::min(target, kappa_ + dt_ / 0.2);
+    kappa_ = target < kappa_ ? std::max(target, monitor_->braking_kappa(path_, kappa_, dt_))
+                             : std::min(target, kappa_ + dt_ / 0.2);
     if (!path_.done()) {
       path_.advance(dt_, kappa_);
       cmd_ = path_.pose();
@@ -279,16 +278,6 @@ class SurfacePlanner final : public Component {
     plan(*f, base_T_obj);
   }
 
-  // The lowest kappa for the next tick at which the plate's speed falls by no more than the arm
-  // brakes (a_s dt): the path's own acceleration over the tick counted, or the plate would
-  // speed up while kappa falls.
-  double braking_kappa() const {
-    const double v_now = path_.velocity().norm();
-    const double v_next = v_now + path_.speed_rate() * kappa_ * dt_;
-    if (v_next <= 1e-6) return 0.0;
-    return std::max(0.0, (kappa_ * v_now - ssm_.braking_deceleration * dt_) / v_next);
-  }
-
   bool moving() const { return !path_.done() && kappa_ * path_.velocity().norm() > 0.002; }
 
   // A path from the commanded pose to a plate pose displaying `f`, through the object's inside.
@@ -329,47 +318,6 @@ class SurfacePlanner final : public Component {
     warn_once("unreachable " + f.name, "'" + f.name + "' is out of the arm's reach: " + unreachable_);
   }
 
-  // The largest kappa at which no part of the arm approaches the hand faster than SSM allows at
-  // its separation. Judged at the current velocity, but never below a tenth of the segment's peak
-  // (a straight line at a fixed turn: only the speed varies along it), so a move does not start
-  // toward a hand inside the protective distance, and its last millimetres are not held up.
-  double ssm_kappa(const Vec3& hand) {
-    const double peak = std::max(path_.peak_velocity().norm(), 1e-9);
-    const double scale = std::max(path_.velocity().norm() / peak, 0.1);
-    robot::Vector6d x;
-    x << path_.peak_velocity() * scale, path_.peak_angular_velocity() * scale;
-    // Joint rates at that velocity (damped least squares: near a singularity they stay finite).
-    const robot::Matrix6d J = model_->jacobian(q_);
-    const robot::Vector6d qd = J.transpose() * (J * J.transpose() + 1e-4 * robot::Matrix6d::Identity()).ldlt().solve(x);
-    const auto parts = clearance_->evaluate(q_, qd, hand);
-    double kappa = kInf;
-    separation_ = kInf;
-    for (const auto& p : parts) {
-      const double s = std::max(0.0, p.distance - finger_radius_);
-      if (s < separation_) separation_ = s, nearest_part_ = p.name;
-      // (below a tenth of the peak the real approach is slower than judged: kappa stays safe)
-      if (p.approach_speed > 1e-6) kappa = std::min(kappa, ssm_.allowed_speed(s) / p.approach_speed);
-    }
-    allowed_ = ssm_.allowed_speed(separation_);
-    return kappa;
-  }
-
-  // The separation from the hand to the arm's nearest part, the arm still.
-  void measure_separation(const Vec3& hand) {
-    separation_ = kInf;
-    for (const auto& p : clearance_->evaluate(q_, robot::Vector6d::Zero(), hand)) {
-      const double s = std::max(0.0, p.distance - finger_radius_);
-      if (s < separation_) separation_ = s, nearest_part_ = p.name;
-    }
-    allowed_ = ssm_.allowed_speed(separation_);
-  }
-
-  // Without a tracked hand, the plate moves at speed_without_hand at most.
-  double without_hand_kappa() const {
-    const double peak = path_.peak_velocity().norm();
-    return peak > 1e-9 ? speed_without_hand_ / peak : 1.0;
-  }
-
   void report(std::int64_t now_ns, bool hand_known, const Vec3& hand, double ssm) {
     const bool at_target = path_.done() && target_feature_;
     const double offset = (device_.translation() - target_.translation()).norm();
@@ -384,8 +332,8 @@ class SurfacePlanner final : public Component {
       status_.state(msg::PLAN_IN_PLACE);
     } else if (!path_.done() && ssm <= 0 && kappa_ <= 0) {
       status_.state(msg::PLAN_WAITING);
-      status_.reason(("the hand is " + std::to_string(separation_ * 1e3) + " mm from the " + nearest_part_ +
-                      ", within the protective distance")
+      status_.reason(("the hand is " + std::to_string(monitor_->separation() * 1e3) + " mm from the " +
+                      monitor_->nearest_part() + ", within the protective distance")
                          .substr(0, 127));
     } else {
       status_.state(msg::PLAN_MOVING);
@@ -409,8 +357,8 @@ class SurfacePlanner final : public Component {
     }
     status_.hand_eta(hand_eta);
     was_in_place_ = status_.state() == msg::PLAN_IN_PLACE;
-    status_.separation(hand_known ? separation_ : -1);
-    status_.speed_limit(hand_known ? allowed_ : speed_without_hand_);
+    status_.separation(hand_known ? monitor_->separation() : -1);
+    status_.speed_limit(hand_known ? monitor_->allowed_speed() : monitor_->speed_without_hand());
     publish_status(now_ns);
   }
 
@@ -442,6 +390,7 @@ class SurfacePlanner final : public Component {
   haptics::Scene scene_;
   std::unique_ptr<robot::PumaModel> model_;
   std::unique_ptr<robot::ArmClearance> clearance_;
+  std::unique_ptr<SeparationMonitor> monitor_;
   std::unique_ptr<FeatureChooser> chooser_;
   robot::SsmParams ssm_;
   PathLimits limits_;
@@ -464,8 +413,7 @@ class SurfacePlanner final : public Component {
   bool have_cmd_ = false, replan_ = false, was_in_place_ = false;
   const haptics::DisplayFeature* target_feature_ = nullptr;
   PlatePath path_;
-  double kappa_ = 0, separation_ = kInf, allowed_ = 0;
-  const char* nearest_part_ = "";
+  double kappa_ = 0;
   std::string unreachable_;
   std::map<const haptics::DisplayFeature*, Vec3> unreachable_at_;  // where its object was when found out of reach
   std::set<const haptics::DisplayFeature*> unreachable_set_;
