@@ -20,6 +20,7 @@
 #include "frames/look_at.hpp"
 #include "image/image_view.hpp"
 #include "puma_model/puma_model.hpp"
+#include "sensor_effects.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msg_eigen.hpp"
@@ -135,7 +136,9 @@ class CameraSim final : public Component {
     // The arm and its device (libs/device_geometry): a mesh per shape, the sizes are constant.
     device_ = std::make_unique<robot::DeviceGeometry>(*model_);
     for (const auto& shape : device_->shapes()) device_meshes_.push_back(renderer_->add_mesh(device_mesh(shape)));
-    rng_ = cv::RNG(static_cast<std::uint64_t>(seed_));
+    effects_ = SensorEffects(
+        SensorEffectsParams{noise_, blur_, spill_, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)},
+        static_cast<std::uint64_t>(seed_));
   }
 
   void tick(Time now) override {
@@ -183,7 +186,7 @@ class CameraSim final : public Component {
     cv::threshold(device_mask, device_mask, 127, 255, cv::THRESH_BINARY);
     device_mask &= ~mask;
     cv::Mat img(camera_.height, camera_.width, CV_8UC3, rgb_.data());
-    finish(img, mask, gain);
+    effects_.apply(img, mask, gain);
     publish_image(image_, img, "rgb8", now);
     publish_image(true_mask_, mask, "mono8", now);
     publish_image(true_device_mask_, device_mask, "mono8", now);
@@ -203,7 +206,7 @@ class CameraSim final : public Component {
         cv::threshold(right_mask, right_mask, 127, 255, cv::THRESH_BINARY);
       }
       cv::Mat right(camera_.height, camera_.width, CV_8UC3, right_rgb_.data());
-      finish(right, right_mask, gain);
+      effects_.apply(right, right_mask, gain);
       publish_image(right_, right, "rgb8", now);
     }
     // Ground truth and intrinsics.
@@ -312,28 +315,6 @@ class CameraSim final : public Component {
     }
   }
 
-  // Lighting variation, blue spill on the hand's edge, optical blur, sensor noise.
-  void finish(cv::Mat& img, const cv::Mat& mask, double gain) {
-    img.convertTo(work_, CV_32FC3, gain);
-    if (!mask.empty() && spill_ > 0) {
-      cv::Mat inner;
-      cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
-      const cv::Mat edge = mask & ~inner;  // the hand's outer 2 px
-      cv::Mat tinted;
-      cv::addWeighted(work_, 1.0 - spill_,
-                      cv::Mat(work_.size(), CV_32FC3, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)),
-                      spill_, 0, tinted);
-      tinted.copyTo(work_, edge);
-    }
-    if (blur_ > 0) cv::GaussianBlur(work_, work_, cv::Size(0, 0), blur_);
-    if (noise_ > 0) {
-      noise_img_.create(work_.size(), CV_32FC3);
-      rng_.fill(noise_img_, cv::RNG::NORMAL, 0, noise_);
-      work_ += noise_img_;
-    }
-    work_.convertTo(img, CV_8UC3);  // saturates
-  }
-
   // The colour image averaged over the exposure: exposure_samples renders at the middles of equal
   // slices of [now - exposure, now], each with the arm and hand as they were then (the latest
   // state stamped at or before it) and the camera pose view(t). The current state is restored.
@@ -392,7 +373,7 @@ class CameraSim final : public Component {
   bool have_joints_ = false, have_hand_ = false;
   std::int64_t start_ns_ = -1;
   std::uint64_t seq_ = 0;
-  cv::RNG rng_;
+  SensorEffects effects_;
   std::vector<std::uint8_t> rgb_, mask_rgb_, right_rgb_, sample_rgb_;
   double exposure_ = 0;
   int exposure_samples_ = 8;
@@ -400,7 +381,6 @@ class CameraSim final : public Component {
   std::deque<std::pair<std::int64_t, Eigen::Isometry3d>> hand_history_;
   cv::Mat exposure_sum_;
   std::vector<float> depth_;
-  cv::Mat work_, noise_img_;
   msg::JointState joints_msg_;
   msg::PoseStamped hand_msg_, pose_msg_;
   msg::Image out_msg_;
