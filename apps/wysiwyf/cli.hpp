@@ -1,6 +1,7 @@
 #pragma once
 // The `wysiwyf` command line: small argument helpers shared by the sub-commands.
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,13 @@ class Args {
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// A number option "--name X", X within [min, max] (the whole text a number: "5s" is refused);
+// `fallback` when it is absent. A bad one throws UsageError "NAME: found 'X'; expected EXPECTED".
+double number_option(Args& args, const std::string& name, double fallback, double min, double max,
+                     const std::string& expected);
+// The same for a whole number.
+long whole_option(Args& args, const std::string& name, long fallback, long min, long max, const std::string& expected);
 
 int cmd_run(Args args);
 int cmd_validate(Args args);

@@ -9,6 +9,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -155,16 +156,8 @@ int cmd_bridge(Args args) {
   open(args, s);
   bridge::ServerOptions server_options;
   server_options.address = args.value("--address").value_or("127.0.0.1");
-  if (auto p = args.value("--port")) {
-    try {
-      std::size_t used = 0;
-      const int port = std::stoi(*p, &used);
-      if (used != p->size() || port < 0 || port > 65535) throw std::out_of_range("port");
-      server_options.port = static_cast<std::uint16_t>(port);
-    } catch (...) {
-      throw UsageError("--port: found '" + *p + "'; expected a TCP port, 0-65535 (0: any free one)");
-    }
-  }
+  server_options.port = static_cast<std::uint16_t>(
+      whole_option(args, "--port", server_options.port, 0, 65535, "a TCP port, 0-65535 (0: any free one)"));
   server_options.web_root = find_web_root(args.value("--web-root"));
   bridge::DashboardOptions dash;
   dash.domain = s.domain;
@@ -173,16 +166,8 @@ int cmd_bridge(Args args) {
   for (const auto& p : dash.plots)
     if (p.find(':') == std::string::npos)
       throw UsageError("--plot: found '" + p + "'; expected TOPIC:FIELD, e.g. robot/wrench:wrench.force.z");
-  double duration = 0;
-  if (auto d = args.value("--duration")) {
-    try {
-      duration = std::stod(*d);
-    } catch (...) {
-      duration = -1;
-    }
-    if (!(duration >= 0) || !std::isfinite(duration))
-      throw UsageError("--duration: found '" + *d + "'; expected a number of seconds (0: until Ctrl-C)");
-  }
+  const double duration = number_option(args, "--duration", 0, 0, std::numeric_limits<double>::infinity(),
+                                        "a number of seconds (0: until Ctrl-C)");
   const std::vector<std::string> only = args.positional();
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   install_stop_signal_handlers();

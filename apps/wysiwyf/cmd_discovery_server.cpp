@@ -16,13 +16,8 @@ using namespace eprosima::fastdds::dds;
 
 int cmd_discovery_server(Args args) {
   const std::string address = args.value("--listen").value_or("0.0.0.0:11811");
-  int id = 0, domain = 0;
-  try {
-    id = std::stoi(args.value("--id").value_or("0"));
-    domain = std::stoi(args.value("--domain").value_or("0"));
-  } catch (...) {
-    throw UsageError("--id and --domain take numbers");
-  }
+  const int id = static_cast<int>(whole_option(args, "--id", 0, 0, 255, "a server id from 0 to 255"));
+  const int domain = static_cast<int>(whole_option(args, "--domain", 0, 0, 232, "a domain id from 0 to 232"));
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   DomainParticipantQos qos;
   try {

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -145,18 +146,9 @@ std::string render(int domain, const std::map<std::string, std::pair<json, Clock
 int cmd_monitor(Args args) {
   Session s;
   open(args, s);
-  double interval = 0.5, duration = 0;
-  for (auto [name, value] : {std::pair{"--interval", &interval}, std::pair{"--duration", &duration}}) {
-    if (auto v = args.value(name)) {
-      try {
-        *value = std::stod(*v);
-      } catch (...) {
-        *value = -1;
-      }
-      if (!(*value >= 0) || !std::isfinite(*value) || (value == &interval && *value <= 0))
-        throw UsageError(std::string(name) + ": found '" + *v + "'; expected a number of seconds");
-    }
-  }
+  const double interval = number_option(args, "--interval", 0.5, 0.001, 3600, "a number of seconds, 0.001 to 3600");
+  const double duration = number_option(args, "--duration", 0, 0, std::numeric_limits<double>::infinity(),
+                                        "a number of seconds (0: until Ctrl-C)");
   const bool once = args.flag("--once");
   const std::string diagnostics_topic = "wysiwyf/diagnostics";
   const std::string mode_topic = args.value("--mode-topic").value_or("display/mode");

@@ -7,6 +7,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -196,26 +197,9 @@ int cmd_play(Args args) {
   const std::vector<std::string> sets = args.values("--set");
   const std::vector<std::string> topics = split_list(args.value("--topics").value_or(""));
   const bool loop = args.flag("--loop");
-  double rate = -1;
-  if (auto r = args.value("--rate")) {
-    try {
-      rate = std::stod(*r);
-    } catch (...) {
-      rate = -1;
-    }
-    if (!(rate >= 0) || !std::isfinite(rate))
-      throw UsageError("--rate: found '" + *r + "'; expected a number >= 0 (1: as recorded, 0: as fast as possible)");
-  }
-  double start_after = 0;
-  if (auto v = args.value("--start-after")) {
-    try {
-      start_after = std::stod(*v);
-    } catch (...) {
-      start_after = -1;
-    }
-    if (!(start_after >= 0) || start_after > 3600)
-      throw UsageError("--start-after: found '" + *v + "'; expected seconds from 0 to 3600");
-  }
+  const double rate = number_option(args, "--rate", -1, 0, std::numeric_limits<double>::infinity(),
+                                    "a number >= 0 (1: as recorded, 0: as fast as possible)");
+  const double start_after = number_option(args, "--start-after", 0, 0, 3600, "seconds from 0 to 3600");
   if (into) {
     if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
     return play_into(*file, *into, sets, topics, loop, rate, start_after);

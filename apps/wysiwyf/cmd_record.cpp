@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <limits>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -190,16 +191,8 @@ int cmd_record(Args args) {
   open(args, s);
   const auto out = args.value("-o").value_or(args.value("--output").value_or(""));
   const bool all = args.flag("--all");
-  double duration = 0;
-  if (auto d = args.value("--duration")) {
-    try {
-      duration = std::stod(*d);
-    } catch (...) {
-      duration = -1;
-    }
-    if (!(duration >= 0) || !std::isfinite(duration))
-      throw UsageError("--duration: found '" + *d + "'; expected a number of seconds (0: until Ctrl-C)");
-  }
+  const double duration = number_option(args, "--duration", 0, 0, std::numeric_limits<double>::infinity(),
+                                        "a number of seconds (0: until Ctrl-C)");
   const std::string compression_arg = args.value("--compression").value_or("zstd");
   const auto compression = mcap::parse_compression(compression_arg);
   if (!compression) throw UsageError("--compression: found '" + compression_arg + "'; expected zstd, lz4 or none");

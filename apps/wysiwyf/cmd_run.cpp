@@ -69,16 +69,7 @@ void print_report(const RunResult& r, bool real) {
 int cmd_run(Args args) {
   const bool progress = args.flag("--progress");
   const bool no_progress = args.flag("--no-progress");
-  double start_after = 0;
-  if (auto v = args.value("--start-after")) {
-    try {
-      start_after = std::stod(*v);
-    } catch (...) {
-      start_after = -1;
-    }
-    if (!(start_after >= 0) || start_after > 3600)
-      throw UsageError("--start-after: found '" + *v + "'; expected seconds from 0 to 3600");
-  }
+  const double start_after = number_option(args, "--start-after", 0, 0, 3600, "seconds from 0 to 3600");
   Loader loader;
   std::string process;
   auto loaded = load_and_validate(args, loader, process);

@@ -8,6 +8,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -44,26 +45,11 @@ namespace {
 using SamplePrinter = std::function<std::string(const RawCdr&)>;
 
 double seconds_option(Args& args, const std::string& name, double fallback) {
-  auto v = args.value(name);
-  if (!v) return fallback;
-  try {
-    const double s = std::stod(*v);
-    if (s >= 0 && std::isfinite(s)) return s;
-  } catch (...) {
-  }
-  throw UsageError(name + ": found '" + *v + "'; expected a number of seconds");
+  return number_option(args, name, fallback, 0, std::numeric_limits<double>::infinity(), "a number of seconds");
 }
 
 long count_option(Args& args, const std::string& name) {
-  auto v = args.value(name);
-  if (!v) return 0;
-  try {
-    std::size_t used = 0;
-    const long n = std::stol(*v, &used);
-    if (used == v->size() && n >= 0) return n;
-  } catch (...) {
-  }
-  throw UsageError(name + ": found '" + *v + "'; expected a whole number of samples (0: no limit)");
+  return whole_option(args, name, 0, 0, std::numeric_limits<long>::max(), "a whole number of samples (0: no limit)");
 }
 
 // Why no writer was found for `topic`: where the tool looked, and the topics there that come

@@ -54,13 +54,7 @@ void open(Args& args, Session& s) {
       throw UsageError(std::string("cannot read --pipeline: ") + e.what());
     }
   }
-  if (auto d = args.value("--domain")) {
-    try {
-      domain = std::stoi(*d);
-    } catch (...) {
-      throw UsageError("--domain: found '" + *d + "'; expected a domain id from 0 to 232");
-    }
-  }
+  domain = static_cast<int>(whole_option(args, "--domain", domain, 0, 232, "a domain id from 0 to 232"));
   if (auto t = args.value("--transport")) transport = *t;
   if (args.flag("--prompt")) s.latency_budget = std::chrono::nanoseconds(0);
   DomainParticipantQos qos;
