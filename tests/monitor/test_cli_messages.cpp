@@ -26,6 +26,29 @@ TEST(CommandLine, HelpWorksOnEveryCommand) {
   EXPECT_NE(read_file(dir / "echo.log").find("topic echo TOPIC"), std::string::npos);
 }
 
+// Every number option is read by one check: trailing text, non-finite values and values out of
+// range are refused with the option, what was found and what was expected (exit 2, before any
+// DDS participant or pipeline is made).
+TEST(CommandLine, BadNumberOptionsAreRefusedWithWhatWasExpected) {
+  const fs::path dir = scratch_dir();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"record", "--all", "-o", (dir / "x.mcap").string(), "--duration", "5s"}, "--duration: found '5s'"},
+      {{"play", (dir / "x.mcap").string(), "--rate", "-1"}, "--rate: found '-1'"},
+      {{"bridge", "--port", "70000"}, "--port: found '70000'; expected a TCP port"},
+      {{"monitor", "--interval", "0"}, "--interval: found '0'"},
+      {{"topic", "echo", "x", "--count", "2.5"}, "--count: found '2.5'; expected a whole number"},
+      {{"topic", "echo", "x", "--domain", "300"}, "--domain: found '300'; expected a domain id from 0 to 232"},
+      {{"discovery-server", "--id", "x"}, "--id: found 'x'"},
+      {{"run", "pipelines/demo-sim.yaml", "--start-after", "nan"}, "--start-after: found 'nan'"},
+  };
+  int i = 0;
+  for (const auto& [args, message] : cases) {
+    const fs::path log = dir / ("case" + std::to_string(i++) + ".log");
+    EXPECT_EQ(wait_exit(spawn_cli(args, log), std::chrono::seconds(30)), 2) << args.front() << ": " << read_file(log);
+    EXPECT_NE(read_file(log).find(message), std::string::npos) << read_file(log);
+  }
+}
+
 TEST(CommandLine, ATopicWithoutWriterNamesTheDomainAndTheClosestTopics) {
   const fs::path dir = scratch_dir();
   const fs::path pipeline = dir / "source.yaml";
