@@ -137,7 +137,7 @@ TEST(Supervisor, ANonFiniteSetpointHoldsTheArmWhereItWasSent) {
   ASSERT_EQ(rig.mode(), msg::MODE_SURFACE);
   rig.tick(50, &nan);
   EXPECT_EQ(rig.mode(), msg::MODE_FAULT);
-  EXPECT_NE(rig.reason().find("a non-finite surface setpoint"), std::string::npos) << rig.reason();
+  EXPECT_NE(rig.reason().find("the surface setpoint: a non-finite"), std::string::npos) << rig.reason();
   EXPECT_EQ(rig.harness().rejected("surface"), 1u);
   msg::CartesianSetpoint held;
   ASSERT_TRUE(rig.setpoint(held));

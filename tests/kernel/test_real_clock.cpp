@@ -72,7 +72,9 @@ TEST(TickReport, MeasuresEachTicksCostToItsThreadApartFromItsWallTimeWhenAsked) 
   EXPECT_LT(c.cpu_p99_us, 500.0) << "us of CPU for a tick that slept";
   EXPECT_LE(c.cpu_p50_us, c.cpu_p99_us);
   // Instructions where this machine's kernel counts them for a process (not in most VMs).
-  if (c.instructions_p50 >= 0) EXPECT_GT(c.instructions_p99, 0.0);
+  if (c.instructions_p50 >= 0) {
+    EXPECT_GT(c.instructions_p99, 0.0);
+  }
   // Not asked for: not measured.
   const RunResult plain = run_pipeline(yaml);
   ASSERT_TRUE(plain.ok) << plain.error;

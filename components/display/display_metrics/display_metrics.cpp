@@ -15,6 +15,7 @@
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::display {
@@ -135,11 +136,7 @@ class DisplayMetrics final : public Component {
                                              msgs::to_eigen(setpoint_msg_.pose().position()),
                                              msgs::to_eigen(setpoint_msg_.twist().linear()), setpoint_msg_.sensed_ns());
     }
-    while (device_in_.take(device_msg_)) {
-      if (!msgs::all_finite(device_msg_.pose())) {
-        reject(device_in_, "a non-finite pose");
-        continue;
-      }
+    while (take_checked(device_in_, device_msg_)) {
       measured_.poses.add_plate(stamp(device_msg_.header(), now), msgs::to_isometry(device_msg_.pose()));
       measured_.setpoint_timing.add_plate(measured_.poses.plate().back().t,
                                           measured_.poses.plate().back().pose.translation());
@@ -198,8 +195,9 @@ class DisplayMetrics final : public Component {
       }
       if (!attach_msg_.attached()) continue;
       const int body = scene_.body_index(attach_msg_.body().c_str());
-      if (body < 0 || !msgs::all_finite(attach_msg_.obj_T_dev())) {
-        reject(attach_in_, "an attachment to a body the scene does not have, or a non-finite obj_T_dev");
+      const std::string why = body < 0 ? "an attachment to a body the scene does not have" : problem(attach_msg_);
+      if (!why.empty()) {
+        reject(attach_in_, why);
         continue;
       }
       measured_.haptic.attach(static_cast<std::size_t>(body), msgs::to_isometry(attach_msg_.obj_T_dev()),
@@ -220,14 +218,9 @@ class DisplayMetrics final : public Component {
       else
         reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
     }
-    while (true_in_.take(pose_msg_))
-      if (msgs::all_finite(pose_msg_.pose()))
-        measured_.visual.add_true_pose(stamp(pose_msg_.header(), now), msgs::to_isometry(pose_msg_.pose()));
-    while (tracked_in_.take(pose_msg_)) {
-      if (!msgs::all_finite(pose_msg_.pose())) {
-        reject(tracked_in_, "a non-finite pose");
-        continue;
-      }
+    while (take_checked(true_in_, pose_msg_))
+      measured_.visual.add_true_pose(stamp(pose_msg_.header(), now), msgs::to_isometry(pose_msg_.pose()));
+    while (take_checked(tracked_in_, pose_msg_)) {
       measured_.visual.add_tracked_pose(stamp(pose_msg_.header(), now), msgs::to_isometry(pose_msg_.pose()));
     }
   }

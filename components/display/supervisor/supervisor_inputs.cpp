@@ -1,6 +1,8 @@
 // supervisor: its inputs taken and checked, and the recovery from the faults they cause.
 #include "supervisor.hpp"
 
+#include "wysiwyf/msg_checks.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string_view>
@@ -11,9 +13,9 @@ void Supervisor::read_inputs(std::int64_t now_ns) {
   take_setpoints(surface_in_, surface_, "surface", now_ns);
   take_setpoints(admittance_in_, admittance_, "admittance", now_ns);
   while (wrench_in_.take(wrench_msg_)) {
-    if (!msgs::all_finite(wrench_msg_.wrench())) {
-      reject(wrench_in_, "a non-finite force or torque");
-      bad("a non-finite wrist reading", now_ns);
+    if (const std::string why = problem(wrench_msg_); !why.empty()) {
+      reject(wrench_in_, why);
+      bad("the wrist reading: " + why, now_ns);
       continue;
     }
     wrench_ns_ = now_ns;
@@ -21,20 +23,16 @@ void Supervisor::read_inputs(std::int64_t now_ns) {
     have_reading_ = true;
   }
   while (device_in_.take(device_msg_)) {
-    if (!msgs::all_finite(device_msg_.pose())) {
-      reject(device_in_, "a non-finite pose");
-      bad("a non-finite device pose", now_ns);
+    if (const std::string why = problem(device_msg_); !why.empty()) {
+      reject(device_in_, why);
+      bad("the device pose: " + why, now_ns);
       continue;
     }
     device_ = msgs::to_isometry(device_msg_.pose()), have_device_ = true, device_ns_ = now_ns;
   }
-  while (hand_in_.take(hand_msg_)) {
-    const Vec3 p = msgs::to_eigen(hand_msg_.position());
+  while (take_checked(hand_in_, hand_msg_)) {
     if (hand_msg_.status() == msg::TRACKING_LOST) continue;
-    if (!p.allFinite()) {
-      reject(hand_in_, "a non-finite position");
-      continue;
-    }
+    const Vec3 p = msgs::to_eigen(hand_msg_.position());
     hand_ = p, hand_ns_ = now_ns;
     const auto& c = hand_msg_.covariance();
     const double variance = std::max({c[0], c[4], c[8]});  // the largest axis, near enough
@@ -42,11 +40,7 @@ void Supervisor::read_inputs(std::int64_t now_ns) {
   }
   while (robot_in_.take(robot_msg_)) robot_ns_ = now_ns;
   while (planner_in_.take(planner_msg_)) planner_ns_ = now_ns;
-  while (objects_in_.take(object_msg_)) {
-    if (!msgs::all_finite(object_msg_.pose())) {
-      reject(objects_in_, "a non-finite pose");
-      continue;
-    }
+  while (take_checked(objects_in_, object_msg_)) {
     base_T_obj_[object_msg_.child_frame_id().c_str()] = msgs::to_isometry(object_msg_.pose());
   }
 }
@@ -54,10 +48,9 @@ void Supervisor::read_inputs(std::int64_t now_ns) {
 void Supervisor::take_setpoints(Input<msg::CartesianSetpoint>& in, Stream& s, const char* source, std::int64_t now_ns) {
   s.fresh = false;
   while (in.take(setpoint_msg_)) {
-    if (!msgs::all_finite(setpoint_msg_.pose()) || !msgs::to_eigen(setpoint_msg_.twist().linear()).allFinite() ||
-        !msgs::to_eigen(setpoint_msg_.twist().angular()).allFinite()) {
-      reject(in, "a non-finite pose or twist");
-      bad(std::string("a non-finite ") + source + " setpoint", now_ns);
+    if (const std::string why = problem(setpoint_msg_); !why.empty()) {
+      reject(in, why);
+      bad(std::string("the ") + source + " setpoint: " + why, now_ns);
       continue;
     }
     if (std::string_view(setpoint_msg_.source().c_str()) != source) {

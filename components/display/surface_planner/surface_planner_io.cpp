@@ -1,44 +1,28 @@
 // surface_planner: its inputs taken and checked, its setpoint and status written.
 #include "surface_planner.hpp"
 
+#include "wysiwyf/msg_checks.hpp"
+
 #include <cmath>
 
 namespace wysiwyf::display {
 
 void SurfacePlanner::read_inputs(std::int64_t now_ns) {
-  while (hand_in_.take(hand_msg_)) {
+  while (take_checked(hand_in_, hand_msg_)) {
     if (hand_msg_.status() == msg::TRACKING_LOST) continue;
     const Vec3 p = msgs::to_eigen(hand_msg_.position());
-    if (!p.allFinite()) {
-      reject(hand_in_, "a non-finite position");
-      continue;
-    }
     const double variance =
         std::max(1e-8, (hand_msg_.covariance()[0] + hand_msg_.covariance()[4] + hand_msg_.covariance()[8]) / 3);
     hand_.update(hand_msg_.header().stamp_ns() ? hand_msg_.header().stamp_ns() : now_ns, p, variance);
   }
-  while (objects_in_.take(object_msg_)) {
+  while (take_checked(objects_in_, object_msg_)) {
     const int body = scene_.body_index(object_msg_.child_frame_id().c_str());
     if (body < 0) continue;
-    if (!msgs::all_finite(object_msg_.pose())) {
-      reject(objects_in_, "a non-finite pose");
-      continue;
-    }
     base_T_obj_[static_cast<std::size_t>(body)] = msgs::to_isometry(object_msg_.pose());
   }
-  while (joints_in_.take(joints_msg_)) {
-    const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-    if (!q.allFinite()) {
-      reject(joints_in_, "a non-finite joint position");
-      continue;
-    }
-    q_ = q, have_joints_ = true, joints_ns_ = now_ns;
-  }
-  while (device_in_.take(device_msg_)) {
-    if (!msgs::all_finite(device_msg_.pose())) {
-      reject(device_in_, "a non-finite pose");
-      continue;
-    }
+  while (take_checked(joints_in_, joints_msg_))
+    q_ = msgs::joint_positions(joints_msg_), have_joints_ = true, joints_ns_ = now_ns;
+  while (take_checked(device_in_, device_msg_)) {
     const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
     device_ = T, have_device_ = true, device_ns_ = now_ns;
     // The plate's speed over the last 100 ms (one encoder step moves it 0.06 mm: per sample,
@@ -49,11 +33,7 @@ void SurfacePlanner::read_inputs(std::int64_t now_ns) {
     if (now_ns > then_ns) device_speed_ = (T.translation() - then).norm() / seconds(now_ns - then_ns);
   }
   while (mode_in_.take(mode_msg_)) mode_ = mode_msg_.mode();
-  while (commanded_in_.take(commanded_msg_)) {
-    if (!msgs::all_finite(commanded_msg_.pose())) {
-      reject(commanded_in_, "a non-finite pose");
-      continue;
-    }
+  while (take_checked(commanded_in_, commanded_msg_)) {
     commanded_ = msgs::to_isometry(commanded_msg_.pose()), have_commanded_ = true;
   }
 }

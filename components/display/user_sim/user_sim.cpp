@@ -15,6 +15,7 @@
 #include "user_script.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::display {
@@ -98,13 +99,9 @@ class UserSim final : public Component {
   }
 
   void tick(Time now) override {
-    while (objects_in_.take(object_msg_)) {
+    while (take_checked(objects_in_, object_msg_)) {
       const int body = scene_.body_index(object_msg_.child_frame_id().c_str());
       if (body < 0) continue;  // another scene's body: not one the user sees
-      if (!msgs::all_finite(object_msg_.pose())) {
-        reject(objects_in_, "a non-finite pose");
-        continue;
-      }
       base_T_obj_[static_cast<std::size_t>(body)] = msgs::to_isometry(object_msg_.pose());
     }
     while (hand_in_.take(hand_msg_)) {

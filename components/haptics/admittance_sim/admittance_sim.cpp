@@ -26,6 +26,7 @@
 #include "scene/tool_load.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -109,26 +110,19 @@ class AdmittanceSim final : public Component {
   void tick(Time now) override {
     while (attach_in_.take(attach_msg_)) take_attachment();
     // STEP 1: the user's wrench, held until the next sample.
-    while (wrench_.take(sample_)) {
-      if (!msgs::all_finite(sample_.wrench())) {  // a corrupt sample: ignore it, never move on it
-        reject(wrench_, "a non-finite force or torque");
-        continue;
-      }
+    while (take_checked(wrench_, sample_)) {  // (a corrupt sample is ignored: never moved on)
       have_reading_ = true;
       sensed_ns_ = sample_.header().stamp_ns();
       reading_.force = msgs::to_eigen(sample_.wrench().force());
       reading_.torque = msgs::to_eigen(sample_.wrench().torque());
       if (reading_.force.norm() > max_force_) reading_.force *= max_force_ / reading_.force.norm();
     }
-    while (device_pose_.take(device_msg_)) {
+    while (take_checked(device_pose_, device_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
-      if (T.matrix().allFinite()) {
-        const std::int64_t stamp = device_msg_.header().stamp_ns();
-        if (attached_ && have_device_pose_ && stamp > device_stamp_)
-          yield_->measured(stamp, T.translation(), user_force_, static_cast<double>(stamp - device_stamp_) * 1e-9);
-        measured_base_T_dev_ = T, have_device_pose_ = true, device_stamp_ = stamp;
-      } else
-        reject(device_pose_, "a non-finite pose");
+      const std::int64_t stamp = device_msg_.header().stamp_ns();
+      if (attached_ && have_device_pose_ && stamp > device_stamp_)
+        yield_->measured(stamp, T.translation(), user_force_, static_cast<double>(stamp - device_stamp_) * 1e-9);
+      measured_base_T_dev_ = T, have_device_pose_ = true, device_stamp_ = stamp;
     }
     const int body = body_;
     const Eigen::Isometry3d base_T_obj = pose_of(*world_, body);
@@ -166,7 +160,7 @@ class AdmittanceSim final : public Component {
     if (body < 0 || !scene_.models[body].dynamic)
       return reject(attach_in_,
                     "body '" + std::string(attach_msg_.body().c_str()) + "' is not a dynamic body of the scene");
-    if (!msgs::all_finite(attach_msg_.obj_T_dev())) return reject(attach_in_, "a non-finite obj_T_dev");
+    if (const std::string why = problem(attach_msg_); !why.empty()) return reject(attach_in_, why);
     body_ = body;
     obj_T_dev_ = msgs::to_isometry(attach_msg_.obj_T_dev());
     attached_ = true;

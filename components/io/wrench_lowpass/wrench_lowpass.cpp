@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::io {
@@ -17,12 +18,8 @@ class WrenchLowpass final : public Component {
   }
 
   void tick(Time) override {
-    while (in_.take(sample_)) {
+    while (take_checked(in_, sample_)) {  // (one NaN would stay in the filter's state for good)
       const msgs::Vector6d x = msgs::to_vector6(sample_.wrench());
-      if (!x.allFinite()) {  // one NaN would stay in the filter's state for good
-        reject(in_, "a non-finite force or torque");
-        continue;
-      }
       const std::int64_t stamp = sample_.header().stamp_ns();
       if (last_stamp_ < 0) {
         y_ = x;  // start at the first sample, not at zero

@@ -23,6 +23,7 @@
 #include "sensor_effects.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -144,21 +145,13 @@ class CameraSim final : public Component {
   void tick(Time now) override {
     GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     auto stamp = [&](const std_msgs::Header& h) { return h.stamp_ns() > 0 ? h.stamp_ns() : now.ns; };
-    while (joints_in_.take(joints_msg_)) {
+    while (take_checked(joints_in_, joints_msg_)) {
       const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-      if (!q.allFinite()) {
-        reject(joints_in_, "a non-finite joint angle");
-        continue;
-      }
       q_ = q, have_joints_ = true;
       if (exposure_ > 0) joint_history_.emplace_back(stamp(joints_msg_.header()), q);
     }
-    while (hand_in_.take(hand_msg_)) {
+    while (take_checked(hand_in_, hand_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(hand_msg_.pose());
-      if (!T.matrix().allFinite()) {
-        reject(hand_in_, "a non-finite pose");
-        continue;
-      }
       base_T_hand_ = T, have_hand_ = true;
       if (exposure_ > 0) hand_history_.emplace_back(stamp(hand_msg_.header()), T);
     }

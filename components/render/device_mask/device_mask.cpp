@@ -16,6 +16,7 @@
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -55,22 +56,14 @@ class DeviceMask final : public Component {
   void tick(Time now) override {
     GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     if (info_in_.take_latest(info_msg_)) take_camera_info();
-    while (joints_in_.take(joints_msg_)) {
+    while (take_checked(joints_in_, joints_msg_)) {
       const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-      if (!q.allFinite()) {
-        reject(joints_in_, "a non-finite joint angle");
-        continue;
-      }
       joints_.push_back({joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, q});
     }
     while (joints_.size() > 1 && joints_.front().t < now.ns - 1'000'000'000) joints_.pop_front();
     bool fresh = false;
-    while (eye_T_base_in_.take(pose_msg_)) {
+    while (take_checked(eye_T_base_in_, pose_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
-      if (!T.matrix().allFinite()) {
-        reject(eye_T_base_in_, "a non-finite pose");
-        continue;
-      }
       eye_T_base_ = T, pose_stamp_ = pose_msg_.header().stamp_ns() ? pose_msg_.header().stamp_ns() : now.ns;
       fresh = true;
     }

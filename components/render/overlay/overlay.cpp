@@ -14,6 +14,7 @@
 #include "scene/tool_load.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -79,20 +80,10 @@ class Overlay final : public Component {
   void tick(Time) override {
     while (mode_in_.take(mode_msg_)) have_mode_ = true;
     while (planner_in_.take(planner_msg_)) have_planner_ = true;
-    while (wrench_in_.take(wrench_msg_)) {
-      const Eigen::Vector3d f = msgs::to_eigen(wrench_msg_.wrench().force()),
-                            t = msgs::to_eigen(wrench_msg_.wrench().torque());
-      if (f.allFinite() && t.allFinite())
-        reading_ = {f, t}, have_reading_ = true;
-      else
-        reject(wrench_in_, "a non-finite force or torque");
-    }
-    while (device_in_.take(device_msg_)) {
-      if (msgs::all_finite(device_msg_.pose()))
-        device_ = msgs::to_isometry(device_msg_.pose()), have_device_ = true;
-      else
-        reject(device_in_, "a non-finite pose");
-    }
+    while (take_checked(wrench_in_, wrench_msg_))
+      reading_ = {msgs::to_eigen(wrench_msg_.wrench().force()), msgs::to_eigen(wrench_msg_.wrench().torque())},
+      have_reading_ = true;
+    while (take_checked(device_in_, device_msg_)) device_ = msgs::to_isometry(device_msg_.pose()), have_device_ = true;
     if (!image_in_.take_latest(image_)) return;
     if (const std::string bad = image::problem(image_, {"rgb8"}); !bad.empty()) return reject(image_in_, bad);
     if (show_ && have_mode_) draw(image::view(image_));

@@ -15,16 +15,11 @@
 #include "scene/scene.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::render {
-
-namespace {
-
-bool finite(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
-
-}  // namespace
 
 class Renderer final : public Component {
  public:
@@ -72,20 +67,10 @@ class Renderer final : public Component {
   void tick(Time now) override {
     GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     if (info_in_.take_latest(info_msg_)) take_camera_info();
-    while (eye_T_base_in_.take(pose_msg_)) {
-      const Eigen::Isometry3d T = msgs::to_isometry(pose_msg_.pose());
-      if (finite(T))
-        eye_T_base_ = T, have_pose_ = true, pose_stamp_ = pose_msg_.header().stamp_ns();
-      else
-        reject(eye_T_base_in_, "a non-finite pose");
-    }
-    while (objects_in_.take(object_msg_)) {
-      const Eigen::Isometry3d T = msgs::to_isometry(object_msg_.pose());
-      if (finite(T))
-        base_T_body_[object_msg_.child_frame_id().c_str()] = T;
-      else
-        reject(objects_in_, "a non-finite pose");
-    }
+    while (take_checked(eye_T_base_in_, pose_msg_))
+      eye_T_base_ = msgs::to_isometry(pose_msg_.pose()), have_pose_ = true, pose_stamp_ = pose_msg_.header().stamp_ns();
+    while (take_checked(objects_in_, object_msg_))
+      base_T_body_[object_msg_.child_frame_id().c_str()] = msgs::to_isometry(object_msg_.pose());
     if (!renderer_)
       return warn_once("no camera_info",
                        "no camera_info yet: nothing is drawn until the camera's "

@@ -13,6 +13,7 @@
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -56,13 +57,7 @@ class CameraFixed final : public Component {
   }
 
   void tick(Time now) override {
-    while (joints_in_.take(joints_msg_)) {
-      const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-      if (q.allFinite())
-        q_ = q, have_joints_ = true;
-      else
-        reject(joints_in_, "a non-finite joint position");
-    }
+    while (take_checked(joints_in_, joints_msg_)) q_ = msgs::joint_positions(joints_msg_), have_joints_ = true;
     // The frame these poses are for: the newest image's, or now without a camera.
     std::int64_t stamp = now.ns;
     if (info_in_.take_latest(info_msg_) && info_msg_.header().stamp_ns() > 0) stamp = info_msg_.header().stamp_ns();

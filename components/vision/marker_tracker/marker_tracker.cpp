@@ -20,6 +20,7 @@
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -172,12 +173,8 @@ class MarkerTracker final : public Component {
   }
 
   void read_joints(Time now) {
-    while (joints_in_.take(joints_msg_)) {
+    while (take_checked(joints_in_, joints_msg_)) {
       const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-      if (!q.allFinite()) {
-        reject(joints_in_, "a non-finite joint position");
-        continue;
-      }
       joints_.add(joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, q);
     }
   }

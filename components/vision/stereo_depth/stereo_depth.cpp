@@ -14,6 +14,7 @@
 #include "image/image_view.hpp"
 #include "wysiwyf/camera_info.hpp"
 #include "wysiwyf/component.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -134,20 +135,9 @@ class StereoDepth final : public Component {
       else
         reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
     }
-    while (eye_T_base_in_.take(pose_)) {
-      const Eigen::Isometry3d T = msgs::to_isometry(pose_.pose());
-      if (T.matrix().allFinite())
-        base_T_eye_ = T.inverse(), have_pose_ = true;
-      else
-        reject(eye_T_base_in_, "a non-finite pose");
-    }
-    while (eye_T_dev_in_.take(pose_)) {
-      const Eigen::Isometry3d T = msgs::to_isometry(pose_.pose());
-      if (T.matrix().allFinite())
-        dev_T_eye_ = T.inverse(), have_dev_ = true;
-      else
-        reject(eye_T_dev_in_, "a non-finite pose");
-    }
+    while (take_checked(eye_T_base_in_, pose_))
+      base_T_eye_ = msgs::to_isometry(pose_.pose()).inverse(), have_pose_ = true;
+    while (take_checked(eye_T_dev_in_, pose_)) dev_T_eye_ = msgs::to_isometry(pose_.pose()).inverse(), have_dev_ = true;
   }
 
   // A new left/right pair of matching time, size and encoding, with what depth needs.

@@ -103,6 +103,18 @@ class Component {
   void reject(const Input<T>& in, const std::string& why) {
     if (host_) host_->reject_sample(in.port(), why);
   }
+  // Takes the next sample that passes its type's checks (problem(sample), found beside the type:
+  // wysiwyf/msg_checks.hpp for the display's messages), rejecting each that does not with why.
+  // False when the port has nothing more.
+  template <class T>
+  bool take_checked(Input<T>& in, T& out) {
+    while (in.take(out)) {
+      const std::string why = problem(out);
+      if (why.empty()) return true;
+      reject(in, why);
+    }
+    return false;
+  }
   // The component's health now, with why when not kOk; cheap to call every tick (the kernel
   // hears of changes only).
   void report_health(Health health, const std::string& reason = "") {

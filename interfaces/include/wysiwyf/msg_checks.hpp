@@ -1,0 +1,35 @@
+#pragma once
+// What makes a sample unusable, beside its type: problem(m) says why a sample cannot be used (a
+// NaN, an orientation that is no rotation), or returns "" when it can. Component::take_checked
+// finds these by the sample's type and rejects what they find; a component with more to check
+// (a body its scene has, a source's name) checks that after.
+#include <string>
+
+#include "wysiwyf/msgs.hpp"
+
+namespace wysiwyf::msgs {
+
+// Why a pose cannot be used: a non-finite number, or an orientation quaternion far from unit
+// length (a zero quaternion would become a NaN rotation). "" when it can.
+std::string pose_problem(const geometry_msgs::Pose& p);
+
+}  // namespace wysiwyf::msgs
+
+namespace wysiwyf::msg {
+
+// The pose (pose_problem).
+std::string problem(const PoseStamped& m);
+// Force and torque finite.
+std::string problem(const WrenchStamped& m);
+// The six joint positions finite (velocities and efforts may be NaN: unknown).
+std::string problem(const JointState& m);
+// A tracked hand (not LOST): its position finite. A LOST one carries no position: fine.
+std::string problem(const HandPosition& m);
+// The pose (pose_problem) and the twist finite.
+std::string problem(const CartesianSetpoint& m);
+// The body's pose (pose_problem) and twist finite.
+std::string problem(const ObjectState& m);
+// An attachment: obj_T_dev (pose_problem); a release carries none.
+std::string problem(const Attachment& m);
+
+}  // namespace wysiwyf::msg

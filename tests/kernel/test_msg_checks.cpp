@@ -1,0 +1,72 @@
+// The checks beside the message types (wysiwyf/msg_checks.hpp) and Component::take_checked: a
+// sample with a NaN, or an orientation that is no rotation, is refused with why; a good one is
+// taken; a LOST hand or a release carries nothing to check.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "wysiwyf/msg_checks.hpp"
+#include "wysiwyf/msg_eigen.hpp"
+
+namespace wysiwyf::test {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+msg::PoseStamped pose(double w) {
+  msg::PoseStamped m;
+  m.pose().orientation().w(w);
+  return m;
+}
+
+TEST(MessageChecks, APoseNeedsFiniteNumbersAndARotation) {
+  EXPECT_EQ(msg::problem(pose(1)), "");
+  EXPECT_EQ(msg::problem(pose(1.005)), "") << "a quaternion a little off unit length is still a rotation";
+  EXPECT_NE(msg::problem(pose(0)).find("quaternion of length 0"), std::string::npos) << msg::problem(pose(0));
+  EXPECT_NE(msg::problem(pose(2)).find("expected 1"), std::string::npos);
+  msg::PoseStamped nan = pose(1);
+  nan.pose().position().y(kNan);
+  EXPECT_EQ(msg::problem(nan), "a non-finite pose");
+}
+
+TEST(MessageChecks, EachTypeChecksWhatItCarries) {
+  msg::WrenchStamped w;
+  EXPECT_EQ(msg::problem(w), "");
+  w.wrench().torque().z(std::numeric_limits<double>::infinity());
+  EXPECT_EQ(msg::problem(w), "a non-finite force or torque");
+
+  msg::JointState j;
+  EXPECT_EQ(msg::problem(j), "");
+  j.velocity()[2] = kNan;  // unknown velocities are allowed
+  EXPECT_EQ(msg::problem(j), "");
+  j.position()[5] = kNan;
+  EXPECT_EQ(msg::problem(j), "a non-finite joint position");
+
+  msg::HandPosition h;
+  h.position().x(kNan);
+  h.status(msg::TRACKING_LOST);
+  EXPECT_EQ(msg::problem(h), "") << "a lost hand carries no position";
+  h.status(msg::TRACKING_OK);
+  EXPECT_EQ(msg::problem(h), "a non-finite position");
+
+  msg::CartesianSetpoint s;
+  s.pose().orientation().w(1);
+  EXPECT_EQ(msg::problem(s), "");
+  s.twist().angular().x(kNan);
+  EXPECT_EQ(msg::problem(s), "a non-finite twist");
+
+  msg::ObjectState o;
+  EXPECT_NE(msg::problem(o), "") << "a zero quaternion is no orientation";
+  o.pose().orientation().w(1);
+  EXPECT_EQ(msg::problem(o), "");
+
+  msg::Attachment a;
+  a.attached(false);
+  EXPECT_EQ(msg::problem(a), "") << "a release carries no pose";
+  a.attached(true);
+  EXPECT_NE(msg::problem(a).find("(obj_T_dev)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace wysiwyf::test
