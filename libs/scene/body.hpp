@@ -32,6 +32,14 @@ struct BodyState {
   Vec3 L = Vec3::Zero();
 };
 
+// The body's pose in the world, world_T_body (q normalised: the integrator lets it drift).
+inline Eigen::Isometry3d pose_of(const BodyState& s) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = s.q.normalized().toRotationMatrix();
+  T.translation() = s.x;
+  return T;
+}
+
 // What follows from a state: velocities, rotation, world inverse inertia.
 struct BodyKinematics {
   Mat3 R;

@@ -198,10 +198,8 @@ void Supervisor::detach(std::int64_t now_ns) {
 }
 
 Eigen::Isometry3d Supervisor::initial_pose(const std::string& body) const {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   const int i = scene_.body_index(body);
-  if (i >= 0) T.linear() = scene_.initial[i].q.toRotationMatrix(), T.translation() = scene_.initial[i].x;
-  return T;
+  return i >= 0 ? haptics::pose_of(scene_.initial[static_cast<std::size_t>(i)]) : Eigen::Isometry3d::Identity();
 }
 
 void Supervisor::enter(msg::DisplayModeKind mode, std::int64_t now_ns, const std::string& why) {

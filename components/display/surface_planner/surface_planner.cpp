@@ -88,12 +88,7 @@ void SurfacePlanner::configure(Context& ctx) {
 
 void SurfacePlanner::activate() {
   hand_ = HandFilter(accel_density_);
-  for (std::size_t i = 0; i < scene_.models.size(); ++i) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = scene_.initial[i].q.toRotationMatrix();
-    T.translation() = scene_.initial[i].x;
-    base_T_obj_.push_back(T);
-  }
+  for (const auto& initial : scene_.initial) base_T_obj_.push_back(haptics::pose_of(initial));
 }
 
 void SurfacePlanner::tick(Time now) {

@@ -170,12 +170,7 @@ class AdmittanceSim final : public Component {
     log("attached to " + scene_.models[body].name + " (" + attach_msg_.feature().c_str() + ")");
   }
 
-  static Eigen::Isometry3d pose_of(const World& world, int body) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = world.state(body).q.normalized().toRotationMatrix();
-    T.translation() = world.state(body).x;
-    return T;
-  }
+  static Eigen::Isometry3d pose_of(const World& world, int body) { return haptics::pose_of(world.state(body)); }
 
   // The held device pose over the next half window. Where the held body may hit something within
   // it (a gap of it watched, or faster than the margin in the window), from the world as it is

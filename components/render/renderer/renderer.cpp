@@ -56,12 +56,8 @@ class Renderer final : public Component {
   void activate() override {
     gl_ = std::make_unique<GlContext>();
     log("OpenGL on " + gl_->renderer() + " (" + gl_->platform() + ")");
-    for (std::size_t i = 0; i < scene_.models.size(); ++i) {
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.linear() = scene_.initial[i].q.toRotationMatrix();
-      T.translation() = scene_.initial[i].x;
-      base_T_body_[scene_.models[i].name] = T;
-    }
+    for (std::size_t i = 0; i < scene_.models.size(); ++i)
+      base_T_body_[scene_.models[i].name] = haptics::pose_of(scene_.initial[i]);
   }
 
   void tick(Time now) override {
