@@ -42,9 +42,9 @@ constexpr int kKeyedTopicInstances = 256;
 
 // A reader that declares a DDS latency budget of at least kBatchingPeriod lets a pipeline on the
 // real clock send it samples in batches, every kBatchingPeriod, instead of waking its publisher
-// thread after every tick (that wake, a cross-CPU interrupt on a 1 kHz loop, slowed the loop's
-// next tick by about a tenth). A reader without one (another process of the pipeline) gets each
-// sample as it is written. The monitoring tools declare kMonitorLatencyBudget.
+// thread after every tick (that wake is a cross-CPU interrupt that slows a 1 kHz loop's next
+// tick: docs/design/monitoring-batches.md). A reader without one (another process of the
+// pipeline) gets each sample as it is written. The monitoring tools declare kMonitorLatencyBudget.
 constexpr std::chrono::milliseconds kBatchingPeriod{5};
 constexpr std::chrono::milliseconds kMonitorLatencyBudget{50};
 // Sets a reader's latency budget so that DDS announces it (Fast DDS sends a policy left unchanged

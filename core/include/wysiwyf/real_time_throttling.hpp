@@ -3,9 +3,8 @@
 // Linux lets SCHED_FIFO/SCHED_RR threads run at most sched_rt_runtime_us of every
 // sched_rt_period_us (/proc/sys/kernel; 950000 of 1000000 by default) and stops them for the rest
 // of the period. A component with `priority` whose `spin` covers its whole period never sleeps,
-// so it is stopped for 50 ms every second: the 16-box haptic loop on this 2-vCPU machine missed
-// 340-404 periods in 6 s so, against 23-81 without `priority` (`wysiwyf run
-// config/pipelines/bench/haptics-pile.yaml` on the real clock, pinned, five runs each).
+// so it is stopped for the rest of every period: tens of its ticks missed at once (measured in
+// docs/design/haptic-loop-thread.md).
 #include <cstdint>
 #include <string>
 

@@ -55,8 +55,9 @@ class TopicChannelBase {
   void set_dds_writer(DdsWriterLink* link) {
     // Room while the publisher thread waits for a core or sends a burst of images (a demo frame
     // is a dozen of them: tens of ms). A reliable topic promises every sample: a second of a
-    // 1 kHz stream (64 ms was not enough on a loaded 2-core CI machine: 7 of 3000 lost); a
-    // best-effort one 64 ms; large samples (images, slots of megabytes) 64 or 8.
+    // 1 kHz stream, since a loaded machine can keep the publisher thread off a core for longer
+    // than 64 ms (docs/design/kernel-delivery.md); a best-effort one 64 ms; large samples
+    // (images, slots of megabytes) 64 or 8.
     const bool large = max_serialized_size() > 64 * 1024;
     const bool reliable = writer_qos_.reliability == Reliability::kReliable;
     const int slack = reliable ? (large ? 64 : 1024) : (large ? 8 : 64);
