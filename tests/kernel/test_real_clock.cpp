@@ -1,10 +1,25 @@
 // The real-time executor, the DDS set-up options and the tick-time report (wall time on either
 // clock). These run on the wall clock, so they check behaviour (it ticks, it stops, it counts
 // overruns, a tick that slept is counted as long), never how precise the timing is.
+#include <limits>
+
 #include "test_support.hpp"
 #include "wysiwyf/real_time_throttling.hpp"
 
 namespace wysiwyf::test {
+
+// Differences of stamps from outside saturate instead of wrapping (and stay std::abs-safe).
+TEST(Time, ElapsedSaturatesInsteadOfWrapping) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max(),
+                         kMin = std::numeric_limits<std::int64_t>::min();
+  EXPECT_EQ(elapsed_ns(5, 3), 2);
+  EXPECT_EQ(elapsed_ns(3, 5), -2);
+  EXPECT_EQ(elapsed_ns(kMax, -1), kMax);
+  EXPECT_EQ(elapsed_ns(1000, kMin), kMax) << "an ancient stamp is long ago, not in the future";
+  EXPECT_EQ(elapsed_ns(-1, kMax), -kMax);
+  EXPECT_EQ(elapsed_ns(kMin, 1), -kMax);
+  EXPECT_EQ(elapsed_ns(kMin, kMin), 0);
+}
 
 TEST(RealClock, TicksEveryComponentOnItsOwnThreadUntilTheDuration) {
   const auto dir = scratch_dir();

@@ -84,7 +84,7 @@ class FrameLatency final : public Component {
     if (it == frames_.end() || it->second.*stage) return;  // before the first frame seen, or a repeat
     it->second.*stage = true;
     if (stamp >= first_frame_ + static_cast<std::int64_t>(warmup_s_ * 1e9))
-      ms.add(static_cast<double>(now.ns - stamp) * 1e-6, stamp);
+      ms.add(static_cast<double>(elapsed_ns(now.ns, stamp)) * 1e-6, stamp);
   }
 
   static std::string figures(const Percentiles& p) {

@@ -120,7 +120,7 @@ void Supervisor::hold_where_the_arm_stands(std::int64_t now_ns) {
 // Forwards a source's setpoint; one that jumps too fast is a fault.
 void Supervisor::forward(const Stream& s) {
   const double step = (msgs::to_eigen(s.sample.pose().position()) - msgs::to_eigen(out_.pose().position())).norm();
-  const double dt = std::max(1e-3, seconds(s.sample.header().stamp_ns() - out_.header().stamp_ns()));
+  const double dt = std::max(1e-3, seconds(elapsed_ns(s.sample.header().stamp_ns(), out_.header().stamp_ns())));
   if (sent_ && step > max_speed_ * dt + max_switch_step_)
     return bad("the " + std::string(mode_name(mode_)) + " setpoint jumped " + std::to_string(step * 1e3) + " mm",
                s.at_ns);

@@ -1,5 +1,7 @@
 #include "hand_filter.hpp"
 
+#include "wysiwyf/time.hpp"
+
 namespace wysiwyf::display {
 
 void HandFilter::update(std::int64_t stamp_ns, const Eigen::Vector3d& position, double variance) {
@@ -11,7 +13,7 @@ void HandFilter::update(std::int64_t stamp_ns, const Eigen::Vector3d& position, 
     P_ << variance, 0, 0, 4.0;  // a hand at rest or moving at up to about 2 m/s
     return;
   }
-  const double dt = std::max(0.0, static_cast<double>(stamp_ns - t_) * 1e-9);
+  const double dt = std::max(0.0, static_cast<double>(elapsed_ns(stamp_ns, t_)) * 1e-9);
   // Predict: x = F x, P = F P F^T + Q (white acceleration of density q_).
   Eigen::Matrix2d F;
   F << 1, dt, 0, 1;

@@ -30,6 +30,11 @@ void SurfacePlanner::configure(Context& ctx) {
   hand_timeout_ns_ = static_cast<std::int64_t>(
       ctx.param<double>("hand_timeout", 0.2, "s without a tracked hand before it counts as unknown", Range{0.001, 10}) *
       1e9);
+  hand_max_lead_ns_ = static_cast<std::int64_t>(
+      ctx.param<double>("hand_max_lead", 0.1,
+                        "s a hand sample may be stamped ahead of this pipeline's clock (clocks of two machines)",
+                        Range{0, 10}) *
+      1e9);
   input_timeout_ns_ = static_cast<std::int64_t>(
       ctx.param<double>("input_timeout", 0.05, "s without joint states or device poses: a fault", Range{0.001, 10}) *
       1e9);
@@ -120,7 +125,7 @@ void SurfacePlanner::tick(Time now) {
     publish_status(now.ns);
     return;
   }
-  const bool hand_known = hand_.valid() && now.ns - hand_.stamp_ns() <= hand_timeout_ns_;
+  const bool hand_known = hand_.valid() && elapsed_ns(now.ns, hand_.stamp_ns()) <= hand_timeout_ns_;
   const Vec3 hand = hand_known ? hand_.position(now.ns) : Vec3::Zero();
   sensed_ns_ = hand_known ? hand_.stamp_ns() : 0;  // the hand sample this tick's setpoint answers
   if (hand_known) choose_target(hand, now.ns);

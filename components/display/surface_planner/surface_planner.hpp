@@ -88,7 +88,7 @@ class SurfacePlanner final : public Component {
   PathLimits limits_;
   double inner_depth_ = 0.05, accel_density_ = 20, settle_time_ = 0.1, ssm_margin_ = 0.9;
   double finger_radius_ = 0.01, speed_without_hand_ = 0.25, in_place_ = 0.001, still_speed_ = 0.002, dt_ = 1e-3;
-  std::int64_t hand_timeout_ns_ = 0, input_timeout_ns_ = 0;
+  std::int64_t hand_timeout_ns_ = 0, hand_max_lead_ns_ = 0, input_timeout_ns_ = 0;
   // what it knows
   HandFilter hand_;
   std::vector<Eigen::Isometry3d> base_T_obj_;

@@ -10,10 +10,17 @@ namespace wysiwyf::display {
 void SurfacePlanner::read_inputs(std::int64_t now_ns) {
   while (take_checked(hand_in_, hand_msg_)) {
     if (hand_msg_.status() == msg::TRACKING_LOST) continue;
+    const std::int64_t stamp = hand_msg_.header().stamp_ns() ? hand_msg_.header().stamp_ns() : now_ns;
+    // A hand stamped ahead of now would stay "known" until long after it is gone.
+    if (elapsed_ns(stamp, now_ns) > hand_max_lead_ns_) {
+      reject(hand_in_, "stamped " + std::to_string(seconds(elapsed_ns(stamp, now_ns))) +
+                           " s ahead of this pipeline's clock (hand_max_lead)");
+      continue;
+    }
     const Vec3 p = msgs::to_eigen(hand_msg_.position());
     const double variance =
         std::max(1e-8, (hand_msg_.covariance()[0] + hand_msg_.covariance()[4] + hand_msg_.covariance()[8]) / 3);
-    hand_.update(hand_msg_.header().stamp_ns() ? hand_msg_.header().stamp_ns() : now_ns, p, variance);
+    hand_.update(stamp, p, variance);
   }
   while (take_checked(objects_in_, object_msg_)) {
     const int body = scene_.body_index(object_msg_.child_frame_id().c_str());

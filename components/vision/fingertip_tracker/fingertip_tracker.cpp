@@ -113,7 +113,7 @@ class FingertipTracker final : public Component {
   // A new left/right pair of one exposure, one size and encoding, with what triangulation needs.
   bool paired() {
     if (!left_fresh_ || !right_fresh_) return false;
-    const std::int64_t skew = left_.header().stamp_ns() - right_.header().stamp_ns();
+    const std::int64_t skew = elapsed_ns(left_.header().stamp_ns(), right_.header().stamp_ns());
     if (std::abs(skew) > max_skew_ns_) {
       (skew > 0 ? right_fresh_ : left_fresh_) = false;  // drop the older side, wait for its partner
       return false;

@@ -143,7 +143,7 @@ class StereoDepth final : public Component {
   // A new left/right pair of matching time, size and encoding, with what depth needs.
   bool paired() {
     if (!left_fresh_ || !right_fresh_) return false;  // wait for the partner
-    const std::int64_t skew = left_.header().stamp_ns() - right_.header().stamp_ns();
+    const std::int64_t skew = elapsed_ns(left_.header().stamp_ns(), right_.header().stamp_ns());
     if (std::abs(skew) > max_skew_ns_) {  // not one exposure: drop the older side, wait for its partner
       (skew > 0 ? right_fresh_ : left_fresh_) = false;
       return false;

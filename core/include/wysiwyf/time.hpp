@@ -15,4 +15,14 @@ struct Time {
 
 constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
 
+// a - b in ns, saturated to the int64 range instead of wrapping: stamps from outside may be
+// anything, and a wrapped difference would read a sample from far in the future as long stale,
+// or an ancient one as fresh.
+constexpr std::int64_t elapsed_ns(std::int64_t a, std::int64_t b) {
+  // Within [-INT64_MAX, INT64_MAX]: symmetric, so std::abs of any result is defined.
+  std::int64_t d = 0;
+  if (__builtin_sub_overflow(a, b, &d)) return a < b ? -INT64_MAX : INT64_MAX;
+  return d == INT64_MIN ? -INT64_MAX : d;
+}
+
 }  // namespace wysiwyf
