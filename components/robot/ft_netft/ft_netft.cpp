@@ -1,7 +1,9 @@
 // ft_netft: the ATI Net F/T wrist force/torque sensor over UDP (RDT). Streams in activate(),
 // publishes every record as a WrenchStamped in the sensor frame (header.seq = the record's
-// rdt_sequence, so consumers see gaps too), counts dropped and rejected records, tares on
-// request, and asks the sensor to stream again when it falls silent.
+// rdt_sequence, so consumers see gaps too), counts dropped and rejected records, optionally
+// tares on its first tare_samples records after activation (the sensor alone: with the display's
+// tool mounted, leave it at 0, since the supervisor and admittance_sim take the tool's weight out
+// themselves), and asks the sensor to stream again when it falls silent.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
