@@ -1,11 +1,12 @@
+// The bridge itself: the participant, a topic's writer link, the publisher thread, connect and health.
 #include "dds_bridge.hpp"
+#include "dds_bridge_listeners.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
-#include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
@@ -13,7 +14,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "wysiwyf/dds.hpp"
@@ -25,15 +25,6 @@ namespace wysiwyf::detail {
 using namespace eprosima::fastdds::dds;
 
 namespace {
-
-// Counts what DDS reports for one endpoint; read by health() from another thread.
-struct Counters {
-  std::atomic<std::uint64_t> incompatible{0};
-  std::atomic<int> last_policy{0};
-  std::atomic<std::uint64_t> lost{0};
-  std::atomic<std::uint64_t> ignored{0};          // samples of a writer that does not own a one-writer topic
-  std::atomic<std::uint64_t> deadline_missed{0};  // reader: periods of its deadline without a sample
-};
 
 // The channel's QoS for its DDS endpoints: a one-writer topic is one for writers and readers alike.
 Qos endpoint_qos(Qos q, const TopicChannelBase& channel) {
@@ -106,172 +97,6 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
   std::atomic<int> prompt{0};                 // their number
   Counters counters;
 };
-
-struct DdsBridge::ReaderLink final : public DataReaderListener {
-  ReaderLink(DdsBridge& b, TopicChannelBase& c)
-      : bridge(b), channel(c), sample(c.create_sample()), one_writer(c.one_writer()) {}
-  ~ReaderLink() override { channel.delete_sample(sample); }
-  void on_data_available(DataReader* reader) override {
-    SampleInfo info;
-    while (reader->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (!info.valid_data || (one_writer && !follows(info.publication_handle))) continue;
-      if (late.exchange(false))
-        bridge.say("topic '" + channel.topic() + "': samples again from " +
-                   bridge.writer_name(info.publication_handle) + " (" +
-                   std::to_string(counters.deadline_missed.load()) + " deadline(s) missed so far)");
-      const std::string* origin = nullptr;
-      {
-        std::lock_guard<std::mutex> lock(owner_mutex);
-        // The writing process's name, looked up when the writer changes (not per sample).
-        if (!origin_ || last_writer != info.publication_handle) {
-          const std::string process = bridge.process_name(info.publication_handle);
-          origin_ = process.empty() ? nullptr : channel.intern_origin(process);  // (unknown yet: again)
-        }
-        last_writer = info.publication_handle;
-        origin = origin_;
-      }
-      channel.deliver_from_dds(sample, origin);
-    }
-  }
-  // The deadline QoS (the pipeline's `qos: {port: {deadline: ..}}`): a writer whose process is
-  // frozen, cut off or overloaded is named as soon as a period passes without its sample, once
-  // per silence; the misses are counted (health()).
-  void on_requested_deadline_missed(DataReader*, const RequestedDeadlineMissedStatus& status) override {
-    counters.deadline_missed.store(static_cast<std::uint64_t>(status.total_count));
-    if (late.exchange(true)) return;
-    std::optional<InstanceHandle_t> writer;
-    {
-      std::lock_guard<std::mutex> lock(owner_mutex);
-      writer = last_writer;
-    }
-    bridge.say("topic '" + channel.topic() + "': no sample for its deadline (" +
-               std::to_string(channel.reader_qos().deadline_ns / 1'000'000) + " ms) from " +
-               (writer ? bridge.writer_name(*writer) : std::string("any writer")) +
-               ": is its process frozen, cut off or overloaded?");
-  }
-  // A one-writer topic follows the first writer it hears until that writer leaves, or, where the
-  // topic has a deadline, until it misses it (DDS's ownership rule: a killed process's writer is
-  // unmatched only after its lease, 5 s, and its restarted successor would wait that long). DDS
-  // ownership already passes only its owner's samples, but it would hand the topic to a newcomer
-  // of equal strength and lower GUID. Another writer's samples are dropped, counted and it is
-  // named once.
-  bool follows(const InstanceHandle_t& writer) {
-    std::lock_guard<std::mutex> lock(owner_mutex);
-    if (!owner) owner = writer;
-    if (writer == *owner) return true;
-    if (late.load()) {  // (cleared by the next sample delivered: this one)
-      bridge.say("topic '" + channel.topic() + "': its writer " + bridge.writer_name(*owner) +
-                 " missed its deadline; " + bridge.writer_name(writer) + " owns it now");
-      owner = writer;
-      named.erase(writer);
-      return true;
-    }
-    counters.ignored.fetch_add(1);
-    if (named.insert(writer).second)  // (the name is made once per writer, not per sample)
-      bridge.say("topic '" + channel.topic() + "': samples of a second writer, " + bridge.writer_name(writer) +
-                 ", are ignored: the topic takes one writer, and " + bridge.writer_name(*owner) + " is it");
-    return false;
-  }
-  void on_subscription_matched(DataReader*, const SubscriptionMatchedStatus& status) override {
-    if (!one_writer) return;
-    const std::string name = bridge.writer_name(status.last_publication_handle);
-    std::lock_guard<std::mutex> lock(owner_mutex);
-    if (status.current_count_change > 0 && status.current_count > 1)
-      bridge.say("topic '" + channel.topic() + "' takes one writer, and another one matched: " + name +
-                 " (writers now: " + std::to_string(status.current_count) + "); only the first heard is followed" +
-                 (owner ? ", " + bridge.writer_name(*owner) : ""));
-    if (status.current_count_change < 0 && owner && status.last_publication_handle == *owner) {
-      bridge.say("topic '" + channel.topic() + "': its writer " + name + " left; the next writer heard owns it");
-      owner.reset();
-    }
-  }
-  void on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) override {
-    counters.incompatible.fetch_add(1);
-    counters.last_policy.store(status.last_policy_id);
-    bridge.say("topic '" + channel.topic() + "': a writer in another process was refused: " +
-               dds::incompatibility(status.last_policy_id, channel.reader_qos(), false) + "; no samples come from it");
-  }
-  void on_sample_lost(DataReader*, const SampleLostStatus& status) override {
-    // Said once; then counted (health(), the diagnostics).
-    if (counters.lost.exchange(static_cast<std::uint64_t>(status.total_count)) == 0)
-      bridge.say("topic '" + channel.topic() + "': DDS lost samples on the way in (" +
-                 std::to_string(status.total_count) + " so far; further losses are counted)");
-  }
-  DdsBridge& bridge;
-  TopicChannelBase& channel;
-  void* sample;
-  const bool one_writer;
-  std::mutex owner_mutex;  // the receive, discovery and event threads
-  std::optional<InstanceHandle_t> owner;
-  std::set<InstanceHandle_t> named;             // the writers said to be ignored
-  std::atomic<bool> late{false};                // a deadline passed without a sample, and none came since
-  std::optional<InstanceHandle_t> last_writer;  // whose sample came last (owner_mutex)
-  const std::string* origin_ = nullptr;         // its process's name, interned (owner_mutex)
-  Counters counters;
-};
-
-// Who is who on the domain: participants' names by their GUID prefix, for messages that name a writer.
-// A process of the same pipeline ("<pipeline>/<group>...") that leaves or goes silent is said.
-struct DdsBridge::ParticipantNames final : public DomainParticipantListener {
-  ParticipantNames(DdsBridge& b, std::string pipeline) : bridge(b), pipeline_prefix(std::move(pipeline) + "/") {}
-  void on_participant_discovery(DomainParticipant*,
-                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
-    using S = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
-    const std::string name = info.info.m_participantName.to_string();
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      names[info.info.m_guid.guidPrefix] = name;
-    }
-    if (name.rfind(pipeline_prefix, 0) != 0) return;
-    if (info.status == S::DROPPED_PARTICIPANT)
-      bridge.say("process '" + name + "' is lost: nothing heard from it for its DDS lease (" +
-                 std::to_string(dds::kLeaseSeconds) + " s); its writers are unmatched");
-    else if (info.status == S::REMOVED_PARTICIPANT)
-      bridge.say("process '" + name + "' left the domain");
-  }
-  // Readers that declared a latency budget of dds::kBatchingPeriod or more (Fast DDS announces a
-  // reader before it matches any writer of ours).
-  void on_subscriber_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
-    using S = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
-    const auto& budget = info.info.m_qos.m_latencyBudget.duration;
-    const bool batches =
-        info.status != S::REMOVED_READER && budget.to_ns() >= std::chrono::nanoseconds(dds::kBatchingPeriod).count();
-    std::lock_guard<std::mutex> lock(mutex);
-    if (batches)
-      batch_readers.insert(info.info.guid());
-    else
-      batch_readers.erase(info.info.guid());
-  }
-  DdsBridge& bridge;
-  const std::string pipeline_prefix;
-  std::mutex mutex;
-  std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> names;
-  std::set<eprosima::fastrtps::rtps::GUID_t> batch_readers;
-};
-
-bool DdsBridge::takes_batches(const InstanceHandle_t& reader) const {
-  eprosima::fastrtps::rtps::GUID_t guid;
-  eprosima::fastrtps::rtps::iHandle2GUID(guid, reader);
-  std::lock_guard<std::mutex> lock(names_->mutex);
-  return names_->batch_readers.count(guid) != 0;
-}
-
-std::string DdsBridge::process_name(const InstanceHandle_t& handle) const {
-  eprosima::fastrtps::rtps::GUID_t guid;
-  eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
-  std::lock_guard<std::mutex> lock(names_->mutex);
-  const auto it = names_->names.find(guid.guidPrefix);
-  return it != names_->names.end() ? it->second : std::string();
-}
-
-std::string DdsBridge::writer_name(const InstanceHandle_t& handle) const {
-  eprosima::fastrtps::rtps::GUID_t guid;
-  eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
-  std::ostringstream id;
-  id << guid;
-  const std::string process = process_name(handle);
-  return !process.empty() ? "'" + process + "' (writer " + id.str() + ")" : "writer " + id.str();
-}
 
 DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const std::string&)> report)
     : report_(std::move(report)), data_sharing_(dds::uses_data_sharing(o.transport)) {

@@ -95,6 +95,7 @@ class DdsBridge {
   struct WriterLink;
   struct ReaderLink;
   struct ParticipantNames;
+  struct Counters;  // what DDS reports for one endpoint (dds_bridge_listeners.hpp)
   // "'<participant name>' (writer <GUID>)", or the GUID alone before its participant is known.
   std::string writer_name(const eprosima::fastdds::dds::InstanceHandle_t& writer) const;
   // The name of the writer's participant ("<pipeline>/<group>/<pid>"), empty while not discovered.
