@@ -78,8 +78,9 @@ TEST(ArmModelCollision, TheDeviceHasTheSameShapesOnEveryArm) {
 TEST(ArmModelCollision, ThePumaUrdfHasNoArmLinkGeometry) {
   const ArmModel arm(kPumaUrdf);
   const std::vector<std::string>& missing = arm.links_without_collision();
-  for (const char* link : {"base_link", "link1", "link2", "link3", "link4", "link5", "link6"})
+  for (const char* link : {"base_link", "link1", "link2", "link3", "link4", "link5", "link6"}) {
     EXPECT_NE(std::find(missing.begin(), missing.end(), link), missing.end()) << link;
+  }
   EXPECT_TRUE(arm.collision_notes().empty());
 }
 
@@ -143,9 +144,10 @@ void expect_skeleton_covered(const ArmModel& arm) {
             << arm.urdf_path() << ": body " << k << " (" << arm.frame_name(arm.body_frame(k)) << "), point " << i
             << "/40 of its skeleton, q = " << q.transpose();
       }
-      if (k > 0 && arm.body(k).mass > 0.0)
+      if (k > 0 && arm.body(k).mass > 0.0) {
         EXPECT_TRUE(covered(arm, q, arm.fk(q, arm.body_frame(k)) * arm.body(k).com, {k}))
             << arm.urdf_path() << ": centre of mass of body " << k;
+      }
     }
   }
   std::printf("%s: %d skeleton points covered\n", arm.urdf_path().c_str(), points);

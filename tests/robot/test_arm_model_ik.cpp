@@ -40,7 +40,9 @@ TEST(ArmModelIk, PumaSolutionsEqualPumaModels) {
         if (s.branch != i) continue;
         found = true;
         EXPECT_LT(test::angle_distance(s.q, JointVector(e.q)), 1e-12) << "branch " << i;
-        if (e.within_limits) EXPECT_LT((s.q - e.q).cwiseAbs().maxCoeff(), 1e-12) << "branch " << i;
+        if (e.within_limits) {
+          EXPECT_LT((s.q - e.q).cwiseAbs().maxCoeff(), 1e-12) << "branch " << i;
+        }
         EXPECT_EQ(s.within_limits, e.within_limits) << "branch " << i;
       }
       EXPECT_TRUE(found) << "branch " << i;
