@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "arm_model/urdf_collision.hpp"
+#include "puma_model/urdf_parts.hpp"
 
 namespace wysiwyf::robot {
 
@@ -37,11 +38,7 @@ void collect_collision(const urdf::Link& link, FrameId frame, int body, const Ei
     s.link = link.name;
     s.frame = frame;
     s.body = body;
-    double x, y, z, w;
-    element->origin.rotation.getQuaternion(x, y, z, w);
-    s.link_T_shape.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-    const urdf::Vector3& o = element->origin.position;
-    s.link_T_shape.translation() = Eigen::Vector3d(o.x, o.y, o.z);
+    s.link_T_shape = isometry_of(element->origin);
     s.body_T_shape = body_T_link * s.link_T_shape;
     const urdf::Geometry& g = *element->geometry;
     switch (g.type) {

@@ -5,6 +5,7 @@
 
 #include "arm_model/arm_model.hpp"
 #include "arm_model/kdl_parts.hpp"
+#include "puma_model/rigid.hpp"
 
 namespace wysiwyf::robot {
 
@@ -37,11 +38,7 @@ ArmJacobian ArmModel::jacobian(const JointRef& q, FrameId f) const {
 
 JointVector ArmModel::dls_step(const JointRef& q, const Eigen::Isometry3d& base_T_target, double lambda,
                                FrameId f) const {
-  const Eigen::Isometry3d base_T_frame = fk(q, f);
-  Vector6d error;
-  error.head<3>() = base_T_target.translation() - base_T_frame.translation();
-  const Eigen::AngleAxisd rotation(Eigen::Matrix3d(base_T_target.linear() * base_T_frame.linear().transpose()));
-  error.tail<3>() = rotation.angle() * rotation.axis();
+  const Vector6d error = detail::pose_error(base_T_target, fk(q, f));
   const ArmJacobian J = jacobian(q, f);
   const Matrix6d A = J * J.transpose() + lambda * lambda * Matrix6d::Identity();
   return J.transpose() * A.ldlt().solve(error);

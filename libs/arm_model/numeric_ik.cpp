@@ -9,21 +9,15 @@
 #include <cmath>
 
 #include "arm_model/arm_model.hpp"
+#include "puma_model/rigid.hpp"
 
 namespace wysiwyf::robot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 constexpr double kBaseDamping = 1e-9;  // lambda^2 floor of the LM step [m^2 or rad^2]
 
-// [position error; rotation vector of R_target R^T], in base coordinates.
-Vector6d pose_error(const Eigen::Isometry3d& target, const Eigen::Isometry3d& current) {
-  Vector6d e;
-  e.head<3>() = target.translation() - current.translation();
-  const Eigen::AngleAxisd rotation(Eigen::Matrix3d(target.linear() * current.linear().transpose()));
-  e.tail<3>() = rotation.angle() * rotation.axis();
-  return e;
-}
+using detail::pose_error;
 
 // The largest |v_j| (a plain loop: GCC's warning on Eigen's vectorised reduction over a
 // fixed-capacity vector is a false positive).

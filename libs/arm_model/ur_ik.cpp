@@ -17,10 +17,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "puma_model/rigid.hpp"
+
 namespace wysiwyf::robot::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kReach = 1e-10;     // on the sine/cosine arguments that must stay within [-1, 1]
 constexpr double kSingular = 1e-10;  // |sin t5| below this: wrist singularity
 

@@ -12,58 +12,9 @@
 #include "arm_model/kdl_parts.hpp"
 #include "arm_model/urdf_collision.hpp"
 #include "puma_model/puma_model.hpp"
+#include "puma_model/urdf_parts.hpp"
 
 namespace wysiwyf::robot {
-namespace {
-
-Eigen::Isometry3d pose_of(const urdf::Pose& pose) {
-  double x, y, z, w;
-  pose.rotation.getQuaternion(x, y, z, w);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  return T;
-}
-
-const char* type_name(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    case urdf::Joint::FIXED: return "fixed";
-    default: return "unknown";
-  }
-}
-
-// Accumulates rigid bodies (mass, first moment, inertia about the body origin).
-struct InertiaSum {
-  double mass = 0.0;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d about_origin = Eigen::Matrix3d::Zero();
-
-  void add(double m, const Eigen::Vector3d& com, const Eigen::Matrix3d& inertia_at_com) {
-    mass += m;
-    first_moment += m * com;
-    about_origin += inertia_at_com + m * (com.squaredNorm() * Eigen::Matrix3d::Identity() - com * com.transpose());
-  }
-  BodyInertia body() const {
-    BodyInertia b;
-    b.mass = mass;
-    if (mass > 0.0) {
-      b.com = first_moment / mass;
-      b.inertia = about_origin - mass * (b.com.squaredNorm() * Eigen::Matrix3d::Identity() - b.com * b.com.transpose());
-    } else {
-      b.inertia = about_origin;
-    }
-    b.inertia = 0.5 * (b.inertia + b.inertia.transpose());
-    return b;
-  }
-};
-
-}  // namespace
-
 const char* to_string(ArmIkMethod method) {
   switch (method) {
     case ArmIkMethod::kPumaClosedForm: return "PUMA closed form";
@@ -184,14 +135,14 @@ void ArmModel::load(const std::string& tip, const std::string& base) {
       case urdf::Joint::CONTINUOUS: out.kind = JointKind::kContinuous; break;
       case urdf::Joint::PRISMATIC: out.kind = JointKind::kPrismatic; break;
       default:
-        fail("joint '" + joint.name + "' is " + type_name(joint.type) +
+        fail("joint '" + joint.name + "' is " + joint_type_name(joint.type) +
              "; the chain takes revolute, continuous and prismatic joints");
     }
     const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
     if (!(axis.norm() > 1e-9) || !axis.allFinite()) fail("joint '" + joint.name + "' has a zero or non-finite axis");
     out.axis = axis.normalized();
     if (!joint.limits)
-      fail("joint '" + joint.name + "' (" + type_name(joint.type) +
+      fail("joint '" + joint.name + "' (" + joint_type_name(joint.type) +
            ") has no <limit>: velocity and effort limits are needed (and position limits unless continuous)");
     const urdf::JointLimits& lim = *joint.limits;
     if (out.kind == JointKind::kContinuous) {
@@ -225,7 +176,7 @@ void ArmModel::load(const std::string& tip, const std::string& base) {
           Eigen::Matrix3d I;
           I << in->ixx, in->ixy, in->ixz, in->ixy, in->iyy, in->iyz, in->ixz, in->iyz, in->izz;
           if (!I.allFinite()) fail("link '" + link->name + "' has a non-finite inertia");
-          const Eigen::Isometry3d body_T_com = body_T_link * pose_of(in->origin);
+          const Eigen::Isometry3d body_T_com = body_T_link * isometry_of(in->origin);
           sums[static_cast<std::size_t>(body)].add(in->mass, body_T_com.translation(),
                                                    body_T_com.linear() * I * body_T_com.linear().transpose());
         }
@@ -233,7 +184,7 @@ void ArmModel::load(const std::string& tip, const std::string& base) {
         detail::collect_collision(*link, id, body, body_T_link, collision_, collision_notes_);
         for (const auto& joint : link->child_joints) {
           const urdf::LinkConstSharedPtr child = model->getLink(joint->child_link_name);
-          const Eigen::Isometry3d body_T_joint = body_T_link * pose_of(joint->parent_to_joint_origin_transform);
+          const Eigen::Isometry3d body_T_joint = body_T_link * isometry_of(joint->parent_to_joint_origin_transform);
           if (joint->type == urdf::Joint::FIXED) {
             visit(child, body, body_T_joint);
             continue;
@@ -242,7 +193,7 @@ void ArmModel::load(const std::string& tip, const std::string& base) {
           for (int k = 0; k < n; ++k)
             if (path[static_cast<std::size_t>(k)]->name == joint->name) j = k;
           if (j < 0)
-            fail("joint '" + joint->name + "' (" + type_name(joint->type) + ") at link '" + link->name +
+            fail("joint '" + joint->name + "' (" + joint_type_name(joint->type) + ") at link '" + link->name +
                  "' is off the chain from '" + base + "' to '" + tip +
                  "'; the model holds one serial chain with links fixed to it");
           if (j != body) fail("joint '" + joint->name + "' is out of order in the chain");

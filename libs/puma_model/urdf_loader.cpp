@@ -9,56 +9,9 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "puma_model/puma_model.hpp"
+#include "puma_model/urdf_parts.hpp"
 
 namespace wysiwyf::robot {
-namespace {
-
-Eigen::Matrix3d rotation_of(const urdf::Pose& pose) {
-  double x, y, z, w;
-  pose.rotation.getQuaternion(x, y, z, w);
-  return Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-}
-
-Eigen::Vector3d position_of(const urdf::Pose& pose) { return {pose.position.x, pose.position.y, pose.position.z}; }
-
-const char* type_name(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    case urdf::Joint::FIXED: return "fixed";
-    default: return "unknown";
-  }
-}
-
-// Accumulates rigid bodies (mass, first moment, inertia about the body origin).
-struct InertiaSum {
-  double mass = 0.0;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d about_origin = Eigen::Matrix3d::Zero();
-
-  void add(double m, const Eigen::Vector3d& com, const Eigen::Matrix3d& inertia_at_com) {
-    mass += m;
-    first_moment += m * com;
-    about_origin += inertia_at_com + m * (com.squaredNorm() * Eigen::Matrix3d::Identity() - com * com.transpose());
-  }
-  BodyInertia body() const {
-    BodyInertia b;
-    b.mass = mass;
-    if (mass > 0.0) {
-      b.com = first_moment / mass;
-      b.inertia = about_origin - mass * (b.com.squaredNorm() * Eigen::Matrix3d::Identity() - b.com * b.com.transpose());
-    } else {
-      b.inertia = about_origin;
-    }
-    b.inertia = 0.5 * (b.inertia + b.inertia.transpose());
-    return b;
-  }
-};
-
-}  // namespace
 
 PumaModel::PumaModel(const std::string& urdf_path, const std::string& tip, const std::string& base)
     : urdf_path_(urdf_path) {
@@ -117,7 +70,7 @@ void PumaModel::load(const std::string& tip, const std::string& base) {
     const auto& joint = **it;
     if (joint.type == urdf::Joint::FIXED) continue;
     if (joint.type != urdf::Joint::REVOLUTE)
-      fail("joint '" + joint.name + "' is " + type_name(joint.type) +
+      fail("joint '" + joint.name + "' is " + joint_type_name(joint.type) +
            "; the chain needs revolute joints with position limits");
     if (moving == kDof) fail("more than 6 revolute joints from '" + base + "' to '" + tip + "'");
     const std::size_t j = static_cast<std::size_t>(moving++);
@@ -150,13 +103,14 @@ void PumaModel::load(const std::string& tip, const std::string& base) {
           Eigen::Matrix3d I;
           I << in->ixx, in->ixy, in->ixz, in->ixy, in->iyy, in->iyz, in->ixz, in->iyz, in->izz;
           if (!I.allFinite()) fail("link '" + link->name + "' has a non-finite inertia");
-          const Eigen::Matrix3d Rc = R * rotation_of(in->origin);
-          sums[static_cast<std::size_t>(body)].add(in->mass, p + R * position_of(in->origin), Rc * I * Rc.transpose());
+          const Eigen::Matrix3d Rc = R * isometry_of(in->origin).linear();
+          sums[static_cast<std::size_t>(body)].add(in->mass, p + R * isometry_of(in->origin).translation(),
+                                                   Rc * I * Rc.transpose());
         }
         for (const auto& joint : link->child_joints) {
           const urdf::LinkConstSharedPtr child = model->getLink(joint->child_link_name);
-          const Eigen::Matrix3d Ro = rotation_of(joint->parent_to_joint_origin_transform);
-          const Eigen::Vector3d po = position_of(joint->parent_to_joint_origin_transform);
+          const Eigen::Matrix3d Ro = isometry_of(joint->parent_to_joint_origin_transform).linear();
+          const Eigen::Vector3d po = isometry_of(joint->parent_to_joint_origin_transform).translation();
           int j = -1;
           for (int k = 0; k < kDof; ++k)
             if (joint_names_[static_cast<std::size_t>(k)] == joint->name) j = k;
@@ -167,7 +121,7 @@ void PumaModel::load(const std::string& tip, const std::string& base) {
           } else if (joint->type == urdf::Joint::FIXED) {
             visit(child, body, R * Ro, p + R * po);
           } else {
-            fail("joint '" + joint->name + "' (" + type_name(joint->type) + ") branches off the chain at link '" +
+            fail("joint '" + joint->name + "' (" + joint_type_name(joint->type) + ") branches off the chain at link '" +
                  link->name + "'; the model handles one serial chain with links fixed to it");
           }
         }

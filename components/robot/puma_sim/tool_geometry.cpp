@@ -9,20 +9,9 @@
 
 #include <urdf_parser/urdf_parser.h>
 
+#include "puma_model/urdf_parts.hpp"
+
 namespace wysiwyf::robot::sim {
-namespace {
-
-Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
-  double x, y, z, w;
-  pose.rotation.getQuaternion(x, y, z, w);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  return T;
-}
-
-}  // namespace
-
 ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& model, const std::string& sensor_frame) {
   auto fail = [&](const std::string& what) { throw std::runtime_error("puma_sim: " + urdf_path + ": " + what); };
   {
@@ -59,7 +48,7 @@ ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& m
     const bool measured = std::find(below.begin(), below.end(), name) != below.end();
     const Eigen::Isometry3d base_T_link = model.fk(zero, f);
     if (measured && link->inertial && link->inertial->mass > 0.0) {
-      const Eigen::Vector3d com = sensor_T_base * base_T_link * to_isometry(link->inertial->origin).translation();
+      const Eigen::Vector3d com = sensor_T_base * base_T_link * isometry_of(link->inertial->origin).translation();
       tool.sensor_mass += link->inertial->mass;
       first_moment += link->inertial->mass * com;
     }
@@ -68,7 +57,7 @@ ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& m
       ContactShape s;
       s.link = name;
       s.measured = measured;
-      s.sensor_T_shape = sensor_T_base * base_T_link * to_isometry(collision->origin);
+      s.sensor_T_shape = sensor_T_base * base_T_link * isometry_of(collision->origin);
       double extent = 0.0;
       switch (collision->geometry->type) {
         case urdf::Geometry::BOX: {
