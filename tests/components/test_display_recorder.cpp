@@ -4,6 +4,7 @@
 // Columns of `samples`: t_ns, mode, planner_state, q0..5, qd0..5, hand xyz, plate xyz, plate
 // quaternion xyzw, setpoint xyz, target xyz, target quaternion xyzw, separation, speed_limit,
 // wrist force xyz, target feature, tracked hand xyz and status (the last HandPosition).
+// Columns of `joints` (for arms of any joint count): t_ns, mode, hand xyz, n, q0..n-1, qd0..n-1.
 #include <cstdio>
 #include <fstream>
 
@@ -20,6 +21,7 @@ class TestDisplayRecorder final : public Component {
     ctx.summary("display tests: records the loop at every tick");
     samples_path_ = ctx.param<std::string>("samples", "", "CSV of one row a tick");
     events_path_ = ctx.param<std::string>("events", "", "CSV of the user's events and the mode changes");
+    joints_path_ = ctx.param<std::string>("joints", "", "CSV of every joint and the true hand, one row a tick");
     joints_ = ctx.input<msg::JointState>("joint_state", "", Qos::reliable(8));
     hand_ = ctx.input<msg::PoseStamped>("hand_pose", "", Qos::reliable(8));
     device_ = ctx.input<msg::PoseStamped>("device_pose", "", Qos::reliable(8));
@@ -75,6 +77,7 @@ class TestDisplayRecorder final : public Component {
     }
     const auto& q = j_.position();
     const auto& qd = j_.velocity();
+    if (q.size() < 6 || qd.size() != q.size()) return;  // no joint state yet (rows hold six joints at least)
     const auto& hp = h_.pose().position();
     const auto& dp = d_.pose().position();
     const auto& dq = d_.pose().orientation();
@@ -131,15 +134,37 @@ class TestDisplayRecorder final : public Component {
     std::snprintf(row, sizeof row, ",%.9g,%.9g,%.9g,%d\n", t_.position().x(), t_.position().y(), t_.position().z(),
                   static_cast<int>(t_.status()));
     samples_text_ += row;
+    if (!joints_path_.empty()) record_joints(now);
+  }
+
+  // One row of `joints`: every joint of the arm, whatever their number.
+  void record_joints(Time now) {
+    const auto& q = j_.position();
+    const auto& qd = j_.velocity();
+    char row[96];
+    std::snprintf(row, sizeof row, "%lld,%d,%.9g,%.9g,%.9g,%zu", static_cast<long long>(now.ns),
+                  static_cast<int>(m_.mode()), h_.pose().position().x(), h_.pose().position().y(),
+                  h_.pose().position().z(), q.size());
+    joints_text_ += row;
+    for (double v : q) {
+      std::snprintf(row, sizeof row, ",%.9g", v);
+      joints_text_ += row;
+    }
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      std::snprintf(row, sizeof row, ",%.9g", j < qd.size() ? qd[j] : 0.0);
+      joints_text_ += row;
+    }
+    joints_text_ += "\n";
   }
 
   void deactivate() override {
+    if (!joints_path_.empty()) std::ofstream(joints_path_) << joints_text_;
     if (!samples_path_.empty()) std::ofstream(samples_path_) << samples_text_;
     if (!events_path_.empty()) std::ofstream(events_path_) << event_text_;
   }
 
  private:
-  std::string samples_path_, events_path_, samples_text_, event_text_;
+  std::string samples_path_, events_path_, joints_path_, samples_text_, event_text_, joints_text_;
   msg::DisplayModeKind last_mode_ = msg::MODE_IDLE;
   msg::PlannerState last_planner_ = msg::PLAN_IDLE;
   std::string last_reason_;
