@@ -1,5 +1,5 @@
 // ArmModel's collision shapes: the primitives' point test, the device's shapes below the flange
-// alike on every arm, meshes reported and not loaded, the PUMA URDF's missing arm geometry, and
+// alike on every arm, meshes reported and not loaded, the PUMA URDF's link capsules, and
 // the UR5e's and FR3's primitives covering each link's kinematic skeleton and centre of mass.
 #include <cstdio>
 #include <filesystem>
@@ -73,14 +73,48 @@ TEST(ArmModelCollision, TheDeviceHasTheSameShapesOnEveryArm) {
   }
 }
 
-// config/robots/puma560.urdf has collision geometry for the device only, none for the arm's
-// links (its comment: "the paper has none"); the model reports them.
-TEST(ArmModelCollision, ThePumaUrdfHasNoArmLinkGeometry) {
+// config/robots/puma560.urdf gives each arm link a capsule (a cylinder and a sphere of its radius
+// at each end) along the segment between the link's joint origins (the pedestal from 0.6 m below
+// the base up to it); link5 (zero length between the wrist axes) and the flange carry none.
+TEST(ArmModelCollision, ThePumaUrdfsArmLinksAreCapsulesBetweenTheirJointOrigins) {
   const ArmModel arm(kPumaUrdf);
-  const std::vector<std::string>& missing = arm.links_without_collision();
-  for (const char* link : {"base_link", "link1", "link2", "link3", "link4", "link5", "link6"}) {
-    EXPECT_NE(std::find(missing.begin(), missing.end(), link), missing.end()) << link;
+  const JointVector q0 = JointVector::Zero(arm.dof());
+  struct Capsule {
+    const char* link;
+    double radius;
+    Eigen::Vector3d from, to;  // in the link's frame
+  };
+  auto in_link = [&](const char* link, const char* other) {
+    return (arm.fk(q0, arm.frame(link)).inverse() * arm.fk(q0, arm.frame(other))).translation();
+  };
+  const Capsule expected[] = {
+      {"base_link", 0.09, Eigen::Vector3d(0, 0, -0.6), Eigen::Vector3d::Zero()},
+      {"link1", 0.09, Eigen::Vector3d::Zero(), in_link("link1", "link2")},
+      {"link2", 0.07, Eigen::Vector3d::Zero(), in_link("link2", "link3")},
+      {"link3", 0.055, Eigen::Vector3d::Zero(), in_link("link3", "link4")},
+      {"link4", 0.04, Eigen::Vector3d::Zero(), in_link("link4", "link5")},
+      {"link6", 0.04, Eigen::Vector3d::Zero(), in_link("link6", "flange")},
+  };
+  for (const Capsule& c : expected) {
+    std::vector<const CollisionShape*> cylinders, spheres;
+    for (const CollisionShape& s : arm.collision_shapes()) {
+      if (s.link != c.link) continue;
+      (s.type == ShapeType::kCylinder ? cylinders : spheres).push_back(&s);
+      EXPECT_NE(s.type, ShapeType::kBox) << c.link;
+      EXPECT_NEAR(s.radius, c.radius, 1e-12) << c.link;
+    }
+    ASSERT_EQ(cylinders.size(), 1u) << c.link;
+    ASSERT_EQ(spheres.size(), 2u) << c.link;
+    const CollisionShape& cylinder = *cylinders[0];
+    const Eigen::Vector3d end_a = cylinder.link_T_shape * Eigen::Vector3d(0, 0, -0.5 * cylinder.length);
+    const Eigen::Vector3d end_b = cylinder.link_T_shape * Eigen::Vector3d(0, 0, 0.5 * cylinder.length);
+    const bool forward = (end_a - c.from).norm() < (end_b - c.from).norm();
+    EXPECT_LT(((forward ? end_a : end_b) - c.from).norm(), 1e-9) << c.link;
+    EXPECT_LT(((forward ? end_b : end_a) - c.to).norm(), 1e-9) << c.link;
+    EXPECT_LT((spheres[0]->link_T_shape.translation() - c.from).norm(), 1e-9) << c.link;
+    EXPECT_LT((spheres[1]->link_T_shape.translation() - c.to).norm(), 1e-9) << c.link;
   }
+  EXPECT_EQ(arm.links_without_collision(), (std::vector<std::string>{"link5", "flange"}));
   EXPECT_TRUE(arm.collision_notes().empty());
 }
 
