@@ -1,66 +1,76 @@
 #include "device_geometry/device_geometry.hpp"
 
-#include <string>
+#include <algorithm>
+#include <array>
+#include <stdexcept>
 
 namespace wysiwyf::robot {
 
 namespace {
 
-// A capsule's or cylinder's pose between two points: centred, its z along a -> b.
-Eigen::Isometry3d segment_pose(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), (b - a).normalized()).toRotationMatrix();
-  T.translation() = 0.5 * (a + b);
-  return T;
-}
+constexpr int kLamps = 4;  // marker_0..3 (arm_model/display_frames.hpp)
 
-constexpr float kLinkRadius[4] = {0.09f, 0.07f, 0.055f, 0.04f};  // pedestal-shoulder, upper arm, forearm, wrist
-const Eigen::Vector3d kPedestalFoot(0, 0, -0.6);
+// The part a link is, and the lamp's number for marker_<k>.
+DeviceShape::Part part_of(const std::string& link, int& index) {
+  index = 0;
+  if (link == "dev") return DeviceShape::Part::kPlate;
+  if (link == "knob") return DeviceShape::Part::kKnob;
+  for (int k = 0; k < kLamps; ++k)
+    if (link == "marker_" + std::to_string(k)) {
+      index = k;
+      return DeviceShape::Part::kLamp;
+    }
+  return DeviceShape::Part::kArm;
+}
 
 }  // namespace
 
-DeviceGeometry::DeviceGeometry(const PumaModel& model) : model_(model), dev_(model.frame("dev")) {
-  for (const char* f : {"link1", "link3", "link4", "flange"}) points_.push_back(model.frame(f));
-  for (int m = 0; m < 4; ++m) lamps_.push_back(model.frame("marker_" + std::to_string(m)));
-  // The links' lengths are constant (rigid): measured once, at q = 0.
-  const auto p = joint_points(Vector6d::Zero());
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const double length = (p[i + 1] - p[i]).norm();
-    if (length <= 1e-3) continue;  // coincident joint origins: nothing to draw
+DeviceGeometry::DeviceGeometry(const ArmModel& model) : model_(model) {
+  for (const CollisionShape& c : model.collision_shapes()) {
+    if (!c.supported()) continue;  // a mesh: ArmModel::collision_notes() says so
     DeviceShape s;
-    s.kind = DeviceShape::Kind::kCapsule;
-    s.part = DeviceShape::Part::kLink;
-    s.index = static_cast<int>(i);
-    s.size = Eigen::Vector3f(kLinkRadius[i], static_cast<float>(length / 2), 0);
-    shapes_.push_back(s);
-    segments_.push_back(static_cast<int>(i));
+    s.link = c.link;
+    s.part = part_of(c.link, s.index);
+    switch (c.type) {
+      case ShapeType::kBox:
+        s.kind = DeviceShape::Kind::kBox;
+        s.size = (0.5 * c.box_size).cast<float>();
+        break;
+      case ShapeType::kCylinder:
+        s.kind = DeviceShape::Kind::kCylinder;
+        s.size = Eigen::Vector3f(static_cast<float>(c.radius), static_cast<float>(0.5 * c.length), 0.0f);
+        break;
+      case ShapeType::kSphere:
+        s.kind = DeviceShape::Kind::kSphere;
+        s.size = Eigen::Vector3f(static_cast<float>(c.radius), 0.0f, 0.0f);
+        break;
+      case ShapeType::kMesh: continue;
+    }
+    shapes_.push_back(std::move(s));
+    bodies_.push_back(c.body);
+    body_T_shape_.push_back(c.body_T_shape);
+    if (std::find(used_bodies_.begin(), used_bodies_.end(), c.body) == used_bodies_.end())
+      used_bodies_.push_back(c.body);
   }
-  shapes_.push_back({DeviceShape::Kind::kBox, DeviceShape::Part::kPlate, 0, Eigen::Vector3f(0.1f, 0.1f, 0.005f)});
-  shapes_.push_back({DeviceShape::Kind::kCylinder, DeviceShape::Part::kKnob, 0, Eigen::Vector3f(0.015f, 0.02f, 0)});
-  for (int m = 0; m < 4; ++m)
-    shapes_.push_back({DeviceShape::Kind::kSphere, DeviceShape::Part::kLamp, m, Eigen::Vector3f(0.006f, 0, 0)});
+  auto require = [&](const std::string& link, const char* what) {
+    const bool found =
+        std::any_of(shapes_.begin(), shapes_.end(), [&](const DeviceShape& s) { return s.link == link; });
+    if (!found)
+      throw std::invalid_argument(model.urdf_path() + ": link '" + link + "' (" + what +
+                                  ") has no <collision> box, cylinder or sphere; the camera simulation and the "
+                                  "device mask draw the device from them");
+  };
+  require("dev", "the plate");
+  require("knob", "the plate's knob");
+  for (int k = 0; k < kLamps; ++k) require("marker_" + std::to_string(k), "a lamp on the plate");
 }
 
-std::vector<Eigen::Vector3d> DeviceGeometry::joint_points(const Vector6d& q) const {
-  std::vector<Eigen::Vector3d> p{kPedestalFoot};
-  for (FrameId f : points_) p.push_back(model_.fk(q, f).translation());
-  return p;
-}
-
-void DeviceGeometry::poses(const Vector6d& q, std::vector<Eigen::Isometry3d>& base_T_shape) const {
+void DeviceGeometry::poses(const JointRef& q, std::vector<Eigen::Isometry3d>& base_T_shape) const {
+  std::array<Eigen::Isometry3d, kMaxArmDof + 1> base_T_body;  // on the stack: no allocation per call
+  for (int body : used_bodies_) base_T_body[static_cast<std::size_t>(body)] = model_.fk(q, model_.body_frame(body));
   base_T_shape.resize(shapes_.size());
-  const auto p = joint_points(q);
-  const Eigen::Isometry3d base_T_dev = model_.fk(q, dev_);
-  std::size_t k = 0;
-  for (int segment : segments_) {
-    const auto i = static_cast<std::size_t>(segment);
-    base_T_shape[k++] = segment_pose(p[i], p[i + 1]);
-  }
-  base_T_shape[k] = base_T_dev;
-  base_T_shape[k++].translate(Eigen::Vector3d(0, 0, -0.005));  // the plate's front face is dev's z = 0
-  base_T_shape[k] = base_T_dev;
-  base_T_shape[k++].translate(Eigen::Vector3d(0, 0, 0.02));  // the knob, 4 cm out of the face
-  for (FrameId lamp : lamps_) base_T_shape[k++] = model_.fk(q, lamp);
+  for (std::size_t i = 0; i < shapes_.size(); ++i)
+    base_T_shape[i] = base_T_body[static_cast<std::size_t>(bodies_[i])] * body_T_shape_[i];
 }
 
 }  // namespace wysiwyf::robot

@@ -8,7 +8,6 @@ namespace wysiwyf::render {
 
 inline Mesh device_mesh(const robot::DeviceShape& s) {
   switch (s.kind) {
-    case robot::DeviceShape::Kind::kCapsule: return Mesh::capsule(s.size.x(), s.size.y());
     case robot::DeviceShape::Kind::kCylinder: return Mesh::cylinder(s.size.x(), s.size.y());
     case robot::DeviceShape::Kind::kSphere: return Mesh::sphere(s.size.x());
     case robot::DeviceShape::Kind::kBox: break;

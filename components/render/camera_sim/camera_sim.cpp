@@ -1,6 +1,6 @@
 // camera_sim: what the real camera would see (paper section 5.1, Fig. 6a): blue cloth on the
-// table and behind it, the PUMA's links wrapped in blue (posed from joint state through the
-// robot model), the aluminium plate with its four lamp markers and the knob, and the user's hand
+// table and behind it, the arm's links wrapped in blue (the collision shapes of its URDF, posed
+// from joint state through the arm model), the aluminium plate with its four lamp markers and the knob, and the user's hand
 // (skin, pointing: the index fingertip at the true fingertip pose), optionally with a bright LED
 // on the fingertip's nail (the fingertip marker the paper cites for hand tracking); with lighting
 // variation, sensor noise, optical blur and blue spill on the hand's edges. Beside the image it
@@ -19,10 +19,11 @@
 #include "device_geometry/device_mesh.hpp"
 #include "frames/look_at.hpp"
 #include "image/image_view.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_model/display_frames.hpp"
 #include "sensor_effects.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/joint_positions.hpp"
 #include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -55,8 +56,9 @@ const Eigen::Vector3d kMarkerOnFinger(-0.006, 0.0, kFingerRadius);
 class CameraSim final : public Component {
  public:
   void configure(Context& ctx) override {
-    ctx.summary("simulated camera: cloth, blue-wrapped PUMA, plate with lamps, hand; with ground truth");
-    urdf_ = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description (cwd, then config/)");
+    ctx.summary("simulated camera: cloth, blue-wrapped arm, plate with lamps, hand; with ground truth");
+    urdf_ = ctx.param<std::string>("urdf", "robots/puma560.urdf",
+                                   "the arm's URDF with the display's frames (cwd, then config/)");
     camera_.width = ctx.param<int>("width", 640, "image width, px", Range{16, 1280});
     camera_.height = ctx.param<int>("height", 480, "image height, px", Range{16, 720});
     const auto K =
@@ -118,7 +120,13 @@ class CameraSim final : public Component {
     if (eye == target) ctx.reject("look_at", "must differ from eye");
     base_T_eye_ =
         frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
-    model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "flange");
+    try {
+      model_ = robot::load_display_arm(find_config_file(urdf_), "flange");
+      device_ = std::make_unique<robot::DeviceGeometry>(*model_);
+      q_ = robot::JointVector::Zero(model_->dof());
+    } catch (const std::exception& e) {
+      ctx.reject("urdf", e.what());
+    }
   }
 
   void activate() override {
@@ -135,7 +143,6 @@ class CameraSim final : public Component {
     thumb_ = renderer_->add_mesh(Mesh::capsule(0.0105f, 0.022f));
     led_ = renderer_->add_mesh(Mesh::sphere(0.005f));
     // The arm and its device (libs/device_geometry): a mesh per shape, the sizes are constant.
-    device_ = std::make_unique<robot::DeviceGeometry>(*model_);
     for (const auto& shape : device_->shapes()) device_meshes_.push_back(renderer_->add_mesh(device_mesh(shape)));
     effects_ = SensorEffects(
         SensorEffectsParams{noise_, blur_, spill_, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)},
@@ -146,9 +153,12 @@ class CameraSim final : public Component {
     GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     auto stamp = [&](const std_msgs::Header& h) { return h.stamp_ns() > 0 ? h.stamp_ns() : now.ns; };
     while (take_checked(joints_in_, joints_msg_)) {
-      const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-      q_ = q, have_joints_ = true;
-      if (exposure_ > 0) joint_history_.emplace_back(stamp(joints_msg_.header()), q);
+      if (std::string why = msgs::joint_positions(joints_msg_, model_->dof(), q_); !why.empty()) {
+        reject(joints_in_, why);
+        continue;
+      }
+      have_joints_ = true;
+      if (exposure_ > 0) joint_history_.emplace_back(stamp(joints_msg_.header()), q_);
     }
     while (take_checked(hand_in_, hand_msg_)) {
       const Eigen::Isometry3d T = msgs::to_isometry(hand_msg_.pose());
@@ -271,7 +281,7 @@ class CameraSim final : public Component {
         const robot::DeviceShape& shape = device_->shapes()[i];
         const Eigen::Isometry3d eye_T_shape = eye_T_base * device_poses_[i];
         switch (shape.part) {
-          case robot::DeviceShape::Part::kLink:
+          case robot::DeviceShape::Part::kArm:
             renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kCloth), !mask_pass);
             break;
           case robot::DeviceShape::Part::kPlate:
@@ -313,7 +323,7 @@ class CameraSim final : public Component {
   // state stamped at or before it) and the camera pose view(t). The current state is restored.
   template <class View>
   void expose(Time now, std::vector<std::uint8_t>& rgb, View view) {
-    const robot::Vector6d q_now = q_;
+    const robot::JointVector q_now = q_;
     const Eigen::Isometry3d hand_now = base_T_hand_;
     exposure_sum_.create(camera_.height, camera_.width, CV_32FC3);
     exposure_sum_.setTo(0);
@@ -353,7 +363,7 @@ class CameraSim final : public Component {
   double noise_ = 2, blur_ = 0.7, flicker_ = 0.04, spill_ = 0.3, baseline_ = 0;
   int seed_ = 1;
   Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity(), base_T_hand_ = Eigen::Isometry3d::Identity();
-  std::unique_ptr<robot::PumaModel> model_;
+  std::unique_ptr<robot::ArmModel> model_;
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;
   int table_ = -1, backdrop_ = -1, palm_ = -1, index_ = -1, curled_ = -1, thumb_ = -1, led_ = -1;
@@ -362,7 +372,7 @@ class CameraSim final : public Component {
   std::unique_ptr<robot::DeviceGeometry> device_;
   std::vector<int> device_meshes_;
   std::vector<Eigen::Isometry3d> device_poses_;
-  robot::Vector6d q_ = robot::Vector6d::Zero();
+  robot::JointVector q_;
   bool have_joints_ = false, have_hand_ = false;
   std::int64_t start_ns_ = -1;
   std::uint64_t seq_ = 0;
@@ -370,7 +380,7 @@ class CameraSim final : public Component {
   std::vector<std::uint8_t> rgb_, mask_rgb_, right_rgb_, sample_rgb_;
   double exposure_ = 0;
   int exposure_samples_ = 8;
-  std::deque<std::pair<std::int64_t, robot::Vector6d>> joint_history_;
+  std::deque<std::pair<std::int64_t, robot::JointVector>> joint_history_;
   std::deque<std::pair<std::int64_t, Eigen::Isometry3d>> hand_history_;
   cv::Mat exposure_sum_;
   std::vector<float> depth_;

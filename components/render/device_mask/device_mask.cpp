@@ -1,5 +1,5 @@
 // device_mask: where the real device is in the camera image, from its geometry (the robot model
-// and libs/device_geometry), the measured joints and the camera's pose: the device's metric depth
+// and libs/device_geometry: the collision shapes of the arm's URDF), the measured joints and the camera's pose: the device's metric depth
 // per pixel (0 where it is not). The compositor keeps the device out of the real layer with it
 // and lets depth decide only between the hand and the virtual scene: the real plate, knob, lamps
 // and arm never show through a virtual surface, while a finger in front of the plate still does.
@@ -13,9 +13,10 @@
 #include "image/image_view.hpp"
 #include "offscreen_gl/gl_context.hpp"
 #include "offscreen_gl/offscreen_renderer.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_model/display_frames.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/joint_positions.hpp"
 #include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -40,7 +41,7 @@ class DeviceMask final : public Component {
         "depth", "the device's metric depth along the optical axis, 32FC1, 0 where the device is not", Qos::sensor(2));
     if (camera_.near_m >= camera_.far_m) ctx.reject("far", "must be larger than near");
     try {
-      model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "flange");
+      model_ = robot::load_display_arm(find_config_file(urdf_), "flange");
       device_ = std::make_unique<robot::DeviceGeometry>(*model_);
     } catch (const std::exception& e) {
       ctx.reject("urdf", e.what());
@@ -57,8 +58,12 @@ class DeviceMask final : public Component {
     GlContext::Scope gl(*gl_);  // free again after the tick: the next may run on another thread
     if (info_in_.take_latest(info_msg_)) take_camera_info();
     while (take_checked(joints_in_, joints_msg_)) {
-      const robot::Vector6d q = msgs::joint_positions(joints_msg_);
-      joints_.push_back({joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, q});
+      JointSample sample{joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, {}};
+      if (std::string why = msgs::joint_positions(joints_msg_, model_->dof(), sample.q); !why.empty()) {
+        reject(joints_in_, why);
+        continue;
+      }
+      joints_.push_back(sample);
     }
     while (joints_.size() > 1 && joints_.front().t < now.ns - 1'000'000'000) joints_.pop_front();
     bool fresh = false;
@@ -87,7 +92,7 @@ class DeviceMask final : public Component {
  private:
   struct JointSample {
     std::int64_t t = 0;
-    robot::Vector6d q;
+    robot::JointVector q;
   };
 
   void take_camera_info() {
@@ -110,7 +115,7 @@ class DeviceMask final : public Component {
   std::string urdf_;
   double grow_ = 0.004;
   Pinhole camera_;
-  std::unique_ptr<robot::PumaModel> model_;
+  std::unique_ptr<robot::ArmModel> model_;
   std::unique_ptr<robot::DeviceGeometry> device_;
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;
