@@ -13,7 +13,7 @@
 #include "arm_clearance/arm_clearance.hpp"
 #include "arm_clearance/speed_separation.hpp"
 #include "display_support.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_model/arm_model.hpp"
 
 namespace wysiwyf::test {
 
@@ -23,8 +23,8 @@ constexpr int kSurface = 1, kAdmittance = 2;
 constexpr int kTouch = 1, kMiss = 2;
 constexpr double kFingerRadius = 0.01, kToolMass = 1.1563;
 
-robot::PumaModel& model() {
-  static robot::PumaModel m(std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf", "dev");
+robot::ArmModel& model() {
+  static robot::ArmModel m(std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf", "dev");
   return m;
 }
 
@@ -49,7 +49,7 @@ SsmCheck check_ssm(const LoopRun& run) {
       const double s = std::max(0.0, p.distance - kFingerRadius);
       c.min_separation = std::min(c.min_separation, s);
       const double excess = p.approach_speed - ssm.allowed_speed(s);
-      if (getenv("SSM_DIAG") && k.t > 2.19 && k.t < 2.24 && std::string(p.name) == "plate")
+      if (getenv("SSM_DIAG") && k.t > 2.19 && k.t < 2.24 && std::string(p.name) == "dev box")
         std::printf("DIAG %.3f plate d %.4f v %.4f nearest %s qd %s\n", k.t, p.distance, p.approach_speed,
                     ::testing::PrintToString(std::vector<double>(p.nearest.data(), p.nearest.data() + 3)).c_str(),
                     ::testing::PrintToString(std::vector<double>(k.qd.data(), k.qd.data() + 6)).c_str());

@@ -17,11 +17,11 @@ std::vector<Eigen::Isometry3d> plate_poses(const haptics::DisplayFeature& featur
   return poses;
 }
 
-std::string path_reachable(const robot::PumaModel& model, PlatePath path, const robot::Vector6d& q_now,
-                           robot::Vector6d& q_end, double step, double max_joint_step) {
-  robot::Vector6d q = q_now;
+std::string path_reachable(const robot::ArmModel& model, PlatePath path, const robot::JointRef& q_now,
+                           robot::JointVector& q_end, double step, double max_joint_step) {
+  robot::JointVector q = q_now;
   while (true) {
-    const robot::IkResult ik = model.ik_nearest(path.pose(), q);
+    const robot::ArmIkResult ik = model.ik_nearest(path.pose(), q);
     if (!ik.ok())
       return std::string("the arm cannot take the plate pose ") + std::to_string(path.remaining_time()) +
              " s before the target: " + robot::to_string(ik.status);

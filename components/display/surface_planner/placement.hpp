@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "arm_model/arm_model.hpp"
 #include "plate_path.hpp"
-#include "puma_model/puma_model.hpp"
 #include "scene/scene.hpp"
 
 namespace wysiwyf::display {
@@ -18,10 +18,11 @@ namespace wysiwyf::display {
 std::vector<Eigen::Isometry3d> plate_poses(const haptics::DisplayFeature& feature, const Eigen::Isometry3d& base_T_obj,
                                            const Eigen::Isometry3d& base_T_now);
 
-// Whether the arm, at q_now, can follow `path` to its end: inverse kinematics every `step`
-// seconds of the path at full speed, each solution within limits and within max_joint_step of the
-// last (no branch change). Empty when it can; else why not. q_end: the joints at the end.
-std::string path_reachable(const robot::PumaModel& model, PlatePath path, const robot::Vector6d& q_now,
-                           robot::Vector6d& q_end, double step = 0.01, double max_joint_step = 0.35);
+// Whether the arm, at q_now, can follow `path` (poses of the model's tip frame) to its end: inverse
+// kinematics every `step` seconds of the path at full speed, each solution within limits and
+// within max_joint_step of the last (no branch change). Empty when it can; else why not. q_end:
+// the joints at the end.
+std::string path_reachable(const robot::ArmModel& model, PlatePath path, const robot::JointRef& q_now,
+                           robot::JointVector& q_end, double step = 0.01, double max_joint_step = 0.35);
 
 }  // namespace wysiwyf::display

@@ -4,14 +4,15 @@
 
 namespace wysiwyf::display {
 
-double SeparationMonitor::kappa(const PlatePath& path, const robot::Vector6d& q, const Eigen::Vector3d& hand) {
+double SeparationMonitor::kappa(const PlatePath& path, const robot::JointRef& q, const Eigen::Vector3d& hand) {
   const double peak = std::max(path.peak_velocity().norm(), 1e-9);
   const double scale = std::max(path.velocity().norm() / peak, 0.1);
-  robot::Vector6d x;
+  Eigen::Matrix<double, 6, 1> x;
   x << path.peak_velocity() * scale, path.peak_angular_velocity() * scale;
   // Joint rates at that velocity (damped least squares: near a singularity they stay finite).
-  const robot::Matrix6d J = model_.jacobian(q);
-  const robot::Vector6d qd = J.transpose() * (J * J.transpose() + 1e-4 * robot::Matrix6d::Identity()).ldlt().solve(x);
+  const robot::ArmJacobian J = model_.jacobian(q);
+  const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose() + 1e-4 * Eigen::Matrix<double, 6, 6>::Identity();
+  const robot::JointVector qd = J.transpose() * JJt.ldlt().solve(x);
   double kappa = std::numeric_limits<double>::infinity();
   separation_ = std::numeric_limits<double>::infinity();
   for (const auto& p : clearance_.evaluate(q, qd, hand)) {
@@ -24,9 +25,9 @@ double SeparationMonitor::kappa(const PlatePath& path, const robot::Vector6d& q,
   return kappa;
 }
 
-void SeparationMonitor::measure(const robot::Vector6d& q, const Eigen::Vector3d& hand) {
+void SeparationMonitor::measure(const robot::JointRef& q, const Eigen::Vector3d& hand) {
   separation_ = std::numeric_limits<double>::infinity();
-  for (const auto& p : clearance_.evaluate(q, robot::Vector6d::Zero(), hand)) {
+  for (const auto& p : clearance_.evaluate(q, still_, hand)) {
     const double s = std::max(0.0, p.distance - finger_radius_);
     if (s < separation_) separation_ = s, nearest_part_ = p.name;
   }

@@ -1,6 +1,6 @@
 #pragma once
 // Speed and separation monitoring of the plate's planned motion (ISO/TS 15066, robot::SsmParams):
-// for each part of the arm (ArmClearance: upper arm, forearm, wrist, sensor, plate, knob) the
+// for each part of the arm (ArmClearance: the collision shapes of its URDF) the
 // separation S to the hand and how fast the planned motion carries the part toward it; the path's
 // clock may run at the largest rate kappa at which no part approaches faster than the protective
 // distance allows at its S. Within it an approaching motion stops; moving away is always allowed.
@@ -9,18 +9,20 @@
 
 #include "arm_clearance/arm_clearance.hpp"
 #include "arm_clearance/speed_separation.hpp"
+#include "arm_model/arm_model.hpp"
 #include "plate_path.hpp"
-#include "puma_model/puma_model.hpp"
 
 namespace wysiwyf::display {
 
 class SeparationMonitor {
  public:
-  // model and clearance outlive the monitor; finger_radius: m taken off every separation.
-  SeparationMonitor(const robot::PumaModel& model, const robot::ArmClearance& clearance, const robot::SsmParams& ssm,
+  // model (its tip the plate's frame) and clearance outlive the monitor; finger_radius: m taken
+  // off every separation.
+  SeparationMonitor(const robot::ArmModel& model, const robot::ArmClearance& clearance, const robot::SsmParams& ssm,
                     double finger_radius, double speed_without_hand)
       : model_(model),
         clearance_(clearance),
+        still_(robot::JointVector::Zero(model.dof())),
         ssm_(ssm),
         finger_radius_(finger_radius),
         without_hand_(speed_without_hand) {}
@@ -29,9 +31,9 @@ class SeparationMonitor {
   // path's current velocity, but never below a tenth of its segment's peak (a straight line at a
   // fixed turn: only the speed varies along it), so a move does not start toward a hand inside
   // the protective distance, and its last millimetres are not held up.
-  double kappa(const PlatePath& path, const robot::Vector6d& q, const Eigen::Vector3d& hand);
+  double kappa(const PlatePath& path, const robot::JointRef& q, const Eigen::Vector3d& hand);
   // The separation from the hand to the arm's nearest part, the arm still.
-  void measure(const robot::Vector6d& q, const Eigen::Vector3d& hand);
+  void measure(const robot::JointRef& q, const Eigen::Vector3d& hand);
   // The kappa without a tracked hand: the plate at speed_without_hand at most.
   double kappa_without_hand(const PlatePath& path) const;
   // The lowest kappa for the next tick (dt s) at which the plate's speed falls by no more than the
@@ -47,8 +49,9 @@ class SeparationMonitor {
   double speed_without_hand() const { return without_hand_; }
 
  private:
-  const robot::PumaModel& model_;
+  const robot::ArmModel& model_;
   const robot::ArmClearance& clearance_;
+  robot::JointVector still_;  // zero joint rates (the arm still)
   robot::SsmParams ssm_;
   double finger_radius_, without_hand_;
   double separation_ = std::numeric_limits<double>::infinity(), allowed_ = 0;

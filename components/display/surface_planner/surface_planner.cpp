@@ -82,12 +82,16 @@ void SurfacePlanner::configure(Context& ctx) {
     scene_ = haptics::load_scene(find_config_file(scene_path_));
     if (scene_.features.empty())
       ctx.reject("scene", "'" + scene_path_ + "' declares no features: for the plate to display");
-    model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf_), "dev");
-    clearance_ =
-        std::make_unique<robot::ArmClearance>(*model_, scene_.device.plate_half, scene_.device.knob_offset.z(), 0.015);
-    monitor_ = std::make_unique<SeparationMonitor>(*model_, *clearance_, ssm_, finger_radius_, speed_without_hand_);
   } catch (const std::exception& e) {
     ctx.reject("scene", e.what());
+  }
+  try {
+    model_ = robot::load_display_arm(find_config_file(urdf_), "dev");
+    q_ = robot::JointVector::Zero(model_->dof());
+    clearance_ = std::make_unique<robot::ArmClearance>(*model_);
+    monitor_ = std::make_unique<SeparationMonitor>(*model_, *clearance_, ssm_, finger_radius_, speed_without_hand_);
+  } catch (const std::exception& e) {
+    ctx.reject("urdf", e.what());
   }
 }
 
@@ -201,7 +205,7 @@ void SurfacePlanner::plan(const haptics::DisplayFeature& f, const Eigen::Isometr
     }
     PlatePath path(limits_);
     path.plan(cmd_, via, target);
-    robot::Vector6d q_end;
+    robot::JointVector q_end;
     const std::string why = path_reachable(*model_, path, q_, q_end);
     if (why.empty()) {
       path_ = path;

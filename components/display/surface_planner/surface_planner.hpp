@@ -25,6 +25,7 @@
 #include <memory>
 
 #include "arm_clearance/arm_clearance.hpp"
+#include "arm_model/display_frames.hpp"
 #include "feature_choice.hpp"
 #include "hand_filter.hpp"
 #include "placement.hpp"
@@ -33,6 +34,7 @@
 #include "scene/scene.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/joint_positions.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::display {
@@ -80,7 +82,7 @@ class SurfacePlanner final : public Component {
   // parameters and models
   std::string scene_path_, urdf_;
   haptics::Scene scene_;
-  std::unique_ptr<robot::PumaModel> model_;
+  std::unique_ptr<robot::ArmModel> model_;
   std::unique_ptr<robot::ArmClearance> clearance_;
   std::unique_ptr<SeparationMonitor> monitor_;
   std::unique_ptr<FeatureChooser> chooser_;
@@ -92,7 +94,7 @@ class SurfacePlanner final : public Component {
   // what it knows
   HandFilter hand_;
   std::vector<Eigen::Isometry3d> base_T_obj_;
-  robot::Vector6d q_ = robot::Vector6d::Zero();
+  robot::JointVector q_;
   Eigen::Isometry3d device_ = Eigen::Isometry3d::Identity(), commanded_ = Eigen::Isometry3d::Identity();
   bool have_joints_ = false, have_device_ = false, have_commanded_ = false;
   std::int64_t joints_ns_ = 0, device_ns_ = 0;

@@ -27,8 +27,13 @@ void SurfacePlanner::read_inputs(std::int64_t now_ns) {
     if (body < 0) continue;
     base_T_obj_[static_cast<std::size_t>(body)] = msgs::to_isometry(object_msg_.pose());
   }
-  while (take_checked(joints_in_, joints_msg_))
-    q_ = msgs::joint_positions(joints_msg_), have_joints_ = true, joints_ns_ = now_ns;
+  while (take_checked(joints_in_, joints_msg_)) {
+    if (std::string why = msgs::joint_positions(joints_msg_, model_->dof(), q_); !why.empty()) {
+      reject(joints_in_, why);
+      continue;
+    }
+    have_joints_ = true, joints_ns_ = now_ns;
+  }
   while (take_checked(device_in_, device_msg_)) {
     const Eigen::Isometry3d T = msgs::to_isometry(device_msg_.pose());
     device_ = T, have_device_ = true, device_ns_ = now_ns;
