@@ -10,9 +10,10 @@
 
 #include "extrinsics_file.hpp"
 #include "frames/pose_covariance.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_model/display_frames.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/joint_positions.hpp"
 #include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -26,7 +27,7 @@ class CameraFixed final : public Component {
     const auto path = ctx.param<std::string>(
         "extrinsics", "",
         "OpenCV FileStorage file with rvec/tvec (solvePnP's), eye_T_base or base_T_eye (cwd, then config/)");
-    const auto urdf = ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description with the frame dev");
+    const auto urdf = ctx.param<std::string>("urdf", "robots/puma560.urdf", "the arm's URDF with the frame dev");
     const double position_sigma =
         ctx.param<double>("position_sigma", 0.001, "the calibration's position uncertainty, m", Range{0, 1});
     const double rotation_sigma =
@@ -49,15 +50,26 @@ class CameraFixed final : public Component {
     if (path.empty()) return ctx.reject("extrinsics", "expected the camera's calibration file");
     try {
       eye_T_base_ = load_eye_T_base(find_config_file(path));
-      model_ = std::make_unique<robot::PumaModel>(find_config_file(urdf), "flange");
-      dev_ = model_->frame("dev");
     } catch (const std::exception& e) {
-      ctx.reject(model_ ? "robot" : "extrinsics", e.what());
+      ctx.reject("extrinsics", e.what());
+    }
+    try {
+      model_ = robot::load_display_arm(find_config_file(urdf), "flange");
+      dev_ = model_->frame("dev");
+      q_ = robot::JointVector::Zero(model_->dof());
+    } catch (const std::exception& e) {
+      ctx.reject("urdf", e.what());
     }
   }
 
   void tick(Time now) override {
-    while (take_checked(joints_in_, joints_msg_)) q_ = msgs::joint_positions(joints_msg_), have_joints_ = true;
+    while (take_checked(joints_in_, joints_msg_)) {
+      if (std::string why = msgs::joint_positions(joints_msg_, model_->dof(), q_); !why.empty()) {
+        reject(joints_in_, why);
+        continue;
+      }
+      have_joints_ = true;
+    }
     // The frame these poses are for: the newest image's, or now without a camera.
     std::int64_t stamp = now.ns;
     if (info_in_.take_latest(info_msg_) && info_msg_.header().stamp_ns() > 0) stamp = info_msg_.header().stamp_ns();
@@ -83,9 +95,9 @@ class CameraFixed final : public Component {
 
   Eigen::Isometry3d eye_T_base_ = Eigen::Isometry3d::Identity();
   Eigen::Matrix<double, 6, 6> cov_;
-  std::unique_ptr<robot::PumaModel> model_;
+  std::unique_ptr<robot::ArmModel> model_;
   robot::FrameId dev_{};
-  robot::Vector6d q_ = robot::Vector6d::Zero();
+  robot::JointVector q_;
   bool have_joints_ = false;
   std::uint64_t seq_ = 0;
   msg::JointState joints_msg_;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "puma_model/types.hpp"
+#include "arm_model/arm_types.hpp"
 
 namespace wysiwyf::vision {
 
@@ -13,13 +13,13 @@ class JointHistory {
  public:
   static constexpr int kCapacity = 256;  // 0.256 s of a 1 kHz stream
 
-  void add(std::int64_t stamp_ns, const robot::Vector6d& q) {
+  void add(std::int64_t stamp_ns, const robot::JointVector& q) {
     entries_[static_cast<std::size_t>(next_)] = Entry{stamp_ns, q};
     next_ = (next_ + 1) % kCapacity;
     if (size_ < kCapacity) ++size_;
   }
   // The sample nearest in time to stamp_ns (the newest of equals); false when there is none.
-  bool at(std::int64_t stamp_ns, robot::Vector6d& q) const {
+  bool at(std::int64_t stamp_ns, robot::JointVector& q) const {
     std::int64_t best = -1;
     for (int i = 0; i < size_; ++i) {
       const Entry& e = entries_[static_cast<std::size_t>((next_ - 1 - i + kCapacity) % kCapacity)];
@@ -33,7 +33,7 @@ class JointHistory {
  private:
   struct Entry {
     std::int64_t stamp_ns = 0;
-    robot::Vector6d q = robot::Vector6d::Zero();
+    robot::JointVector q;  // the arm's n joints, stored inline
   };
   std::array<Entry, kCapacity> entries_{};
   int next_ = 0, size_ = 0;

@@ -1,7 +1,7 @@
 // marker_tracker: where the camera is (paper section 2.2 STEP 1 and section 5.1): the four lamps
 // on the device plate, found in search windows around where the filter predicts them, drive an
 // extended Kalman filter on eye_T_base in which the device's motion (joint state through the
-// robot model) is a known input. Publishes eye_T_base (eq. 6: where the virtual environment is
+// arm's model, any serial arm's URDF) is a known input. Publishes eye_T_base (eq. 6: where the virtual environment is
 // drawn), eye_T_dev (eq. 4: where the virtual object is drawn), their covariances, and what it
 // saw. `device_motion: state` is the paper's first prototype for comparison: the filter tracks
 // eye_T_dev and the robot's motion disturbs the background.
@@ -17,9 +17,10 @@
 #include "plate_tracker.hpp"
 #include "frames/look_at.hpp"
 #include "image/image_view.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_model/display_frames.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/joint_positions.hpp"
 #include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -31,7 +32,7 @@ class MarkerTracker final : public Component {
   void configure(Context& ctx) override {
     ctx.summary("camera pose from the plate's four lamps: EKF on eye_T_base with the robot's motion as a known input");
     const auto urdf =
-        ctx.param<std::string>("robot", "robots/puma560.urdf", "robot description with frames dev and marker_0..3");
+        ctx.param<std::string>("urdf", "robots/puma560.urdf", "the arm's URDF with frames dev and marker_0..3");
     intrinsics_ =
         ctx.param<std::vector<double>>("intrinsics", {}, "fx fy cx cy, px (no distortion); empty: from camera_info",
                                        Range{0, 1e5}, Length::exactly_or_empty(4));
@@ -124,10 +125,13 @@ class MarkerTracker final : public Component {
       s.prior_eye_T_base = frames::look_at(eye, at, s.up_in_base).inverse();
       s.prior_sigma_m = prior_sigma[0], s.prior_sigma_rad = prior_sigma[1];
     }
-    const std::string path = find_config_file(urdf);
-    model_ = std::make_unique<robot::PumaModel>(path, "flange");
-    dev_ = model_->frame("dev");
-    tracker_ = std::make_unique<PlateTracker>(PlateMarkers::from_robot(path, lamp_radius), s);
+    try {
+      model_ = robot::load_display_arm(find_config_file(urdf), "flange");
+      dev_ = model_->frame("dev");
+      tracker_ = std::make_unique<PlateTracker>(PlateMarkers::from_arm(*model_, lamp_radius), s);
+    } catch (const std::exception& e) {
+      ctx.reject("urdf", e.what());
+    }
     if (intrinsics_.size() == 4) camera_.emplace(intrinsics_[0], intrinsics_[1], intrinsics_[2], intrinsics_[3]);
   }
 
@@ -145,7 +149,7 @@ class MarkerTracker final : public Component {
     if (!camera_)
       return warn_once("no intrinsics yet: set `intrinsics` or connect camera_info; images are skipped until then");
     const std::int64_t stamp = frame_.header().stamp_ns() ? frame_.header().stamp_ns() : now.ns;
-    robot::Vector6d q;
+    robot::JointVector q;
     if (!joints_.at(stamp, q))
       return warn_once("no joint state yet: the device's pose is unknown; images are skipped until then");
     const Eigen::Isometry3d base_T_dev = model_->fk(q, dev_);
@@ -173,8 +177,12 @@ class MarkerTracker final : public Component {
   }
 
   void read_joints(Time now) {
+    robot::JointVector q;
     while (take_checked(joints_in_, joints_msg_)) {
-      const robot::Vector6d q = msgs::joint_positions(joints_msg_);
+      if (std::string why = msgs::joint_positions(joints_msg_, model_->dof(), q); !why.empty()) {
+        reject(joints_in_, why);
+        continue;
+      }
       joints_.add(joints_msg_.header().stamp_ns() ? joints_msg_.header().stamp_ns() : now.ns, q);
     }
   }
@@ -226,7 +234,7 @@ class MarkerTracker final : public Component {
   }
 
   std::vector<double> intrinsics_;
-  std::unique_ptr<robot::PumaModel> model_;
+  std::unique_ptr<robot::ArmModel> model_;
   robot::FrameId dev_;
   std::unique_ptr<PlateTracker> tracker_;
   std::optional<CameraModel> camera_;

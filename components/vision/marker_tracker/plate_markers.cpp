@@ -3,21 +3,19 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "puma_model/puma_model.hpp"
-
 namespace wysiwyf::vision {
 
-PlateMarkers PlateMarkers::from_robot(const std::string& urdf_path, double lamp_radius) {
-  const robot::PumaModel model(urdf_path, "flange");
+PlateMarkers PlateMarkers::from_arm(const robot::ArmModel& model, double lamp_radius) {
   PlateMarkers m;
   m.lamp_radius = lamp_radius;
-  const robot::Vector6d q0 = robot::Vector6d::Zero();  // the frames are fixed to the plate: any q will do
+  // The frames are fixed to the plate: any q will do.
+  const robot::JointVector q0 = robot::JointVector::Zero(model.dof());
   const Eigen::Isometry3d dev_T_base = model.fk(q0, model.frame("dev")).inverse();
   for (int i = 0; i < 4; ++i) {
     const std::string name = "marker_" + std::to_string(i);
     m.dev_p[static_cast<std::size_t>(i)] = (dev_T_base * model.fk(q0, model.frame(name))).translation();
     if (std::abs(m.dev_p[static_cast<std::size_t>(i)].z()) > 1e-6)
-      throw std::invalid_argument(urdf_path + ": frame " + name + " lies " +
+      throw std::invalid_argument(model.urdf_path() + ": frame " + name + " lies " +
                                   std::to_string(m.dev_p[static_cast<std::size_t>(i)].z()) +
                                   " m off the plate's face (dev z = 0); the tracker expects the lamps on it");
   }

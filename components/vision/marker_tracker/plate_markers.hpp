@@ -10,6 +10,8 @@
 #include <array>
 #include <string>
 
+#include "arm_model/arm_model.hpp"
+
 namespace wysiwyf::vision {
 
 struct PlateMarkers {
@@ -17,10 +19,10 @@ struct PlateMarkers {
   Eigen::Vector3d dev_normal = Eigen::Vector3d::UnitZ();  // out of the plate's front face
   double lamp_radius = 0.006;                             // m; 0: point-like lamps
 
-  // From the robot description: frames marker_0..3 relative to dev. Throws
-  // std::runtime_error when the file is not readable or the frames are missing, and
-  // std::invalid_argument when the lamps do not lie in one plane through the dev frame.
-  static PlateMarkers from_robot(const std::string& urdf_path, double lamp_radius);
+  // From the arm's model: frames marker_0..3 relative to dev. Throws std::out_of_range when a
+  // frame is missing, and std::invalid_argument (naming the URDF) when a lamp lies off the plate's
+  // face (dev z = 0).
+  static PlateMarkers from_arm(const robot::ArmModel& model, double lamp_radius);
 
   // cos of the angle between the plate's normal and the direction from a lamp centre to the
   // camera; <= 0: the plate turns its back on the camera.
