@@ -60,6 +60,7 @@ Vec3 ArmClearance::nearest_point(const Part& part, const Eigen::Isometry3d& base
     }
     case ShapeType::kMesh: break;  // never a part
   }
+  if (n == p) return point;  // inside (nothing clamped): the point itself, its distance exactly 0
   return base_T_shape * n;
 }
 
