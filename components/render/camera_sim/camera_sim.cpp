@@ -32,15 +32,6 @@ namespace wysiwyf::render {
 
 namespace {
 
-// A segment a -> b as the pose of a z-aligned mesh centred between them.
-Eigen::Isometry3d segment_pose(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d z = (b - a).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), z).toRotationMatrix();
-  T.translation() = 0.5 * (a + b);
-  return T;
-}
-
 const Eigen::Vector4f kCloth(0.10f, 0.16f, 0.62f, 1), kAluminium(0.72f, 0.72f, 0.74f, 1), kLamp(1.0f, 0.97f, 0.85f, 1),
     kSkin(0.86f, 0.62f, 0.50f, 1), kBlack(0, 0, 0, 1), kWhite(1, 1, 1, 1), kMaskDevice(0, 0, 1, 1);
 
@@ -271,8 +262,8 @@ class CameraSim final : public Component {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(0.6, 0, -0.025);
     renderer_->draw(table_, eye_T_base * T, color(kCloth, false), !mask_pass);
-    // Cloth hanging behind the table, facing the camera.
-    Eigen::Isometry3d back = segment_pose(Eigen::Vector3d(1.8, 0, 0), Eigen::Vector3d(1.7, 0, 0));
+    // Cloth hanging behind the table, facing the camera (the plane's normal z turned to -x).
+    Eigen::Isometry3d back(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitY()));
     back.translation() = Eigen::Vector3d(1.8, 0, 0.5);
     renderer_->draw(backdrop_, eye_T_base * back, color(kCloth, false), !mask_pass);
     if (have_joints_) {
