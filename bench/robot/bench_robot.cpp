@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "../common/allocation_counter.hpp"
-#include "puma_model/drive_params.hpp"
+#include "arm_joint_sim/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
 #include "../common/smoke.hpp"
 
@@ -29,7 +29,7 @@ struct Fixture {
   std::vector<Eigen::Isometry3d> base_T_flange;
 
   Fixture() {
-    model.set_rotor_inertia(wysiwyf::robot::load_drive_params(kDrive, model).reflected_inertia());
+    model.set_rotor_inertia(wysiwyf::robot::load_drive_params(kDrive).reflected_inertia());
     std::mt19937_64 rng(42);
     for (std::size_t n = 0; n < kPoses; ++n) {
       Vector6d a, b, c;

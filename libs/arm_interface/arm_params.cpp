@@ -1,9 +1,9 @@
 #include "arm_interface/arm_params.hpp"
 
-#include <array>
 #include <stdexcept>
 #include <string>
 
+#include "arm_interface/arm_ports.hpp"
 #include "wysiwyf/config_files.hpp"
 
 namespace wysiwyf::robot {
@@ -12,7 +12,8 @@ ArmParams declare_arm_params(Context& ctx) {
   ArmParams p;
   p.urdf_path = ctx.param<std::string>("urdf", "robots/puma560.urdf",
                                        "robot URDF; relative paths are tried from the working directory, then config/");
-  p.tip_frame = ctx.param<std::string>("tip_frame", "dev", "the frame the Cartesian setpoints place (fixed to link 6)");
+  p.tip_frame = ctx.param<std::string>("tip_frame", "dev",
+                                       "the frame the Cartesian setpoints place (fixed to the arm's last link)");
   p.tracker_hz =
       ctx.param<double>("tracker_bandwidth_hz", 10.0,
                         "natural frequency of the critically damped Cartesian setpoint tracker, Hz", Range{0.1, 200});
@@ -20,11 +21,11 @@ ArmParams declare_arm_params(Context& ctx) {
       "setpoint_source", "",
       "accept setpoints only from sources that begin so (e.g. supervisor: the display's one voice); empty: any");
   SafetyConfig& c = p.gate;
-  const auto accel = ctx.param<std::array<double, kDof>>(
+  p.acceleration_limits = ctx.param<std::vector<double>>(
       "acceleration_limits", {8, 8, 10, 30, 30, 30},
-      "hard joint acceleration limits, rad/s^2 (the URDF has none); the reference uses acceleration_fraction of them",
-      Range{0.01, 1000});
-  for (int j = 0; j < kDof; ++j) c.max_acceleration[j] = accel[static_cast<std::size_t>(j)];
+      "hard joint acceleration limits, rad/s^2, one per joint of the URDF (which has none; the default is the PUMA "
+      "560's); the reference uses acceleration_fraction of them",
+      Range{0.01, 1000}, Length{1, static_cast<std::size_t>(kMaxArmDof), 1, false});
   c.velocity_fraction = ctx.param<double>(
       "velocity_fraction", 0.9, "share of the URDF velocity limits the reference may use (the rest is servo margin)",
       Range{0.05, 1});
@@ -80,18 +81,31 @@ std::string ArmParams::source_problem(const msg::CartesianSetpoint& m) const {
   return "source '" + std::string(source) + "', expected one beginning '" + setpoint_source + "'";
 }
 
-std::unique_ptr<PumaModel> load_arm_model(Context& ctx, ArmParams& params) {
-  std::unique_ptr<PumaModel> model;
+std::unique_ptr<ArmModel> load_arm_model(Context& ctx, ArmParams& params) {
+  std::unique_ptr<ArmModel> model;
   try {
-    model = std::make_unique<PumaModel>(find_config_file(params.urdf_path), params.tip_frame);
+    model = std::make_unique<ArmModel>(find_config_file(params.urdf_path), params.tip_frame);
   } catch (const std::exception& e) {
     ctx.reject("urdf", e.what());
     return nullptr;
   }
-  if (model->frame_body(model->tip()) != kDof) {
-    ctx.reject("tip_frame", "'" + params.tip_frame + "' is not on link 6 of " + params.urdf_path);
+  const int n = model->dof();
+  if (model->frame_body(model->tip()) != n) {
+    ctx.reject("tip_frame", "'" + params.tip_frame + "' is not fixed to the last link (after joint " +
+                                std::to_string(n) + ") of " + params.urdf_path);
     return nullptr;
   }
+  if (!joint_state_carries(n)) {
+    ctx.reject("urdf", params.urdf_path + " has " + std::to_string(n) + " joints; the JointState message carries " +
+                           joint_state_capacity());
+    return nullptr;
+  }
+  if (params.acceleration_limits.size() != static_cast<std::size_t>(n)) {
+    ctx.reject("acceleration_limits", "needs one value per joint of " + params.urdf_path + ": " + std::to_string(n) +
+                                          " values, got " + std::to_string(params.acceleration_limits.size()));
+    return nullptr;
+  }
+  params.gate.max_acceleration = Eigen::Map<const Eigen::VectorXd>(params.acceleration_limits.data(), n);
   params.gate.limits = model->limits();
   try {
     params.gate.validate();

@@ -1,10 +1,50 @@
 #include "arm_interface/arm_ports.hpp"
 
+#include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include "wysiwyf/msg_eigen.hpp"
 
 namespace wysiwyf::robot {
+namespace {
+
+// A JointState field (position, velocity, effort): a std::array of the IDL's fixed joint count,
+// or a bounded sequence (a std::vector) resized to the arm's.
+using JointField = std::remove_reference_t<decltype(std::declval<msg::JointState&>().position())>;
+
+template <class Field, class = void>
+struct IsSequence : std::false_type {};
+template <class Field>
+struct IsSequence<Field, std::void_t<decltype(std::declval<Field&>().resize(1))>> : std::true_type {};
+
+// The fixed joint count of an array field (0 for a sequence).
+template <class Field>
+constexpr int fixed_joints() {
+  if constexpr (IsSequence<Field>::value)
+    return 0;
+  else
+    return static_cast<int>(std::tuple_size<Field>::value);
+}
+
+// Writes v into the field (sized to v's joints; a sequence keeps its buffer: no allocation per tick).
+template <class Field>
+void put(Field& field, const JointVector& v) {
+  if constexpr (IsSequence<Field>::value) field.resize(static_cast<std::size_t>(v.size()));
+  for (int j = 0; j < v.size(); ++j) field[static_cast<std::size_t>(j)] = v[j];
+}
+
+}  // namespace
+
+bool joint_state_carries(int n) {
+  if constexpr (IsSequence<JointField>::value) return n >= 1 && n <= kMaxArmDof;
+  return n == fixed_joints<JointField>();
+}
+
+std::string joint_state_capacity() {
+  if constexpr (IsSequence<JointField>::value) return "1 to " + std::to_string(kMaxArmDof) + " joints";
+  return "exactly " + std::to_string(fixed_joints<JointField>()) + " joints (interfaces/msgs/sensor_msgs.idl)";
+}
 
 void ArmPorts::declare(Context& ctx, Report report) {
   report_ = std::move(report);
@@ -58,16 +98,13 @@ void ArmPorts::log_bursts(const SafetyGate& gate) {
               "); each was screened against the setpoint before its period");
 }
 
-void ArmPorts::publish_measurement(std::int64_t stamp_ns, std::uint64_t seq, const Vector6d& q, const Vector6d& qd,
-                                   const Vector6d& effort, const std::string& tip_frame,
+void ArmPorts::publish_measurement(std::int64_t stamp_ns, std::uint64_t seq, const JointVector& q,
+                                   const JointVector& qd, const JointVector& effort, const std::string& tip_frame,
                                    const Eigen::Isometry3d& base_T_tip) {
   fill_header(joint_msg_.header(), stamp_ns, seq, "base");
-  for (int j = 0; j < kDof; ++j) {
-    const auto k = static_cast<std::size_t>(j);
-    joint_msg_.position()[k] = q[j];
-    joint_msg_.velocity()[k] = qd[j];
-    joint_msg_.effort()[k] = effort[j];
-  }
+  put(joint_msg_.position(), q);
+  put(joint_msg_.velocity(), qd);
+  put(joint_msg_.effort(), effort);
   joint_state_out_.write(joint_msg_);
   fill_header(pose_msg_.header(), stamp_ns, seq, "base");
   pose_msg_.child_frame_id(tip_frame);

@@ -10,12 +10,18 @@
 
 #include "arm_interface/arm_params.hpp"
 #include "arm_interface/gate_status.hpp"
-#include "puma_model/types.hpp"
+#include "arm_model/arm_types.hpp"
 #include "setpoint_following/setpoint_follower.hpp"
 #include "wysiwyf/context.hpp"
 #include "wysiwyf/msgs.hpp"
 
 namespace wysiwyf::robot {
+
+// Whether a JointState message carries the joints of an arm of n joints: its fields hold a fixed
+// number of joints (then n must be that number) or are sequences of up to kMaxArmDof.
+bool joint_state_carries(int n);
+// What a JointState carries, in words ("exactly 6 joints", "1 to 8 joints").
+std::string joint_state_capacity();
 
 class ArmPorts {
  public:
@@ -41,10 +47,11 @@ class ArmPorts {
   // At the end of a run: how many servo periods brought a burst of setpoints (none: nothing said).
   void log_bursts(const SafetyGate& gate);
 
-  // joint_state (angles, velocities, motor torques) and device_pose (base_T_tip) of one
-  // measurement, with one sequence number.
-  void publish_measurement(std::int64_t stamp_ns, std::uint64_t seq, const Vector6d& q, const Vector6d& qd,
-                           const Vector6d& effort, const std::string& tip_frame, const Eigen::Isometry3d& base_T_tip);
+  // joint_state (angles, velocities, motor torques of the n joints: joint_state_carries(n)) and
+  // device_pose (base_T_tip) of one measurement, with one sequence number.
+  void publish_measurement(std::int64_t stamp_ns, std::uint64_t seq, const JointVector& q, const JointVector& qd,
+                           const JointVector& effort, const std::string& tip_frame,
+                           const Eigen::Isometry3d& base_T_tip);
   // The gate's state on `status` when one is due; true when a fault has just appeared (GateStatus).
   bool publish_status(std::int64_t now_ns, const SafetyGate& gate, const std::string& source) {
     return status_.publish(now_ns, gate, source, status_out_);

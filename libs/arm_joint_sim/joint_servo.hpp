@@ -1,11 +1,11 @@
 #pragma once
-// The PUMA's 1 kHz joint servo, as in the Unimation controller: PD on the joint reference plus
+// An arm's 1 kHz joint servo, as in the Unimation controller: PD on the joint reference plus
 // gravity compensation, and (not in the Unimation servo; on by default) inverse-dynamics and
 // friction feedforward. Torques are saturated at the URDF effort limits.
 #include <vector>
 
-#include "puma_model/drive_params.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_joint_sim/drive_params.hpp"
+#include "arm_model/arm_model.hpp"
 
 namespace wysiwyf::robot {
 
@@ -17,29 +17,30 @@ struct JointServoConfig {
   double friction_feedforward = 1.0;  // share of the drive friction added while the reference moves
   double coulomb_smoothing = 0.01;    // rad/s over which the Coulomb model turns (tanh)
 
-  // Throws std::invalid_argument naming the value that does not fit.
-  void validate() const;
+  // Throws std::invalid_argument naming the value that does not fit an arm of `dof` joints.
+  void validate(int dof) const;
 };
 
 class JointServo {
  public:
-  // The model and drive must outlive the servo; q_gains: the pose whose mass matrix sets the
-  // derived gains.
-  JointServo(const PumaModel& model, const DriveParams& drive, const JointServoConfig& config, const Vector6d& q_gains);
+  // The model and drive (of the model's joint count) must outlive the servo; q_gains: the pose
+  // whose mass matrix sets the derived gains. Throws std::invalid_argument when they do not fit.
+  JointServo(const ArmModel& model, const DriveParams& drive, const JointServoConfig& config,
+             const JointVector& q_gains);
 
   // Motor torques at the joints for the measured joints, towards the reference: position and
   // velocity now, and the acceleration that takes it to the next period (feedforward).
-  Vector6d torque(const Vector6d& q_measured, const Vector6d& qd_measured, const Vector6d& ref_q,
-                  const Vector6d& ref_qd, const Vector6d& ref_qdd) const;
+  JointVector torque(const JointVector& q_measured, const JointVector& qd_measured, const JointVector& ref_q,
+                     const JointVector& ref_qd, const JointVector& ref_qdd) const;
 
-  const Vector6d& kp() const { return kp_; }
-  const Vector6d& kd() const { return kd_; }
+  const JointVector& kp() const { return kp_; }
+  const JointVector& kd() const { return kd_; }
 
  private:
-  const PumaModel& model_;
+  const ArmModel& model_;
   const DriveParams& drive_;
   JointServoConfig config_;
-  Vector6d kp_, kd_;
+  JointVector kp_, kd_;
 };
 
 }  // namespace wysiwyf::robot

@@ -12,10 +12,11 @@
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
+#include <tuple>
 
 #include "arm_joint_sim/arm_dynamics.hpp"
-#include "puma_model/drive_params.hpp"
-#include "puma_model/puma_model.hpp"
+#include "arm_joint_sim/drive_params.hpp"
+#include "arm_model/arm_model.hpp"
 #include "wysiwyf/config_files.hpp"
 
 namespace wysiwyf::robot::link {
@@ -25,9 +26,16 @@ ControllerEmulator::Options::Options() {
   initial_q << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403;
 }
 
+namespace {
+
+// The joints puma-link carries: the PUMA 560's six.
+constexpr int kJoints = static_cast<int>(std::tuple_size<Joints>::value);
+
+}  // namespace
+
 struct ControllerEmulator::Impl {
   Options options;
-  PumaModel model;
+  ArmModel model;
   DriveParams drive;
   JointServo servo;
   ArmDynamics arm;
@@ -39,8 +47,8 @@ struct ControllerEmulator::Impl {
   Counters counters;
 
   // The reference the servo follows and the controller's own state.
-  Vector6d ref_q, ref_qd = Vector6d::Zero(), ref_qdd = Vector6d::Zero();
-  Vector6d tau;
+  JointVector ref_q, ref_qd, ref_qdd;
+  JointVector tau;
   Status status = Status::kHolding;
   Fault fault = Fault::kNone;
   bool latched = false;
@@ -49,17 +57,27 @@ struct ControllerEmulator::Impl {
   sockaddr_in client{};
   bool have_client = false;
 
-  // The model with the drive's reflected rotor inertia (the servo's gains come from its M(q)).
-  static PumaModel load_arm_model(const Options& o) {
-    PumaModel m(find_config_file(o.urdf), "flange");
-    m.set_rotor_inertia(load_drive_params(find_config_file(o.drive), m).reflected_inertia());
+  // The arm of puma-link's six joints (std::runtime_error otherwise).
+  static ArmModel load_arm(const Options& o) {
+    ArmModel m(find_config_file(o.urdf), "flange");
+    if (m.dof() != kJoints)
+      throw std::runtime_error("puma-link emulator: " + o.urdf + " has " + std::to_string(m.dof()) +
+                               " joints; puma-link carries " + std::to_string(kJoints));
     return m;
+  }
+  // The drive file's parameters (empty: ideal drives); the model gets their reflected rotor
+  // inertia (the servo's gains come from its M(q)).
+  static DriveParams load_drive(const Options& o, ArmModel& m) {
+    DriveParams d =
+        o.drive.empty() ? DriveParams::ideal(m.dof()) : load_drive_params(find_config_file(o.drive), m.joint_names());
+    m.set_rotor_inertia(d.reflected_inertia());
+    return d;
   }
 
   explicit Impl(Options o)
       : options(std::move(o)),
-        model(load_arm_model(options)),
-        drive(load_drive_params(find_config_file(options.drive), model)),
+        model(load_arm(options)),
+        drive(load_drive(options, model)),
         servo(model, drive, options.servo, options.initial_q),
         arm(model, drive, options.encoder_counts, options.servo.coulomb_smoothing) {
     if (!model.limits().within(options.initial_q))
@@ -74,13 +92,13 @@ struct ControllerEmulator::Impl {
 
   void hold_here() {
     ref_q = arm.measured_q();
-    ref_qd = ref_qdd = Vector6d::Zero();
+    ref_qd = ref_qdd = JointVector::Zero(kJoints);
   }
 
   // Checks a command as a real controller would; false (and a latched fault) when it is refused.
   bool acceptable(const Command& c) {
-    const JointLimits& lim = model.limits();
-    for (int j = 0; j < kDof; ++j) {
+    const ArmLimits& lim = model.limits();
+    for (int j = 0; j < kJoints; ++j) {
       const double q = c.q[static_cast<std::size_t>(j)], qd = c.qd[static_cast<std::size_t>(j)];
       if (q < lim.lower[j] || q > lim.upper[j]) {
         fault = Fault::kJointLimit;
@@ -122,7 +140,7 @@ struct ControllerEmulator::Impl {
       hold_here();
       return;
     }
-    for (int j = 0; j < kDof; ++j) {
+    for (int j = 0; j < kJoints; ++j) {
       const auto k = static_cast<std::size_t>(j);
       ref_q[j] = c.q[k], ref_qd[j] = c.qd[k], ref_qdd[j] = c.qdd[k];
     }
@@ -134,8 +152,9 @@ struct ControllerEmulator::Impl {
   void advance() {
     tau = servo.torque(arm.measured_q(), arm.qd(), ref_q, ref_qd, ref_qdd);
     const double h = options.period / options.substeps;
-    for (int s = 0; s < options.substeps; ++s) arm.step(h, tau, Vector6d::Zero());
-    if (status != Status::kOk) ref_qdd = Vector6d::Zero();
+    const JointVector no_contact = JointVector::Zero(kJoints);
+    for (int s = 0; s < options.substeps; ++s) arm.step(h, tau, no_contact);
+    if (status != Status::kOk) ref_qdd.setZero();
   }
 
   void send_state() {
@@ -145,8 +164,8 @@ struct ControllerEmulator::Impl {
     s.ack = ack;
     s.status = latched ? Status::kFault : status;
     s.fault = fault;
-    const Vector6d q = arm.measured_q();
-    for (int j = 0; j < kDof; ++j) {
+    const JointVector q = arm.measured_q();
+    for (int j = 0; j < kJoints; ++j) {
       const auto k = static_cast<std::size_t>(j);
       s.q[k] = q[j], s.qd[k] = arm.qd()[j], s.tau[k] = tau[j];
     }

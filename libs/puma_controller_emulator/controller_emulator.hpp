@@ -25,12 +25,12 @@ class ControllerEmulator {
   struct Options {
     std::uint16_t port = 0;  // 0: any free port (see port())
     bool lockstep = false;
-    double period = 1e-3;                      // servo period, s
-    int timeout_periods = 3;                   // real time: periods without a command before holding
-    std::string urdf = "robots/puma560.urdf";  // found like every config file (cwd, config/, ...)
-    std::string drive = "robots/puma560_drive.yaml";
-    Vector6d initial_q;      // at rest here at start (default: puma_sim's ready pose)
-    JointServoConfig servo;  // puma_sim's defaults
+    double period = 1e-3;                             // servo period, s
+    int timeout_periods = 3;                          // real time: periods without a command before holding
+    std::string urdf = "robots/puma560.urdf";         // found like every config file (cwd, config/, ...)
+    std::string drive = "robots/puma560_drive.yaml";  // empty: ideal drives
+    Vector6d initial_q;                               // at rest here at start (default: puma_sim's ready pose)
+    JointServoConfig servo;                           // puma_sim's defaults
     int encoder_counts = 1000;
     int substeps = 4;
     Options();

@@ -31,7 +31,18 @@ const char* to_string(SafetyState state) {
 
 void SafetyConfig::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument("safety gate: " + what); };
-  for (int j = 0; j < kDof; ++j) {
+  const int n = dof();
+  if (n < 1 || n > kMaxArmDof)
+    fail("the joint limits hold " + std::to_string(n) + " joints, need 1.." + std::to_string(kMaxArmDof));
+  const auto sized = [&](const JointVector& v, const char* what) {
+    if (v.size() != n)
+      fail(std::string(what) + " has " + std::to_string(v.size()) + " values, need one per joint (" +
+           std::to_string(n) + ")");
+  };
+  sized(limits.upper, "the upper position limit");
+  sized(limits.velocity, "the velocity limit");
+  sized(max_acceleration, "acceleration_limits");
+  for (int j = 0; j < n; ++j) {
     const std::string joint = "joint " + std::to_string(j + 1);
     if (!(limits.lower[j] < limits.upper[j])) fail(joint + ": lower limit must be below the upper limit");
     if (!(limits.velocity[j] > 0.0) || !std::isfinite(limits.velocity[j])) fail(joint + ": velocity limit must be > 0");
@@ -59,14 +70,17 @@ void SafetyConfig::validate() const {
 
 SafetyGate::SafetyGate(const SafetyConfig& config) : config_(config) {
   config_.validate();
+  n_ = config_.dof();
+  ref_ = JointReference{JointVector::Zero(n_), JointVector::Zero(n_), JointVector::Zero(n_)};
+  target_q_ = target_qd_ = JointVector::Zero(n_);
   v_max_ = config_.limits.velocity * config_.velocity_fraction;
   a_max_ = config_.max_acceleration * config_.acceleration_fraction;
   c_ = a_max_ / config_.approach_rate;
   state_ = SafetyState::kFault;  // nothing moves before reset()
 }
 
-Vector6d SafetyGate::reference_lower() const { return config_.limits.lower.array() + config_.position_margin; }
-Vector6d SafetyGate::reference_upper() const { return config_.limits.upper.array() - config_.position_margin; }
+JointVector SafetyGate::reference_lower() const { return config_.limits.lower.array() + config_.position_margin; }
+JointVector SafetyGate::reference_upper() const { return config_.limits.upper.array() - config_.position_margin; }
 
 double SafetyGate::braking_speed(int j, double distance) const {
   if (!(distance > 0.0)) return 0.0;
@@ -105,19 +119,25 @@ void SafetyGate::learn_period(std::int64_t now_ns, std::int64_t stamp_ns) {
   if (n_intervals_ >= kMinIntervals) period_ns_ = *std::max_element(intervals_, intervals_ + n_intervals_);
 }
 
-void SafetyGate::reset(const Vector6d& q_measured, std::int64_t now_ns) {
+void SafetyGate::reset(const JointVector& q_measured, std::int64_t now_ns) {
   started_ = true;
   cause_ = FaultCause::kArm;  // (a bad measurement below is the arm's)
-  ref_ = JointReference{};
+  ref_.qd.setZero();
+  ref_.qdd.setZero();
   have_target_ = false;
   last_setpoint_ns_ = now_ns;
   in_period_ = 0;
+  if (q_measured.size() != n_) {
+    set_state(SafetyState::kFault, "reset with " + std::to_string(q_measured.size()) + " joint values for an arm of " +
+                                       std::to_string(n_) + " joints");
+    return;  // the reference stays where it was: zero velocity, nothing to follow
+  }
   if (!q_measured.allFinite()) {
     set_state(SafetyState::kFault, "reset with a non-finite joint measurement");
     return;  // the reference stays where it was: zero velocity, nothing to follow
   }
   ref_.q = q_measured;
-  for (int j = 0; j < kDof; ++j) {
+  for (int j = 0; j < n_; ++j) {
     if (q_measured[j] < config_.limits.lower[j] || q_measured[j] > config_.limits.upper[j]) {
       set_state(SafetyState::kFault, "reset with joint " + std::to_string(j + 1) +
                                          format(" at %.4f rad, beyond its limits [%.4f, %.4f]", q_measured[j],
@@ -213,18 +233,23 @@ bool SafetyGate::accept_setpoint(std::int64_t now_ns, const SetpointInput& sp, c
   return true;
 }
 
-void SafetyGate::set_joint_target(const IkResult& ik, const Vector6d& qd_target) {
+void SafetyGate::set_joint_target(const ArmIkResult& ik, const JointVector& qd_target) {
   if (state_ != SafetyState::kOk) return;
   if (!ik.ok()) {
     fault(std::string("inverse kinematics: ") + robot::to_string(ik.status), FaultCause::kInput);
+    return;
+  }
+  if (ik.q.size() != n_ || qd_target.size() != n_) {
+    fault("joint target of " + std::to_string(ik.q.size()) + " joints (velocity " + std::to_string(qd_target.size()) +
+          ") for an arm of " + std::to_string(n_));
     return;
   }
   if (!ik.q.allFinite() || !qd_target.allFinite()) {
     fault("non-finite joint target");
     return;
   }
-  const Vector6d& previous = have_target_ ? target_q_ : ref_.q;
-  for (int j = 0; j < kDof; ++j) {
+  const JointVector& previous = have_target_ ? target_q_ : ref_.q;
+  for (int j = 0; j < n_; ++j) {
     const double jump = std::abs(ik.q[j] - previous[j]);
     if (jump > config_.max_joint_target_step) {
       fault("joint " + std::to_string(j + 1) +
@@ -239,13 +264,18 @@ void SafetyGate::set_joint_target(const IkResult& ik, const Vector6d& qd_target)
   have_target_ = true;
 }
 
-void SafetyGate::check_measured(const Vector6d& q, const Vector6d& qd) {
+void SafetyGate::check_measured(const JointVector& q, const JointVector& qd) {
   if (state_ == SafetyState::kFault) return;
+  if (q.size() != n_ || qd.size() != n_) {
+    fault("joint measurement of " + std::to_string(q.size()) + " joints (velocity " + std::to_string(qd.size()) +
+          ") for an arm of " + std::to_string(n_));
+    return;
+  }
   if (!q.allFinite() || !qd.allFinite()) {
     fault("non-finite joint measurement");
     return;
   }
-  for (int j = 0; j < kDof; ++j) {
+  for (int j = 0; j < n_; ++j) {
     const std::string joint = "joint " + std::to_string(j + 1);
     if (q[j] < config_.limits.lower[j] || q[j] > config_.limits.upper[j]) {
       fault(joint + format(" at %.4f rad, beyond its limits [%.4f, %.4f]", q[j], config_.limits.lower[j],
@@ -295,7 +325,7 @@ const JointReference& SafetyGate::step(std::int64_t now_ns) {
     fault("setpoint stream lost: " + why + ": held until the display asks", FaultCause::kInput);
   }
   const bool track = started_ && state_ == SafetyState::kOk && have_target_;
-  for (int j = 0; j < kDof; ++j) {
+  for (int j = 0; j < n_; ++j) {
     const double lo = config_.limits.lower[j] + config_.position_margin;
     const double hi = config_.limits.upper[j] - config_.position_margin;
     const double q = ref_.q[j], v = ref_.qd[j];

@@ -1,7 +1,7 @@
 #pragma once
-// The driver-level safety layer of the PUMA: everything that may command the arm (the admittance
-// loop, a script, the user's hand through the display) passes through it on the way to the joint
-// servo. One piece of code for the simulated arm (puma_sim) and the real driver.
+// The driver-level safety layer of an arm of n joints: everything that may command the arm (the
+// admittance loop, a script, the user's hand through the display) passes through it on the way to
+// the joint servo. One piece of code for the simulated arm (puma_sim) and the real driver.
 //
 // Every servo period it turns the latest joint target (the inverse kinematics of the interpolated
 // Cartesian setpoint) into the joint reference the servo may follow. Whatever the input, that
@@ -38,33 +38,36 @@
 
 #include <Eigen/Geometry>
 
-#include "puma_model/ik_result.hpp"
-#include "puma_model/types.hpp"
+#include "arm_model/arm_ik.hpp"
+#include "arm_model/arm_types.hpp"
 
 namespace wysiwyf::robot {
 
 struct SafetyConfig {
-  JointLimits limits;                                    // hard position and velocity limits (effort unused)
-  Vector6d max_acceleration = Vector6d::Constant(10.0);  // hard acceleration limits [rad/s^2]
-  double position_margin = 0.02;                         // rad kept between the reference and each limit
-  double velocity_fraction = 0.9;                        // of the velocity limits, for the reference
-  double acceleration_fraction = 0.8;                    // of the acceleration limits, for the reference
-  double approach_rate = 50.0;                           // 1/s: first-order rate of the final approach
-  double dt = 1e-3;                                      // servo period [s]
-  double setpoint_timeout = 0.06;                        // s without a setpoint before braking to a hold, at most
-  double setpoint_periods = 3.0;                         // the stream's own periods without a setpoint: lost
-  double max_setpoint_age = 0.05;                        // s: a setpoint stamped longer ago is stale (refused)
-  double max_setpoint_lead = 0.005;                      // s: one stamped further ahead is from the future (refused)
-  double max_setpoint_step = 0.1;                        // m between consecutive setpoints
-  double max_setpoint_rotation = 0.5;                    // rad between consecutive setpoints
-  double max_setpoint_speed = 2.0;                       // m/s in a setpoint's twist
-  double max_setpoint_angular_speed = 6.0;               // rad/s in a setpoint's twist
-  double max_joint_target_step = 0.2;                    // rad per servo period (an IK branch change)
-  double max_following_error = 0.1;                      // rad between the reference and the measurement
-  double max_force = 100.0;                              // N, norm of the measured force
-  double max_torque = 10.0;                              // N m, norm of the measured torque
+  ArmLimits limits;                         // hard position and velocity limits of the n joints (effort unused)
+  JointVector max_acceleration;             // hard acceleration limits, n values [rad/s^2]
+  double position_margin = 0.02;            // rad kept between the reference and each limit
+  double velocity_fraction = 0.9;           // of the velocity limits, for the reference
+  double acceleration_fraction = 0.8;       // of the acceleration limits, for the reference
+  double approach_rate = 50.0;              // 1/s: first-order rate of the final approach
+  double dt = 1e-3;                         // servo period [s]
+  double setpoint_timeout = 0.06;           // s without a setpoint before braking to a hold, at most
+  double setpoint_periods = 3.0;            // the stream's own periods without a setpoint: lost
+  double max_setpoint_age = 0.05;           // s: a setpoint stamped longer ago is stale (refused)
+  double max_setpoint_lead = 0.005;         // s: one stamped further ahead is from the future (refused)
+  double max_setpoint_step = 0.1;           // m between consecutive setpoints
+  double max_setpoint_rotation = 0.5;       // rad between consecutive setpoints
+  double max_setpoint_speed = 2.0;          // m/s in a setpoint's twist
+  double max_setpoint_angular_speed = 6.0;  // rad/s in a setpoint's twist
+  double max_joint_target_step = 0.2;       // rad per servo period (an IK branch change)
+  double max_following_error = 0.1;         // rad between the reference and the measurement
+  double max_force = 100.0;                 // N, norm of the measured force
+  double max_torque = 10.0;                 // N m, norm of the measured torque
 
-  // Throws std::invalid_argument naming the first value that does not fit.
+  // The number of joints (that of the position limits).
+  int dof() const { return static_cast<int>(limits.lower.size()); }
+  // Throws std::invalid_argument naming the first value that does not fit (every per-joint list
+  // must hold n = dof() values, 1 <= n <= kMaxArmDof).
   void validate() const;
 };
 
@@ -95,9 +98,9 @@ struct SetpointInput {
 };
 
 struct JointReference {
-  Vector6d q = Vector6d::Zero();
-  Vector6d qd = Vector6d::Zero();
-  Vector6d qdd = Vector6d::Zero();  // the acceleration of the last step
+  JointVector q;
+  JointVector qd;
+  JointVector qdd;  // the acceleration of the last step
 };
 
 class SafetyGate {
@@ -106,8 +109,9 @@ class SafetyGate {
 
   // Starts (again) from the measured joints, taken to be at rest: clears any fault, the reference
   // is q_measured with zero velocity, the state is kHolding until the first setpoint. A
-  // non-finite q_measured or one beyond the hard limits is a fault at once.
-  void reset(const Vector6d& q_measured, std::int64_t now_ns);
+  // non-finite q_measured, one of another joint count or one beyond the hard limits is a fault at
+  // once.
+  void reset(const JointVector& q_measured, std::int64_t now_ns);
 
   // A setpoint as it arrives. Returns true and sets `pose` (quaternion normalised) when it may be
   // followed; false when the gate is faulted, or when the setpoint is bad (then it faults):
@@ -118,14 +122,15 @@ class SafetyGate {
                        Eigen::Isometry3d& pose);
 
   // While following, every servo period: the IK of the interpolated setpoint and the target's
-  // joint velocity. An IK failure, a non-finite target or a jump of more than
-  // max_joint_target_step from the previous target (from the reference, for the first one) is a
-  // fault. Ignored unless following.
-  void set_joint_target(const IkResult& ik, const Vector6d& qd_target);
+  // joint velocity. An IK failure, a non-finite target, one of another joint count or a jump of
+  // more than max_joint_target_step from the previous target (from the reference, for the first
+  // one) is a fault. Ignored unless following.
+  void set_joint_target(const ArmIkResult& ik, const JointVector& qd_target);
 
   // The measured joints (checked against the hard limits, the velocity limits and the following
-  // error to the last reference) and the measured force/torque. Out of bounds or non-finite: fault.
-  void check_measured(const Vector6d& q, const Vector6d& qd);
+  // error to the last reference) and the measured force/torque. Out of bounds, non-finite or of
+  // another joint count: fault.
+  void check_measured(const JointVector& q, const JointVector& qd);
   void check_wrench(const Eigen::Vector3d& force, const Eigen::Vector3d& torque);
 
   // Latches a fault (the first reason and cause are kept until reset()).
@@ -160,10 +165,10 @@ class SafetyGate {
   std::int64_t setpoint_loss_timeout_ns() const;
   const SafetyConfig& config() const { return config_; }
   // The bounds the reference keeps (hard limits scaled by the fractions, margin applied).
-  const Vector6d& reference_velocity_limit() const { return v_max_; }
-  const Vector6d& reference_acceleration_limit() const { return a_max_; }
-  Vector6d reference_lower() const;
-  Vector6d reference_upper() const;
+  const JointVector& reference_velocity_limit() const { return v_max_; }
+  const JointVector& reference_acceleration_limit() const { return a_max_; }
+  JointVector reference_lower() const;
+  JointVector reference_upper() const;
   // Largest speed at which the reference may approach a point `distance` away on joint j.
   double braking_speed(int j, double distance) const;
 
@@ -175,7 +180,8 @@ class SafetyGate {
   static constexpr int kMinIntervals = 4;
 
   SafetyConfig config_;
-  Vector6d v_max_, a_max_, c_;
+  int n_ = 0;  // joints
+  JointVector v_max_, a_max_, c_;
   SafetyState state_ = SafetyState::kHolding;
   std::string reason_ = "not started (reset() not called)";
   JointReference ref_;
@@ -195,8 +201,8 @@ class SafetyGate {
   std::uint64_t burst_periods_ = 0;
   int largest_burst_ = 0;
   bool have_target_ = false;
-  Vector6d target_q_ = Vector6d::Zero();
-  Vector6d target_qd_ = Vector6d::Zero();
+  JointVector target_q_;
+  JointVector target_qd_;
 };
 
 }  // namespace wysiwyf::robot

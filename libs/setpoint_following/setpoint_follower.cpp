@@ -7,9 +7,14 @@
 
 namespace wysiwyf::robot {
 
-SetpointFollower::SetpointFollower(const PumaModel& model, std::string tip_name, SafetyGate& gate, double tracker_hz,
+SetpointFollower::SetpointFollower(const ArmModel& model, std::string tip_name, SafetyGate& gate, double tracker_hz,
                                    double dt)
-    : model_(model), tip_name_(std::move(tip_name)), gate_(gate), omega_(6.283185307179586 * tracker_hz), dt_(dt) {}
+    : model_(model),
+      tip_name_(std::move(tip_name)),
+      gate_(gate),
+      omega_(6.283185307179586 * tracker_hz),
+      dt_(dt),
+      q_target_(JointVector::Zero(model.dof())) {}
 
 SetpointFollower::Taken SetpointFollower::take(const msg::CartesianSetpoint& m, std::int64_t now_ns,
                                                std::string_view writer) {
@@ -69,9 +74,10 @@ void SetpointFollower::update(std::int64_t now_ns) {
     // guessed at, the tracker decelerates onto the last one (none before the period is known).
     const double horizon = static_cast<double>(gate_.setpoint_period_ns()) * 1e-9;
     const Eigen::Isometry3d pose = tracker_.advance(now_ns, dt_, omega_, horizon);
-    const Vector6d& seed = have_target_ ? q_target_ : gate_.reference().q;
-    const IkResult ik = model_.ik_nearest(pose, seed);
-    const Vector6d qd_target = have_target_ && ik.ok() ? Vector6d((ik.q - q_target_) / dt_) : Vector6d::Zero();
+    const JointVector& seed = have_target_ ? q_target_ : gate_.reference().q;
+    const ArmIkResult ik = model_.ik_nearest(pose, seed);
+    const JointVector qd_target =
+        have_target_ && ik.ok() ? JointVector((ik.q - q_target_) / dt_) : JointVector::Zero(model_.dof());
     gate_.set_joint_target(ik, qd_target);
     if (gate_.following()) {
       q_target_ = ik.q;

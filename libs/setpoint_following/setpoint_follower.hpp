@@ -3,12 +3,12 @@
 // setpoint (base_T_dev and its twist, at any period of 1 to 20 ms) is screened by the gate,
 // tracked by the CartesianTracker, and the tracked pose's nearest IK solution becomes the gate's
 // joint target. The same code runs in puma_sim and in puma_driver, so both arms are commanded
-// identically.
+// identically, for any arm the ArmModel loads.
 #include <cstdint>
 #include <string>
 #include <string_view>
 
-#include "puma_model/puma_model.hpp"
+#include "arm_model/arm_model.hpp"
 #include "safety_gate/safety_gate.hpp"
 #include "setpoint_following/cartesian_tracker.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -17,9 +17,10 @@ namespace wysiwyf::robot {
 
 class SetpointFollower {
  public:
-  // model: with its tip at the frame the setpoints place (tip_name); model and gate must outlive
-  // this. tracker_hz: natural frequency of the tracker; dt: the servo period.
-  SetpointFollower(const PumaModel& model, std::string tip_name, SafetyGate& gate, double tracker_hz, double dt);
+  // model: with its tip at the frame the setpoints place (tip_name), fixed to its last body; model
+  // and gate (of the model's joint count) must outlive this. tracker_hz: natural frequency of the
+  // tracker; dt: the servo period.
+  SetpointFollower(const ArmModel& model, std::string tip_name, SafetyGate& gate, double tracker_hz, double dt);
 
   enum class Taken { kFollowed, kRefused, kFaulted };
   // A setpoint as it arrived. One whose stamp is stale (older than max_setpoint_age: a zero stamp),
@@ -39,13 +40,13 @@ class SetpointFollower {
  private:
   double loss_timeout() const;  // s
 
-  const PumaModel& model_;
+  const ArmModel& model_;
   std::string tip_name_;
   SafetyGate& gate_;
   double omega_, dt_;
   CartesianTracker tracker_;
   bool have_target_ = false;
-  Vector6d q_target_ = Vector6d::Zero();
+  JointVector q_target_;
   std::string source_, refusal_;
   std::int64_t last_stamp_ns_ = 0;  // of the last followed setpoint, while following
 };

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "puma_model/drive_params.hpp"
+#include "arm_joint_sim/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
 
 namespace wysiwyf::robot {
@@ -423,7 +423,7 @@ TEST_F(PumaTest, CoriolisMatchesChristoffelSymbolsOfTheMassMatrix) {
 
 TEST_F(PumaTest, InverseAndForwardDynamicsAgree) {
   for (bool rotor : {false, true}) {
-    if (rotor) model.set_rotor_inertia(load_drive_params(kDrive, model).reflected_inertia());
+    if (rotor) model.set_rotor_inertia(load_drive_params(kDrive).reflected_inertia());
     for (int n = 0; n < 1000; ++n) {
       const Vector6d q = random_q(), qd = random_vector(2.0), tau = random_vector(50.0);
       const Vector6d qdd = model.forward_dynamics(q, qd, tau);
@@ -488,7 +488,7 @@ TEST_F(PumaTest, GravityTorquesOfTheStretchedArmByHand) {
 }
 
 TEST_F(PumaTest, DriveFile) {
-  const DriveParams drive = load_drive_params(kDrive, model);
+  const DriveParams drive = load_drive_params(kDrive);
   const double G[6] = {-62.6111, 107.815, -53.7063, 76.0364, 71.923, 76.686};
   const double Jm[6] = {200e-6, 200e-6, 200e-6, 33e-6, 33e-6, 33e-6};
   const Vector6d reflected = drive.reflected_inertia();

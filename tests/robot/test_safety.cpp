@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "puma_model/puma_model.hpp"
+#include "arm_model/arm_model.hpp"
 #include "safety_gate/safety_gate.hpp"
 
 namespace wysiwyf::robot {
@@ -17,11 +17,11 @@ constexpr std::int64_t kMs = 1'000'000;
 constexpr double kDt = 1e-3;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-IkResult ik_ok(const Vector6d& q) {
-  IkResult r;
-  r.status = IkStatus::kOk;
+ArmIkResult ik_ok(const Vector6d& q) {
+  ArmIkResult r;
+  r.status = ArmIkStatus::kOk;
   r.q = q;
-  r.solution_index = 0;
+  r.branch = 0;
   return r;
 }
 
@@ -35,7 +35,7 @@ SetpointInput setpoint_at(const Eigen::Isometry3d& pose) {
 
 class SafetyGateTest : public ::testing::Test {
  protected:
-  PumaModel model{kUrdf, "dev"};
+  ArmModel model{kUrdf, "dev"};
   SafetyConfig config = make_config();
   Vector6d q0 = (Vector6d() << 0.2555, -0.1524, -2.5936, 0.2758, 1.1887, -0.1052).finished();
   std::int64_t now = 0;
@@ -43,7 +43,7 @@ class SafetyGateTest : public ::testing::Test {
   SafetyConfig make_config() {
     SafetyConfig c;
     c.limits = model.limits();
-    c.max_acceleration << 8, 8, 10, 30, 30, 30;
+    c.max_acceleration = (Vector6d() << 8, 8, 10, 30, 30, 30).finished();
     c.dt = kDt;
     c.max_joint_target_step = 100;  // these tests jump targets on purpose (IK branch changes: own test)
     return c;
@@ -470,13 +470,13 @@ TEST_F(SafetyGateTest, MalformedSetpointsFaultWithTheirReason) {
 }
 
 TEST_F(SafetyGateTest, UnreachableOrJumpingIkTargetsFault) {
-  for (IkStatus status :
-       {IkStatus::kOutOfReach, IkStatus::kInsideShoulderCylinder, IkStatus::kJointLimits, IkStatus::kInvalidInput}) {
+  for (ArmIkStatus status :
+       {ArmIkStatus::kOutOfReach, ArmIkStatus::kNotFound, ArmIkStatus::kJointLimits, ArmIkStatus::kInvalidInput}) {
     SafetyGate gate(config);
     start(gate, q0);
     follow(gate, q0);
     ASSERT_EQ(gate.state(), SafetyState::kOk);
-    IkResult ik;
+    ArmIkResult ik;
     ik.status = status;
     gate.set_joint_target(ik, Vector6d::Zero());
     EXPECT_EQ(gate.state(), SafetyState::kFault);

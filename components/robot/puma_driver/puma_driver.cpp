@@ -14,12 +14,13 @@
 #include <chrono>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 
-#include "link_client.hpp"
-#include "puma_model/puma_model.hpp"
-#include "safety_gate/safety_gate.hpp"
 #include "arm_interface/arm_params.hpp"
 #include "arm_interface/arm_ports.hpp"
+#include "arm_model/arm_model.hpp"
+#include "link_client.hpp"
+#include "safety_gate/safety_gate.hpp"
 #include "setpoint_following/setpoint_follower.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
@@ -27,6 +28,9 @@
 
 namespace wysiwyf::robot {
 namespace {
+
+// The joints a puma-link command and state carry: the PUMA 560's six.
+constexpr int kLinkJoints = static_cast<int>(std::tuple_size<link::Joints>::value);
 
 const char* to_string(link::Fault f) {
   switch (f) {
@@ -71,6 +75,11 @@ class PumaDriver final : public Component {
 
     dt_ = arm_.gate.dt;
     model_ = load_arm_model(ctx, arm_);
+    if (model_ && model_->dof() != kLinkJoints) {
+      ctx.reject("urdf", arm_.urdf_path + " has " + std::to_string(model_->dof()) + " joints; puma-link carries the " +
+                             "PUMA 560's " + std::to_string(kLinkJoints));
+      model_.reset();
+    }
   }
 
   void activate() override {
@@ -107,8 +116,8 @@ class PumaDriver final : public Component {
       }
     }
     const bool link_up = missed_ < link_timeout_;
-    Vector6d q, qd;
-    for (int j = 0; j < kDof; ++j) {
+    JointVector q(kLinkJoints), qd(kLinkJoints);
+    for (int j = 0; j < kLinkJoints; ++j) {
       const auto k = static_cast<std::size_t>(j);
       q[j] = state_.q[k], qd[j] = state_.qd[k];
     }
@@ -146,14 +155,14 @@ class PumaDriver final : public Component {
     ports_.take_requests(*gate_, now.ns);
     ports_.take_setpoints(arm_, *follower_, now.ns);
     follower_->update(now.ns);
-    const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
+    const JointVector ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
     const JointReference& ref = gate_->step(now.ns);
 
     // ---- 5. to the controller: the reference now and the acceleration to the next period
     // (what puma_sim's servo gets); without a link, hold wherever the arm is.
     link::Command c;
     c.hold = link_lost_;
-    for (int j = 0; j < kDof; ++j) {
+    for (int j = 0; j < kLinkJoints; ++j) {
       const auto k = static_cast<std::size_t>(j);
       c.q[k] = ref_q[j], c.qd[k] = ref_qd[j], c.qdd[k] = ref.qdd[j];
     }
@@ -199,9 +208,9 @@ class PumaDriver final : public Component {
     return std::chrono::nanoseconds(static_cast<std::int64_t>(s * 1e9));
   }
 
-  void publish(Time now, const Vector6d& q, const Vector6d& qd) {
-    ports_.publish_measurement(now.ns, seq_++, q, qd, Eigen::Map<const Vector6d>(state_.tau.data()), arm_.tip_frame,
-                               model_->fk(q));
+  void publish(Time now, const JointVector& q, const JointVector& qd) {
+    const JointVector tau = Eigen::Map<const Vector6d>(state_.tau.data());
+    ports_.publish_measurement(now.ns, seq_++, q, qd, tau, arm_.tip_frame, model_->fk(q));
   }
 
   // parameters
@@ -212,7 +221,7 @@ class PumaDriver final : public Component {
   double connect_timeout_ = 2, reply_timeout_ = 0.5, dt_ = 1e-3;
 
   // state
-  std::unique_ptr<PumaModel> model_;
+  std::unique_ptr<ArmModel> model_;
   std::unique_ptr<link::LinkClient> link_;
   std::unique_ptr<SafetyGate> gate_;
   std::unique_ptr<SetpointFollower> follower_;

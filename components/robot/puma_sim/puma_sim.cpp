@@ -1,4 +1,7 @@
-// puma_sim: the PUMA 560 of the display, simulated, behind the same safety gate as the real arm.
+// puma_sim: the display's arm, simulated, behind the same safety gate as the real arm: the PUMA
+// 560 by default, or any serial arm of up to kMaxArmDof joints from its URDF (`urdf`, with the
+// ft_sensor and dev frames fixed to its last link; `drive` empty for ideal drives; `initial_q` and
+// `acceleration_limits` of one value per joint).
 //
 // Every tick (1 kHz, the Unimation servo rate):
 //   1. sample: encoder-quantised joint angles, joint velocities, the F/T sensor (hand contact +
@@ -14,20 +17,21 @@
 //   6. the arm (forward dynamics with reflected rotor inertia, viscous + smoothed Coulomb
 //      friction) and the user's fingertip (a sphere on an impedance towards `hand_target`, in
 //      penalty contact with the plate, the knob and the sensor housing, the reaction applied to
-//      link 6 through the Jacobian transpose) advance by semi-implicit Euler substeps.
+//      the last link through the Jacobian transpose) advance by semi-implicit Euler substeps.
 #include <array>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
-#include "arm_joint_sim/arm_dynamics.hpp"
-#include "arm_joint_sim/joint_servo.hpp"
-#include "puma_model/drive_params.hpp"
-#include "puma_model/puma_model.hpp"
-#include "safety_gate/safety_gate.hpp"
 #include "arm_interface/arm_params.hpp"
 #include "arm_interface/arm_ports.hpp"
+#include "arm_joint_sim/arm_dynamics.hpp"
+#include "arm_joint_sim/drive_params.hpp"
+#include "arm_joint_sim/joint_servo.hpp"
+#include "arm_model/arm_model.hpp"
+#include "safety_gate/safety_gate.hpp"
 #include "setpoint_following/setpoint_follower.hpp"
 #include "tool_geometry.hpp"
 #include "wysiwyf/component.hpp"
@@ -38,13 +42,16 @@
 namespace wysiwyf::robot::sim {
 namespace {
 
-// The ready pose: the plate's centre 0.7 m in front of the base, 0.2 m above the mounting plane
-// (the table top of config/scenes), facing +x (away from the robot, towards the user), dev x
-// pointing down: base_T_dev = (0.7, 0, 0.2), Ry(pi/2). The one IK solution within limits.
-const std::array<double, kDof> kReadyPose = {0.255486131, -0.152351627, -2.593612368,
-                                             0.275843098, 1.188686600,  -0.105157403};
+// The PUMA 560's ready pose: the plate's centre 0.7 m in front of the base, 0.2 m above the
+// mounting plane (the table top of config/scenes), facing +x (away from the robot, towards the
+// user), dev x pointing down: base_T_dev = (0.7, 0, 0.2), Ry(pi/2). The one IK solution within
+// limits.
+const std::vector<double> kPumaReadyPose = {0.255486131, -0.152351627, -2.593612368,
+                                            0.275843098, 1.188686600,  -0.105157403};
 
-Vector6d to_vector6(const std::array<double, kDof>& v) { return Eigen::Map<const Vector6d>(v.data()); }
+// Per-joint lists: up to kMaxArmDof values (the URDF's joint count is checked once it is loaded).
+const Length kPerJoint{1, static_cast<std::size_t>(kMaxArmDof), 1, false};
+const Length kPerJointOrNone{1, static_cast<std::size_t>(kMaxArmDof), 1, true};
 
 }  // namespace
 
@@ -52,29 +59,33 @@ class PumaSim final : public Component {
  public:
   void configure(Context& ctx) override {
     ctx.summary(
-        "simulated PUMA 560: arm dynamics, 1 kHz joint servo behind the safety gate, Cartesian setpoint "
-        "tracking, wrist F/T sensor and the user's fingertip in contact with the plate");
+        "simulated arm (the PUMA 560, or any serial arm's URDF): arm dynamics, 1 kHz joint servo behind the safety "
+        "gate, Cartesian setpoint tracking, wrist F/T sensor and the user's fingertip in contact with the plate");
     // ---- the robot, the setpoint tracker and the safety gate (as puma_driver)
     arm_ = declare_arm_params(ctx);
-    drive_path_ = ctx.param<std::string>("drive", "robots/puma560_drive.yaml",
-                                         "drive-train file (gears, rotor inertia, friction); same search as urdf");
+    drive_path_ = ctx.param<std::string>(
+        "drive", "robots/puma560_drive.yaml",
+        "drive-train file naming the URDF's joints (gears, rotor inertia, friction); same search as urdf. Empty: "
+        "ideal drives (no rotor inertia, no drive friction, joints read without encoder quantisation), for arms "
+        "whose makers publish no motor data");
     sensor_frame_ = ctx.param<std::string>("sensor_frame", "ft_sensor", "the F/T sensor's measurement frame");
-    const auto q0 = ctx.param<std::array<double, kDof>>(
-        "initial_q", kReadyPose,
-        "joint angles at activation, rad (default: the ready pose, plate centre at (0.7, 0, 0.2) m facing +x)",
-        Range{-10, 10});
+    q0_list_ = ctx.param<std::vector<double>>("initial_q", kPumaReadyPose,
+                                              "joint angles at activation, rad, one per joint of the URDF (default: "
+                                              "the PUMA 560's ready pose, plate centre at (0.7, 0, 0.2) m facing +x)",
+                                              Range{-10, 10}, kPerJoint);
     // ---- the servo
     servo_config_.bandwidth_hz =
         ctx.param<double>("servo_bandwidth_hz", 10.0,
                           "PD gains from M(q0): kp = M_jj w^2, kd = 2 zeta M_jj w, w = 2 pi this, Hz", Range{0.1, 100});
     servo_config_.damping =
         ctx.param<double>("servo_damping", 1.0, "damping ratio zeta of the derived PD gains", Range{0.05, 10});
-    servo_config_.kp =
-        ctx.param<std::vector<double>>("servo_kp", {}, "explicit position gains, N m/rad (empty: derived)",
-                                       Range{0, 1e7}, Length::exactly_or_empty(kDof));
-    servo_config_.kd =
-        ctx.param<std::vector<double>>("servo_kd", {}, "explicit velocity gains, N m s/rad (empty: derived)",
-                                       Range{0, 1e6}, Length::exactly_or_empty(kDof));
+    servo_config_.kp = ctx.param<std::vector<double>>(
+        "servo_kp", {}, "explicit position gains, N m/rad, one per joint (empty: derived)", Range{0, 1e7},
+        kPerJointOrNone);
+    servo_config_.kd = ctx.param<std::vector<double>>("servo_kd", {},
+                                                      "explicit velocity gains, N m s/rad, one per joint (empty: "
+                                                      "derived)",
+                                                      Range{0, 1e6}, kPerJointOrNone);
     servo_config_.accel_feedforward =
         ctx.param<double>("accel_feedforward", 1.0,
                           "share of the inverse-dynamics feedforward M(q) qdd_ref + C(q, qd) qd added to the "
@@ -125,8 +136,7 @@ class PumaSim final : public Component {
     hand_out_ = ctx.output<msg::PoseStamped>(
         "hand_pose", "base_T_fingertip: the fingertip's true position, oriented as the target (x along the finger)");
 
-    q0_ = to_vector6(q0);
-    bias_ = to_vector6(bias);
+    bias_ = Eigen::Map<const Vector6d>(bias.data());
     park_ = Eigen::Vector3d(park[0], park[1], park[2]);
     dt_ = arm_.gate.dt;
 
@@ -134,8 +144,21 @@ class PumaSim final : public Component {
     model_ = load_arm_model(ctx, arm_);
     if (!model_) return;
     tip_ = model_->tip();
+    const int n = model_->dof();
+    if (q0_list_.size() != static_cast<std::size_t>(n))
+      return ctx.reject("initial_q", "needs one angle per joint of " + arm_.urdf_path + ": " + std::to_string(n) +
+                                         " values, got " + std::to_string(q0_list_.size()));
+    q0_ = Eigen::Map<const Eigen::VectorXd>(q0_list_.data(), n);
+    const auto gains_fit = [&](const char* name, const std::vector<double>& gains) {
+      if (gains.empty() || gains.size() == static_cast<std::size_t>(n)) return true;
+      ctx.reject(name, "needs one gain per joint of " + arm_.urdf_path + ": " + std::to_string(n) +
+                           " values (or none), got " + std::to_string(gains.size()));
+      return false;
+    };
+    if (!gains_fit("servo_kp", servo_config_.kp) || !gains_fit("servo_kd", servo_config_.kd)) return;
     try {
-      drive_ = load_drive_params(find_config_file(drive_path_), *model_);
+      drive_ = drive_path_.empty() ? DriveParams::ideal(n)
+                                   : load_drive_params(find_config_file(drive_path_), model_->joint_names());
     } catch (const std::exception& e) {
       return ctx.reject("drive", e.what());
     }
@@ -146,7 +169,13 @@ class PumaSim final : public Component {
     } catch (const std::exception& e) {
       return ctx.reject("sensor_frame", e.what());
     }
-    if (!model_->limits().within(q0_)) return ctx.reject("initial_q", "outside the joint limits of " + arm_.urdf_path);
+    const ArmLimits& limits = model_->limits();
+    for (int j = 0; j < n; ++j)
+      if (q0_[j] < limits.lower[j] || q0_[j] > limits.upper[j])
+        return ctx.reject("initial_q", "joint " + std::to_string(j + 1) + " (" + model_->joint_names()[j] + ") at " +
+                                           std::to_string(q0_[j]) + " rad is outside its limits [" +
+                                           std::to_string(limits.lower[j]) + ", " + std::to_string(limits.upper[j]) +
+                                           "] of " + arm_.urdf_path);
     servo_ = std::make_unique<JointServo>(*model_, drive_, servo_config_, q0_);
     arm_dynamics_ = std::make_unique<ArmDynamics>(*model_, drive_, encoder_counts_, servo_config_.coulomb_smoothing);
   }
@@ -166,8 +195,8 @@ class PumaSim final : public Component {
 
   void tick(Time now) override {
     // ---- 1. sample and publish
-    const Vector6d q_meas = arm_dynamics_->measured_q();
-    const Vector6d qd_meas = arm_dynamics_->qd();
+    const JointVector q_meas = arm_dynamics_->measured_q();
+    const JointVector qd_meas = arm_dynamics_->qd();
     const Contacts contacts = contact_forces(arm_dynamics_->q(), arm_dynamics_->qd());
     Eigen::Vector3d f_sensor, t_sensor;
     sensor_reading(contacts, f_sensor, t_sensor);
@@ -198,7 +227,7 @@ class PumaSim final : public Component {
     // ---- 4. the reference, 5. the servo
     // PD on the reference for now (the last step's result), feedforward of the acceleration that
     // takes the reference to now + dt.
-    const Vector6d ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
+    const JointVector ref_q = gate_->reference().q, ref_qd = gate_->reference().qd;
     const JointReference& ref = gate_->step(now.ns);
     tau_ = servo_->torque(q_meas, qd_meas, ref_q, ref_qd, ref.qdd);
 
@@ -230,18 +259,19 @@ class PumaSim final : public Component {
  private:
   struct Contacts {
     Eigen::Vector3d on_hand = Eigen::Vector3d::Zero();          // force on the fingertip, base frame
-    Vector6d joint_torque = Vector6d::Zero();                   // the reaction on the arm, at the joints
+    JointVector joint_torque;                                   // the reaction on the arm, at the joints
     Eigen::Vector3d measured_force = Eigen::Vector3d::Zero();   // on the parts beyond the sensor, base frame
     Eigen::Vector3d measured_torque = Eigen::Vector3d::Zero();  // about the sensor origin, base frame
     Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
   };
 
-  Contacts contact_forces(const Vector6d& q, const Vector6d& qd) const {
+  Contacts contact_forces(const JointVector& q, const JointVector& qd) const {
     Contacts out;
+    out.joint_torque.setZero(q.size());
     out.base_T_sensor = model_->fk(q, sensor_);
     const Eigen::Vector3d o = out.base_T_sensor.translation();
     if ((hand_x_ - o).norm() > tool_.bounding_radius + hand_radius_) return out;
-    Matrix6d J;
+    ArmJacobian J;
     bool have_jacobian = false;
     for (const ContactShape& shape : tool_.shapes) {
       double depth;
@@ -286,7 +316,8 @@ class PumaSim final : public Component {
     }
   }
 
-  void publish(Time now, const Vector6d& q, const Vector6d& qd, const Eigen::Vector3d& f, const Eigen::Vector3d& t) {
+  void publish(Time now, const JointVector& q, const JointVector& qd, const Eigen::Vector3d& f,
+               const Eigen::Vector3d& t) {
     ports_.publish_measurement(now.ns, seq_, q, qd, tau_, arm_.tip_frame, model_->fk(q, tip_));
 
     fill_header(wrench_msg_.header(), now.ns, seq_, sensor_frame_.c_str());
@@ -306,7 +337,9 @@ class PumaSim final : public Component {
   // parameters
   ArmParams arm_;
   std::string drive_path_, sensor_frame_;
-  Vector6d q0_ = Vector6d::Zero(), bias_ = Vector6d::Zero();
+  std::vector<double> q0_list_;
+  JointVector q0_;
+  Vector6d bias_ = Vector6d::Zero();  // fx fy fz tx ty tz
   JointServoConfig servo_config_;
   int substeps_ = 4, encoder_counts_ = 1000;
   double noise_force_ = 0.05, noise_torque_ = 0.002;
@@ -316,7 +349,7 @@ class PumaSim final : public Component {
   double dt_ = 1e-3;
 
   // model
-  std::unique_ptr<PumaModel> model_;
+  std::unique_ptr<ArmModel> model_;
   DriveParams drive_;
   ToolGeometry tool_;
   FrameId tip_, sensor_;
@@ -324,7 +357,7 @@ class PumaSim final : public Component {
 
   // state
   std::unique_ptr<ArmDynamics> arm_dynamics_;
-  Vector6d tau_ = Vector6d::Zero();
+  JointVector tau_;
   Eigen::Vector3d hand_x_ = Eigen::Vector3d::Zero(), hand_v_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hand_target_ = Eigen::Vector3d::Zero();
   Eigen::Quaterniond hand_q_ = Eigen::Quaterniond::Identity();  // the hand's orientation (as the target's)

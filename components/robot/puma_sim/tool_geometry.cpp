@@ -12,7 +12,7 @@
 #include "puma_model/urdf_parts.hpp"
 
 namespace wysiwyf::robot::sim {
-ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& model, const std::string& sensor_frame) {
+ToolGeometry load_tool_geometry(const std::string& urdf_path, const ArmModel& model, const std::string& sensor_frame) {
   auto fail = [&](const std::string& what) { throw std::runtime_error("puma_sim: " + urdf_path + ": " + what); };
   {
     std::ifstream in(urdf_path);
@@ -21,9 +21,10 @@ ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& m
   const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDFFile(urdf_path);
   if (!urdf) fail("not a valid URDF");
   const FrameId sensor = model.frame(sensor_frame);  // throws for an unknown frame
-  if (model.frame_body(sensor) != kDof) fail("sensor frame '" + sensor_frame + "' is not fixed to the last link");
+  const int last = model.dof();                      // the last body: the link after the last joint
+  if (model.frame_body(sensor) != last) fail("sensor frame '" + sensor_frame + "' is not fixed to the last link");
 
-  const Vector6d zero = Vector6d::Zero();
+  const JointVector zero = JointVector::Zero(last);
   const Eigen::Isometry3d sensor_T_base = model.fk(zero, sensor).inverse();
 
   ToolGeometry tool;
@@ -42,7 +43,7 @@ ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& m
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
   for (const std::string& name : model.frame_names()) {
     const FrameId f = model.frame(name);
-    if (model.frame_body(f) != kDof) continue;
+    if (model.frame_body(f) != last) continue;
     const urdf::LinkConstSharedPtr link = urdf->getLink(name);
     if (!link) continue;
     const bool measured = std::find(below.begin(), below.end(), name) != below.end();

@@ -1,14 +1,14 @@
 #pragma once
-// What puma_sim needs of the tool side of the URDF that PumaModel merges into body 6: the mass
-// the wrist F/T sensor carries (every link below the sensor frame) and the collision shapes of
-// the links fixed to link 6 (the plate, the knob, the sensor housing), for penalty contact with
-// the user's fingertip.
+// What puma_sim needs of the tool side of the URDF that ArmModel merges into the last body: the
+// mass the wrist F/T sensor carries (every link below the sensor frame) and the collision shapes
+// of the links fixed to the last link (the plate, the knob, the sensor housing), for penalty
+// contact with the user's fingertip. Any serial arm's URDF with the tool frames on its flange.
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "puma_model/puma_model.hpp"
+#include "arm_model/arm_model.hpp"
 
 namespace wysiwyf::robot::sim {
 
@@ -31,8 +31,8 @@ struct ToolGeometry {
 };
 
 // Reads the URDF again (urdfdom) for what the model does not keep. `sensor_frame` must be fixed
-// to link 6. Throws std::runtime_error naming the file and what is wrong.
-ToolGeometry load_tool_geometry(const std::string& urdf_path, const PumaModel& model, const std::string& sensor_frame);
+// to the last link. Throws std::runtime_error naming the file and what is wrong.
+ToolGeometry load_tool_geometry(const std::string& urdf_path, const ArmModel& model, const std::string& sensor_frame);
 
 // A sphere (centre c, radius r, base frame) against a shape placed at base_T_shape. On contact
 // returns true with the depth of penetration (> 0), the unit normal pointing out of the shape

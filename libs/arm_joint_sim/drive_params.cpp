@@ -1,11 +1,11 @@
-// Reads config/robots/puma560_drive.yaml and converts motor-side values to the joint side.
+// Reads a drive file (config/robots/puma560_drive.yaml) and converts motor-side values to the
+// joint side.
+#include "arm_joint_sim/drive_params.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
 #include <yaml-cpp/yaml.h>
-
-#include "puma_model/drive_params.hpp"
-#include "puma_model/puma_model.hpp"
 
 namespace wysiwyf::robot {
 namespace {
@@ -26,17 +26,27 @@ double number(const YAML::Node& joint, const char* key, const std::string& path,
 
 }  // namespace
 
-Vector6d DriveParams::reflected_inertia() const {
+DriveParams DriveParams::ideal(int dof) {
+  if (dof < 1 || dof > kMaxArmDof)
+    throw std::invalid_argument("ideal drives: need 1.." + std::to_string(kMaxArmDof) + " joints, got " +
+                                std::to_string(dof));
+  DriveParams d;
+  d.gear_ratio = JointVector::Ones(dof);
+  d.motor_inertia = d.viscous_friction = d.coulomb_positive = d.coulomb_negative = JointVector::Zero(dof);
+  return d;
+}
+
+JointVector DriveParams::reflected_inertia() const {
   return (motor_inertia.array() * gear_ratio.array().square()).matrix();
 }
 
-Vector6d DriveParams::joint_viscous() const {
+JointVector DriveParams::joint_viscous() const {
   return (viscous_friction.array() * gear_ratio.array().square()).matrix();
 }
 
-Vector6d DriveParams::friction_torque(const Vector6d& qd) const {
-  Vector6d tau;
-  for (int j = 0; j < kDof; ++j) {
+JointVector DriveParams::friction_torque(const JointVector& qd) const {
+  JointVector tau(dof());
+  for (int j = 0; j < dof(); ++j) {
     const double motor_velocity = gear_ratio[j] * qd[j];
     const double coulomb = motor_velocity > 0.0   ? coulomb_positive[j]
                            : motor_velocity < 0.0 ? coulomb_negative[j]
@@ -47,9 +57,9 @@ Vector6d DriveParams::friction_torque(const Vector6d& qd) const {
   return tau;
 }
 
-Vector6d DriveParams::friction_torque(const Vector6d& qd, double smoothing) const {
-  Vector6d tau;
-  for (int j = 0; j < kDof; ++j) {
+JointVector DriveParams::friction_torque(const JointVector& qd, double smoothing) const {
+  JointVector tau(dof());
+  for (int j = 0; j < dof(); ++j) {
     const double g = gear_ratio[j];
     const double motor_velocity = g * qd[j];
     const double coulomb = (motor_velocity >= 0.0 ? coulomb_positive[j] : -coulomb_negative[j]) *
@@ -70,13 +80,15 @@ DriveParams load_drive_params(const std::string& path) {
   }
   const YAML::Node joints = root["joints"];
   if (!joints || !joints.IsSequence()) fail(path, "no 'joints' list");
-  if (joints.size() != kDof) fail(path, "'joints' has " + std::to_string(joints.size()) + " entries, need 6");
-  DriveParams d;
-  for (std::size_t i = 0; i < kDof; ++i) {
+  if (joints.size() < 1 || joints.size() > static_cast<std::size_t>(kMaxArmDof))
+    fail(path, "'joints' has " + std::to_string(joints.size()) + " entries, need 1.." + std::to_string(kMaxArmDof));
+  const int n = static_cast<int>(joints.size());
+  DriveParams d = DriveParams::ideal(n);
+  for (std::size_t i = 0; i < joints.size(); ++i) {
     const YAML::Node j = joints[i];
     const int k = static_cast<int>(i);
     if (!j["name"]) fail(path, "joints[" + std::to_string(i) + "] has no 'name'");
-    d.joint_names[i] = j["name"].as<std::string>();
+    d.joint_names.push_back(j["name"].as<std::string>());
     d.gear_ratio[k] = number(j, "gear_ratio", path, i);
     d.motor_inertia[k] = number(j, "motor_inertia", path, i);
     d.viscous_friction[k] = number(j, "viscous_friction", path, i);
@@ -98,12 +110,15 @@ DriveParams load_drive_params(const std::string& path) {
   return d;
 }
 
-DriveParams load_drive_params(const std::string& path, const PumaModel& model) {
+DriveParams load_drive_params(const std::string& path, const std::vector<std::string>& joint_names) {
   DriveParams d = load_drive_params(path);
-  for (std::size_t i = 0; i < kDof; ++i)
-    if (d.joint_names[i] != model.joint_names()[i])
-      fail(path, "joints[" + std::to_string(i) + "] is '" + d.joint_names[i] + "', the model's joint " +
-                     std::to_string(i + 1) + " is '" + model.joint_names()[i] + "'");
+  if (d.joint_names.size() != joint_names.size())
+    fail(path, "'joints' has " + std::to_string(d.joint_names.size()) + " entries, the arm has " +
+                   std::to_string(joint_names.size()) + " joints");
+  for (std::size_t i = 0; i < joint_names.size(); ++i)
+    if (d.joint_names[i] != joint_names[i])
+      fail(path, "joints[" + std::to_string(i) + "] is '" + d.joint_names[i] + "', the arm's joint " +
+                     std::to_string(i + 1) + " is '" + joint_names[i] + "'");
   return d;
 }
 
