@@ -28,8 +28,14 @@ JointServo::JointServo(const ArmModel& model, const DriveParams& drive, const Jo
   if (drive_.dof() != n)
     throw std::invalid_argument("the drive has " + std::to_string(drive_.dof()) + " joints, the arm " +
                                 std::to_string(n));
-  const JointVector m_diag = model_.mass_matrix(q_gains).diagonal();
   const double w = 6.283185307179586 * config_.bandwidth_hz;
+  inertia_weighted_ = drive_.is_ideal() && config_.kp.empty() && config_.kd.empty();
+  if (inertia_weighted_) {
+    kp_ = JointVector::Constant(n, w * w);
+    kd_ = JointVector::Constant(n, 2.0 * config_.damping * w);
+    return;
+  }
+  const JointVector m_diag = model_.mass_matrix(q_gains).diagonal();
   kp_.resize(n);
   kd_.resize(n);
   for (int j = 0; j < n; ++j) {
@@ -42,7 +48,9 @@ JointServo::JointServo(const ArmModel& model, const DriveParams& drive, const Jo
 JointVector JointServo::torque(const JointVector& q_measured, const JointVector& qd_measured, const JointVector& ref_q,
                                const JointVector& ref_qd, const JointVector& ref_qdd) const {
   const JointVector gravity = model_.gravity_torques(q_measured);
-  JointVector tau = kp_.cwiseProduct(ref_q - q_measured) + kd_.cwiseProduct(ref_qd - qd_measured) + gravity;
+  const JointVector pd = kp_.cwiseProduct(ref_q - q_measured) + kd_.cwiseProduct(ref_qd - qd_measured);
+  JointVector tau =
+      inertia_weighted_ ? JointVector(model_.mass_matrix(q_measured) * pd + gravity) : JointVector(pd + gravity);
   if (config_.accel_feedforward > 0.0)
     tau += config_.accel_feedforward * (model_.rnea(q_measured, qd_measured, ref_qdd) - gravity);
   // Friction is compensated while the reference moves; at a standstill it holds the arm (and

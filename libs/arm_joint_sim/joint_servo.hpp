@@ -2,6 +2,14 @@
 // An arm's 1 kHz joint servo, as in the Unimation controller: PD on the joint reference plus
 // gravity compensation, and (not in the Unimation servo; on by default) inverse-dynamics and
 // friction feedforward. Torques are saturated at the URDF effort limits.
+//
+// Derived gains depend on the drives. Geared drives (a drive file) have one PD per joint, scaled
+// by that joint's inertia M_jj(q_gains): the reflected rotor inertia dominates and decouples the
+// joints, as in the PUMA's cabinet. Ideal drives have no rotor inertia, and the links' inertia
+// couples the joints (an FR3's joints 1 and 3 nearly share an axis while joint 2 is near 0: one
+// PD per joint would be unstable in their opposed motion), so the PD acts through the mass matrix
+// at the measured joints, tau = M(q) (w^2 e + 2 zeta w e'): every joint-space mode then has the
+// bandwidth w, as a model-based joint controller gives it. Explicit gains are always per joint.
 #include <vector>
 
 #include "arm_joint_sim/drive_params.hpp"
@@ -33,6 +41,10 @@ class JointServo {
   JointVector torque(const JointVector& q_measured, const JointVector& qd_measured, const JointVector& ref_q,
                      const JointVector& ref_qd, const JointVector& ref_qdd) const;
 
+  // Whether the PD acts through the mass matrix (derived gains on ideal drives).
+  bool inertia_weighted() const { return inertia_weighted_; }
+  // Per-joint gains [N m/rad, N m s/rad]; when inertia_weighted(), w^2 and 2 zeta w [1/s^2, 1/s]
+  // on every joint, multiplied by M(q).
   const JointVector& kp() const { return kp_; }
   const JointVector& kd() const { return kd_; }
 
@@ -40,6 +52,7 @@ class JointServo {
   const ArmModel& model_;
   const DriveParams& drive_;
   JointServoConfig config_;
+  bool inertia_weighted_ = false;
   JointVector kp_, kd_;
 };
 
