@@ -36,6 +36,7 @@ template <class T>
 void fill(T& sample);
 template <>
 void fill(msg::JointState& s) {
+  s.position().resize(6);
   for (int i = 0; i < 6; ++i) s.position()[i] = 0.1 * i;
 }
 template <>

@@ -46,7 +46,8 @@ void BM_CameraSim_640x480(benchmark::State& state) {
   h.activate();
   msg::JointState js;
   const double q[6] = {0.37, 0.47, -3.17, 0.96, 1.62, 1.19};  // the plate in view
-  for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+  js.position().resize(6);
+  for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q[i];
   joints.write(js);
   std::int64_t t = 0;
   msg::Image img;

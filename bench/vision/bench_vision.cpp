@@ -230,7 +230,8 @@ const TrackerFrames& tracker_frames() {
     TrackerFrames f;
     const double q0[6] = {0.255486, -0.429048, -2.231546, 0.286487, 1.106586, 3.010371};
     msg::JointState js;
-    for (int i = 0; i < 6; ++i) js.position()[i] = q0[i];
+    js.position().resize(6);
+    for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q0[i];
     // Where the plate is (camera_sim's ground truth), so that the camera looks at it.
     Eigen::Vector3d plate;
     {

@@ -27,7 +27,15 @@ std::string problem(const WrenchStamped& m) {
 }
 
 std::string problem(const JointState& m) {
-  return msgs::joint_positions(m).allFinite() ? std::string() : "a non-finite joint position";
+  const std::size_t n = m.position().size();
+  if (n == 0) return "no joint positions";
+  if (!m.velocity().empty() && m.velocity().size() != n)
+    return std::to_string(m.velocity().size()) + " velocities for " + std::to_string(n) + " joints";
+  if (!m.effort().empty() && m.effort().size() != n)
+    return std::to_string(m.effort().size()) + " efforts for " + std::to_string(n) + " joints";
+  for (double q : m.position())
+    if (!std::isfinite(q)) return "a non-finite joint position";
+  return {};
 }
 
 std::string problem(const HandPosition& m) {

@@ -74,7 +74,7 @@ class TestProbe final : public wysiwyf::Component {
         last_writer_ = in_.writer();
         log("samples from process '" + last_writer_ + "'");
       }
-      if (!std::isfinite(sample_.position()[0])) {
+      if (sample_.position().empty() || !std::isfinite(sample_.position()[0])) {
         reject(in_, "position[0] is not finite");
         continue;
       }
@@ -89,6 +89,7 @@ class TestProbe final : public wysiwyf::Component {
     wysiwyf::msg::JointState out;
     out.header().stamp_ns(now.ns);
     out.header().seq(seq_++);
+    out.position().resize(1);
     out.position()[0] = emit_nan_ ? std::nan("") : now.seconds() + gain_ * std::sin(sum);
     out_.write(out);
   }

@@ -140,6 +140,7 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
     auto left = cam.watch<msg::Image>("image"), right = cam.watch<msg::Image>("image_right");
     cam.activate();
     msg::JointState js;
+    js.position().resize(6);
     for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = parked[i];
     for (int k = 0; k < 50; ++k) {
       joints.write(js);

@@ -33,6 +33,7 @@ TEST(PlannerInputs, AHandStampedFarAheadIsRejectedAndAHandStampedNowIsTaken) {
       const std::int64_t t = t_ms * kMs;
       msg::JointState j;
       fill_header(j.header(), t, 0, "base");
+      j.position().resize(6);
       for (int i = 0; i < 6; ++i) j.position()[static_cast<std::size_t>(i)] = parked[i];
       joints.write(j);
       msg::PoseStamped d;

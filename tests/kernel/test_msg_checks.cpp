@@ -37,9 +37,18 @@ TEST(MessageChecks, EachTypeChecksWhatItCarries) {
   EXPECT_EQ(msg::problem(w), "a non-finite force or torque");
 
   msg::JointState j;
-  EXPECT_EQ(msg::problem(j), "");
+  EXPECT_EQ(msg::problem(j), "no joint positions");
+  j.position() = {0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6};  // an arm of 7 joints
+  EXPECT_EQ(msg::problem(j), "") << "velocities and efforts may be left out";
+  j.velocity().assign(7, 0.0);
   j.velocity()[2] = kNan;  // unknown velocities are allowed
   EXPECT_EQ(msg::problem(j), "");
+  j.effort().assign(6, 0.0);
+  EXPECT_EQ(msg::problem(j), "6 efforts for 7 joints");
+  j.effort().clear();
+  j.velocity().resize(8, 0.0);
+  EXPECT_EQ(msg::problem(j), "8 velocities for 7 joints");
+  j.velocity().resize(7);
   j.position()[5] = kNan;
   EXPECT_EQ(msg::problem(j), "a non-finite joint position");
 

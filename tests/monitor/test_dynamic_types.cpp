@@ -79,6 +79,7 @@ TEST(DynamicTypes, NestedSequencesArraysEnumsAndStringsDecodeToTheirValues) {
   EXPECT_EQ(o["contacts"][0]["other"].as<std::string>(), "table");
 
   msg::JointState joints;
+  joints.position().resize(6);
   for (int i = 0; i < 6; ++i) joints.position()[i] = 0.1 * i;
   const YAML::Node j = through_dynamic_type(joints);
   ASSERT_EQ(j["position"].size(), 6u);

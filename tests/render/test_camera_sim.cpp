@@ -39,7 +39,8 @@ TEST(CameraSim, ItsHandMaskAgreesWithItsImageAndItsPosesWithTheModel) {
   auto eye_T_base = h.watch<msg::PoseStamped>("true_eye_T_base");
   h.activate();
   msg::JointState js;
-  for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+  js.position().resize(6);
+  for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q[i];
   joints.write(js);
   // The index fingertip 5 cm in front of the plate, pointing at it.
   Eigen::Isometry3d base_T_hand = model.fk(q, model.frame("dev"));
@@ -92,7 +93,8 @@ TEST(CameraSim, AnExposureAveragesTheSceneOverItsSampleTimes) {
       "intrinsics: [600, 600, 319.5, 239.5], look_at: [0.6, 0.0, 0.45], noise: 0, blur: 0, "
       "light_variation: 0, spill: 0";
   msg::JointState js;
-  for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+  js.position().resize(6);
+  for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q[i];
   Eigen::Isometry3d start = model.fk(q, model.frame("dev"));
   start.translate(Eigen::Vector3d(-0.05, 0.0, 0.12));
   start.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));

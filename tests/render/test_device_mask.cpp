@@ -49,7 +49,8 @@ TEST(DeviceMask, CoversEveryKeyedPixelOfTheRealDevice) {
     const Time t{k * 40'000'000LL};
     msg::JointState js;
     fill_header(js.header(), t.ns, static_cast<std::uint64_t>(k), "base");
-    for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+    js.position().resize(6);
+    for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q[i];
     joints.write(js);
     cam.tick(t);
     msg::Image img, keyed, dev, truth;

@@ -6,7 +6,7 @@
  * form (%a), for ros2_interop.py to compare:
  *   P <topic> <type>
  *   RJ <sec> <nanosec> [frame] <names,> <n> position... <n> velocity... <n> effort...
- *   OJ <stamp_ns> [frame] position[6] velocity[6] effort[6]
+ *   OJ <stamp_ns> [frame] <n> position... <n> velocity... <n> effort...
  *   RW <sec> <nanosec> [frame] fx fy fz tx ty tz          OW <stamp_ns> [frame] fx fy fz tx ty tz
  *   RP <sec> <nanosec> [frame] px py pz qx qy qz qw       OP <stamp_ns> [frame] px py pz qx qy qz qw
  * Usage: ros2_cyclone_reader DOMAIN WRENCH_TOPIC MAX_SECONDS
@@ -47,9 +47,9 @@ static int print_sample(const char* tag, const void* s) {
   } else if (strcmp(tag, "OJ") == 0) {
     const wysiwyf_msg_JointState* m = s;
     printf("OJ %lld [%s]", (long long)m->header.stamp_ns, m->header.frame_id);
-    print_doubles(m->position, 6, 0);
-    print_doubles(m->velocity, 6, 0);
-    print_doubles(m->effort, 6, 0);
+    print_doubles(m->position._buffer, m->position._length, 1);
+    print_doubles(m->velocity._buffer, m->velocity._length, 1);
+    print_doubles(m->effort._buffer, m->effort._length, 1);
   } else if (strcmp(tag, "RW") == 0) {
     const geometry_msgs_msg_dds__WrenchStamped_* m = s;
     const double v[6] = {m->wrench.force.x,  m->wrench.force.y,  m->wrench.force.z,

@@ -60,7 +60,9 @@ def parse(lines):
             else:
                 values = doubles(f[3:])
             ros2.setdefault(tag[1], {})[sec * 1_000_000_000 + nanosec] = (frame, values)
-        elif tag in ("OJ", "OW", "OP"):
+        elif tag == "OJ":  # the original's sequences, counted like the mirror's
+            original.setdefault("J", {})[int(f[0])] = (f[1], [x for v in counted(f[2:]) for x in v])
+        elif tag in ("OW", "OP"):
             original.setdefault(tag[1], {})[int(f[0])] = (f[1], doubles(f[2:]))
     return writers, ros2, original, problems
 

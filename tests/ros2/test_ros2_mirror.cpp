@@ -2,6 +2,8 @@
 // a stamp ROS 2 cannot hold refused, the ports an instance has chosen by `mirror`.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -54,6 +56,7 @@ TEST(Ros2Mirror, JointStateAsSensorMsgsWithNamesStampAndFrame) {
   h.activate();
   msg::JointState js;
   fill_header(js.header(), 1'700'000'000'123'456'789, 41, "base");
+  js.position().resize(6), js.velocity().resize(6), js.effort().resize(6);
   for (std::size_t j = 0; j < 6; ++j) {
     js.position()[j] = 0.1 * static_cast<double>(j) + 1e-17;
     js.velocity()[j] = -static_cast<double>(j);
@@ -80,6 +83,30 @@ TEST(Ros2Mirror, JointStateAsSensorMsgsWithNamesStampAndFrame) {
   ASSERT_TRUE(out.take(r));
   EXPECT_EQ(r.header().stamp().nanosec(), 124'456'789u);
   EXPECT_FALSE(out.take(r));
+}
+
+// A 7-joint arm (the FR3): its names; a source without velocities or efforts gives NaN (ROS 2's
+// "unknown"); a joint state of another joint count than the names is refused.
+TEST(Ros2Mirror, AnArmOfSevenJointsAndAJointStateOfAnotherCountRefused) {
+  Harness h("ros2_mirror", "{joint_names: [j1, j2, j3, j4, j5, j6, j7]}");
+  auto in = h.feed<msg::JointState>("joint_state");
+  auto out = h.watch<ros2_sensor::JointState_>("ros2_joint_state");
+  h.activate();
+  msg::JointState js;
+  fill_header(js.header(), kMs, 0, "base");
+  js.position() = {0.1, 0.2, 0.3, -2.0, 0.5, 1.6, 0.7};
+  in.write(js);
+  js.position().resize(6);
+  in.write(js);
+  h.tick(Time{kMs});
+  ros2_sensor::JointState_ r;
+  ASSERT_TRUE(out.take(r));
+  ASSERT_EQ(r.position().size(), 7u);
+  EXPECT_EQ(r.position()[6], 0.7);
+  EXPECT_TRUE(std::isnan(r.velocity()[6]));
+  EXPECT_TRUE(std::isnan(r.effort()[0]));
+  EXPECT_FALSE(out.take(r)) << "the 6-joint state is refused";
+  EXPECT_EQ(h.rejected("joint_state"), 1u);
 }
 
 TEST(Ros2Mirror, WrenchAndPoseKeepEveryValueAndTheFrame) {
@@ -193,7 +220,7 @@ TEST(Ros2Mirror, RejectsUnknownOrRepeatedStreamsAndAWrongNumberOfJointNames) {
       {"{mirror: [joints]}", "found 'joints'; expected joint_state, wrench or pose"},
       {"{mirror: [pose, pose]}", "'pose' twice"},
       {"{mirror: []}", "expected at least 1 value"},
-      {"{joint_names: [a, b]}", "expected 6 values"},
+      {"{joint_names: [a, b, c, d, e, f, g, h, i]}", "expected 1 to 8 values"},
   };
   for (const auto& [params, expected] : bad) {
     try {

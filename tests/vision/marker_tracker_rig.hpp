@@ -82,11 +82,12 @@ class Rig {
     const Time now{frame * kFrameNs};
     msg::JointState js;
     js.header().stamp_ns(now.ns);
-    for (int i = 0; i < 6; ++i) js.position()[i] = q[i];
+    js.position().resize(6);
+    for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q[i];
     joints_in_.write(js);
     msg::JointState told_js = js;
     if (told)
-      for (int i = 0; i < 6; ++i) told_js.position()[i] = (*told)[i];
+      for (int i = 0; i < 6; ++i) told_js.position()[static_cast<std::size_t>(i)] = (*told)[i];
     cam_.tick(now);
     ASSERT_TRUE(image_.take_latest(img_));
     ASSERT_TRUE(info_.take_latest(info_msg_));

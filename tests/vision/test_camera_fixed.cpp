@@ -80,6 +80,7 @@ TEST(CameraFixed, PublishesTheCalibratedPoseInEachFileForm) {
     msg::PoseStamped none;
     EXPECT_FALSE(dev.take_latest(none)) << "eye_T_dev before any joint state";
     msg::JointState js;
+    js.position().resize(6);
     for (int i = 0; i < 6; ++i) js.position()[static_cast<std::size_t>(i)] = q[i];
     joints.write(js);
     h.tick(Time{33'333'333});
@@ -118,7 +119,9 @@ TEST(CameraFixed, WithTheCamerasFramesThePosesCarryTheFramesStamp) {
   msg::PoseStamped p;
   ASSERT_TRUE(base.take_latest(p));
   EXPECT_EQ(p.header().stamp_ns(), 10'000'000) << "no frame yet: the tick's time";
-  joints.write(msg::JointState());
+  msg::JointState zero;
+  zero.position().assign(6, 0.0);
+  joints.write(zero);
   msg::CameraInfo frame;
   fill_header(frame.header(), 13'500'000, 0, "eye");
   info.write(frame);

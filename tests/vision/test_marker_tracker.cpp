@@ -255,6 +255,7 @@ TEST(MarkerTracker, GateRefusesABrightBlobWhereAHiddenLampShouldBe) {
 TEST(MarkerTracker, SkipsBadInputAndReportsIt) {
   Tracker t("{intrinsics: [600, 600, 319.5, 239.5]}");
   msg::JointState js;
+  js.position().assign(6, 0.0);
   js.position()[1] = std::nan("");
   t.joints.write(js);
   msg::Image img;

@@ -309,7 +309,8 @@ TEST(StereoDepth, LeavesTheKeyedPlateOutOfTheHandGivenEyeTDev) {
   // The arm as demo-sim starts it: the plate (not blue: the keyer keeps it) facing the camera.
   msg::JointState joints;
   const double q[6] = {0.255486, -0.429048, -2.231546, 0.286487, 1.106586, 3.010371};
-  for (int i = 0; i < 6; ++i) joints.position()[i] = q[i];
+  joints.position().resize(6);
+  for (int i = 0; i < 6; ++i) joints.position()[static_cast<std::size_t>(i)] = q[i];
   Eigen::Isometry3d base_T_dev;
   {  // where the plate is, from camera_sim's ground truth
     Harness cam("camera_sim", "{}", 25);

@@ -5,6 +5,7 @@
 // there (config/pipelines/ros2/mirror.yaml; docs/ros2.md). Values pass unchanged; the stamp goes
 // from int64 ns to ROS 2's {int32 sec, uint32 nanosec} exactly, frame ids are kept, the sequence
 // number and a pose's child frame have no place in ROS 2's types and are left out.
+#include <cmath>
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -59,21 +60,22 @@ class Ros2Mirror final : public Component {
     }
     const auto names = ctx.param<std::vector<std::string>>(
         "joint_names", {"joint1", "joint2", "joint3", "joint4", "joint5", "joint6"},
-        "sensor_msgs/JointState's name, base to tip (the URDF's joints, for robot_state_publisher)", std::nullopt,
-        Length::exactly(kJoints));
+        "sensor_msgs/JointState's name, base to tip (the URDF's joints, for robot_state_publisher; as many as "
+        "the arm's joint states carry)",
+        std::nullopt, Length{1, kMaxJoints});
     // Every sample counts (a bag or a plot should hold what the display had): deep queues read
     // with take(). Best effort, so that the mirror may run in another process group than a
     // best-effort writer (the wrist sensor's); inside one process nothing is lost either way.
     // Outputs as ROS 2's default profile (reliable, keep last 10): RViz's displays and
     // robot_state_publisher subscribe reliable, and ros2 topic echo takes either.
     if (has("joint_state")) {
-      joint_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints (six)", Qos::sensor(64));
+      joint_in_ = ctx.input<msg::JointState>("joint_state", "the arm's joints (one per joint_names)", Qos::sensor(64));
       joint_out_ = ctx.output<ros2::JointState_>(
           "ros2_joint_state", "sensor_msgs/JointState (map it to rt/<name>: ROS 2's /<name>)", Qos::reliable(10));
       joint_.name(names);
-      joint_.position().resize(kJoints);
-      joint_.velocity().resize(kJoints);
-      joint_.effort().resize(kJoints);
+      joint_.position().resize(names.size());
+      joint_.velocity().resize(names.size());
+      joint_.effort().resize(names.size());
     }
     if (has("wrench")) {
       wrench_in_ = ctx.input<msg::WrenchStamped>("wrench", "a wrench (the wrist sensor's)", Qos::sensor(64));
@@ -90,11 +92,19 @@ class Ros2Mirror final : public Component {
 
   void tick(Time) override {
     while (joint_in_.take(joint_in_msg_)) {
+      const std::size_t n = joint_.name().size();
+      if (joint_in_msg_.position().size() != n) {
+        reject(joint_in_, std::to_string(joint_in_msg_.position().size()) + " joints, expected " + std::to_string(n) +
+                              " (joint_names)");
+        continue;
+      }
       if (!header(joint_in_, joint_in_msg_.header(), joint_.header())) continue;
-      for (std::size_t j = 0; j < kJoints; ++j) {
-        joint_.position()[j] = joint_in_msg_.position()[j];
-        joint_.velocity()[j] = joint_in_msg_.velocity()[j];
-        joint_.effort()[j] = joint_in_msg_.effort()[j];
+      // Velocities and efforts the source does not know are NaN, as ROS 2's JointState has them.
+      const auto& in = joint_in_msg_;
+      for (std::size_t j = 0; j < n; ++j) {
+        joint_.position()[j] = in.position()[j];
+        joint_.velocity()[j] = in.velocity().size() == n ? in.velocity()[j] : std::nan("");
+        joint_.effort()[j] = in.effort().size() == n ? in.effort()[j] : std::nan("");
       }
       joint_out_.write(joint_);
     }
@@ -119,7 +129,7 @@ class Ros2Mirror final : public Component {
   }
 
  private:
-  static constexpr std::size_t kJoints = 6;  // WYSIWYF's JointState: a six-joint arm
+  static constexpr std::size_t kMaxJoints = 8;  // WYSIWYF's JointState: up to 8 joints
 
   bool has(const std::string& kind) const { return std::find(mirror_.begin(), mirror_.end(), kind) != mirror_.end(); }
 

@@ -21,7 +21,8 @@ namespace wysiwyf::msg {
 std::string problem(const PoseStamped& m);
 // Force and torque finite.
 std::string problem(const WrenchStamped& m);
-// The six joint positions finite (velocities and efforts may be NaN: unknown).
+// At least one joint position, all finite; velocities and efforts none or one per joint (a
+// velocity or effort may be NaN: unknown).
 std::string problem(const JointState& m);
 // A tracked hand (not LOST): its position finite. A LOST one carries no position: fine.
 std::string problem(const HandPosition& m);

@@ -65,7 +65,6 @@ inline void to_msg(const msg::PoseStamped& pose, const Eigen::Matrix<double, 6, 
 }
 
 // A six-joint arm's positions as one vector.
-inline Vector6d joint_positions(const msg::JointState& m) { return Eigen::Map<const Vector6d>(m.position().data()); }
 
 inline bool all_finite(const geometry_msgs::Wrench& w) { return to_vector6(w).allFinite(); }
 inline bool all_finite(const geometry_msgs::Pose& p) {
