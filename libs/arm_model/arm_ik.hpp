@@ -69,6 +69,11 @@ struct ArmIkOptions {
   double duplicate = 1e-4;       // solutions closer than this (max over joints) are one
   double local_radius = 0.25;    // ik_nearest returns the q_current seed's solution at once when
                                  // it lies this close to q_current (Euclidean, joint space)
+  double limit_margin = 0.3;     // redundant arms: the null-space goal keeps this far [rad or m]
+                                 // inside every position limit (at most a quarter of its range), so
+                                 // the self-motion turns a joint away from a limit the path nears
+  double limit_push = 0.01;      // redundant arms: the most one call moves the goal from q_ref
+                                 // towards that inner range [rad or m] (a gentle drift, not a jump)
 };
 
 }  // namespace wysiwyf::robot

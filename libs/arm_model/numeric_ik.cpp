@@ -3,7 +3,9 @@
 // and then from deterministic seeds spread over the limits; for redundant arms, steps in the
 // null space of the Jacobian towards q_ref, each followed by re-converging on the pose, so a
 // solution is the locally nearest one to q_ref on its self-motion manifold and stays
-// continuous along a path.
+// continuous along a path. Where q_ref lies near a position limit, the goal is q_ref moved a
+// little (limit_push) towards the limit's inner margin (limit_margin): along a path the
+// redundancy turns the arm away from its limits instead of running into them.
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -98,8 +100,14 @@ bool ArmModel::solve_numerical(const Eigen::Isometry3d& target, FrameId f, const
   q = seed.cwiseMax(limits_.lower).cwiseMin(limits_.upper);
   if (!converge(target, f, q, budget)) return false;
   if (dof() <= 6) return true;
-  // Redundancy: move along the self-motion manifold towards q_goal.
-  const JointVector goal = JointVector(q_goal).cwiseMax(limits_.lower).cwiseMin(limits_.upper);
+  // Redundancy: move along the self-motion manifold towards q_goal, nudged away from the limits.
+  JointVector goal(dof());
+  for (int j = 0; j < dof(); ++j) {
+    const double margin = std::min(o.limit_margin, 0.25 * (limits_.upper[j] - limits_.lower[j]));
+    const double inner = std::clamp(q_goal[j], limits_.lower[j] + margin, limits_.upper[j] - margin);
+    goal[j] = std::clamp(q_goal[j] + std::clamp(inner - q_goal[j], -o.limit_push, o.limit_push), limits_.lower[j],
+                         limits_.upper[j]);
+  }
   Eigen::LDLT<Matrix6d> ldlt;
   double scale = o.null_gain;
   while (budget > 0) {
