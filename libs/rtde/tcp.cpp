@@ -9,7 +9,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 
@@ -131,6 +133,20 @@ bool TcpStream::wait_readable(double timeout_s) const {
   if (!open()) return false;
   pollfd p{fd_, POLLIN, 0};
   return ::poll(&p, 1, timeout_ms(timeout_s)) > 0;
+}
+
+bool TcpStream::drain(double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (open() && flush() && !queued_.empty()) {
+    const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) {
+      error_ = std::to_string(queued_.size()) + " bytes not taken within " + std::to_string(timeout_s) + " s";
+      return false;
+    }
+    pollfd p{fd_, POLLOUT, 0};
+    ::poll(&p, 1, std::max(1, timeout_ms(left)));
+  }
+  return open() && queued_.empty();
 }
 
 void TcpStream::close() {

@@ -33,6 +33,11 @@ class TcpStream {
   bool receive(std::vector<std::uint8_t>& into, std::size_t max_bytes = 1 << 16);
   // Waits until bytes arrive or timeout_s passes; true when there are bytes (or an end) to read.
   bool wait_readable(double timeout_s) const;
+  // Bytes queued and not yet taken by the socket.
+  std::size_t queued() const { return queued_.size(); }
+  // Sends the queue, waiting at most timeout_s for the socket to take it (before a close that
+  // must not lose it); false when bytes are left or the connection failed (then error() says).
+  bool drain(double timeout_s);
   void close();
   const std::string& error() const { return error_; }
 

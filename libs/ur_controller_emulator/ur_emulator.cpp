@@ -95,8 +95,16 @@ struct UrEmulator::Impl {
     c.framer.feed(in.data(), in.size());
     while (const auto pkg = c.framer.next()) {
       const std::uint64_t refused_before = c.session->refused();
+      const bool was_streaming = c.session->streaming();
       c.session->handle(*pkg, replies);
       counters.packages_refused += c.session->refused() - refused_before;
+      // In lockstep no period passes until the first input package: the state the stream starts
+      // from goes out with the start's answer (the controller's periods would send it anyway).
+      if (options.lockstep && !was_streaming && c.session->streaming() && c.session->outputs()) {
+        controller.fill_outputs(*c.session->outputs());
+        c.session->encode_outputs(replies);
+        ++counters.outputs_sent;
+      }
       if (c.session->input_packages() != c.inputs_seen) {
         c.inputs_seen = c.session->input_packages();
         controller.take_inputs(*c.session->inputs(pkg->payload[0]));

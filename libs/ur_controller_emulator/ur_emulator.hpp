@@ -7,7 +7,8 @@
 //  - real time: one controller period every `period` on the steady clock; outputs to each
 //    streaming client at its recipe's frequency;
 //  - lockstep: one period per input data package, answered by one output package, so a driver on
-//    the simulated clock sees exactly what the simulated arm would.
+//    the simulated clock sees exactly what the simulated arm would; the start of a stream is
+//    answered with one output package of the state it starts from (no period passes).
 // Faults can be injected for tests: a protective stop, dropped connections, late or malformed
 // output packages.
 #include <cstdint>

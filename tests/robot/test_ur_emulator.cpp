@@ -141,6 +141,8 @@ TEST(UrEmulator, InLockstepEveryInputPackageIsOnePeriodAndOneOutputPackage) {
   };
   for (int i = 0; i < 50 && !client.streaming() && !client.failed(); ++i) exchange();
   ASSERT_TRUE(client.streaming()) << client.error();
+  EXPECT_EQ(outputs, 1) << "the start is answered with the state the stream starts from";
+  EXPECT_EQ(emulator.counters().periods, 0u);
 
   rtde::TcpStream script = rtde::TcpStream::connect("127.0.0.1", emulator.script_port(), 1.0);
   const std::string text = follow_script();
