@@ -1,0 +1,84 @@
+// ur-emulator: a Universal Robots e-Series controller on 127.0.0.1 (libs/ur_controller_emulator):
+// RTDE, the primary interface's script port and the dashboard server, running the follow
+// program's behaviour (config/robots/ur_follow.script) on the same joint servo and arm dynamics
+// as puma_sim with the UR5e's URDF, so pipelines with ur_driver run without the arm.
+//   ur-emulator [--rtde-port 30004] [--script-port 30002] [--dashboard-port 29999] [--lockstep]
+//               [--urdf FILE] [--drive FILE] [--initial-q q1 .. q6] [--encoder-counts N]
+//               [--servo-bandwidth HZ]
+// A port of 0 takes any free one (the line printed at the start names them). --lockstep: one
+// controller period per input data package (for pipelines on the simulated clock, with
+// ur_driver's `lockstep: true`); without it, a real-time 500 Hz controller.
+#include <chrono>
+#include <csignal>
+#include <iostream>
+#include <string>
+#include <thread>
+
+#include "ur_controller_emulator/ur_emulator.hpp"
+
+namespace {
+volatile std::sig_atomic_t g_stop = 0;
+
+std::uint16_t port_number(const std::string& text) {
+  const int p = std::stoi(text);
+  if (p < 0 || p > 65535) throw std::invalid_argument("port " + text + ", expected 0 to 65535");
+  return static_cast<std::uint16_t>(p);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  using wysiwyf::robot::ur::UrEmulator;
+  UrEmulator::Options o;
+  o.rtde_port = 30004, o.script_port = 30002, o.dashboard_port = 29999;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto next = [&](const char* what) {
+        if (i + 1 >= argc) throw std::invalid_argument(a + " needs " + what);
+        return std::string(argv[++i]);
+      };
+      if (a == "--rtde-port")
+        o.rtde_port = port_number(next("a port"));
+      else if (a == "--script-port")
+        o.script_port = port_number(next("a port"));
+      else if (a == "--dashboard-port")
+        o.dashboard_port = port_number(next("a port"));
+      else if (a == "--lockstep")
+        o.lockstep = true;
+      else if (a == "--urdf")
+        o.controller.urdf = next("a file");
+      else if (a == "--drive")
+        o.controller.drive = next("a file");
+      else if (a == "--encoder-counts")
+        o.controller.encoder_counts = std::stoi(next("a count"));
+      else if (a == "--servo-bandwidth")
+        o.controller.servo.bandwidth_hz = std::stod(next("a frequency in Hz"));
+      else if (a == "--initial-q")
+        for (int j = 0; j < 6; ++j) o.controller.initial_q[j] = std::stod(next("six joint angles, rad"));
+      else
+        throw std::invalid_argument("unknown option " + a +
+                                    " (see the comment at the top of apps/ur-emulator/main.cpp)");
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "ur-emulator: " << e.what() << "\n";
+    return 2;
+  }
+  std::signal(SIGINT, [](int) { g_stop = 1; });
+  std::signal(SIGTERM, [](int) { g_stop = 1; });
+  try {
+    UrEmulator emulator(o);
+    std::cout << "UR emulator on 127.0.0.1: rtde " << emulator.rtde_port() << ", script " << emulator.script_port()
+              << ", dashboard " << emulator.dashboard_port() << (o.lockstep ? " (lockstep)" : " (500 Hz)") << "\n"
+              << std::flush;
+    while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const auto c = emulator.counters();
+    std::cout << "ran " << c.periods << " periods, sent " << c.outputs_sent << " output packages to "
+              << c.rtde_connections << " RTDE connection(s); " << c.packages_refused << " packages refused; "
+              << c.scripts_run << " programs run, " << c.scripts_refused << " refused; " << c.dashboard_commands
+              << " dashboard commands\n";
+  } catch (const std::exception& e) {
+    std::cerr << "ur-emulator: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
