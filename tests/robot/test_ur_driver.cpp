@@ -1,0 +1,277 @@
+// ur_driver against the UR emulator (libs/ur_controller_emulator, in this process, on loopback),
+// on the simulated clock in lockstep: the same setpoint stream gives the same joint trajectory as
+// puma_sim with the UR5e's URDF; every injected fault (a protective stop, dropped connections,
+// outputs late beyond 3 periods, a package cut short) holds the arm within 3 periods and is
+// named in its status; after a protective stop it stays held until the supervisor's clear
+// request, then recovers. Measured figures are printed as "[measured]" lines.
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arm_model/arm_model.hpp"
+#include "ur_controller_emulator/ur_emulator.hpp"
+#include "wysiwyf/harness.hpp"
+#include "wysiwyf/msg_eigen.hpp"
+
+namespace wysiwyf::test {
+namespace {
+
+using robot::JointVector;
+using robot::ur::UrEmulator;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/ur5e.urdf";
+constexpr std::int64_t kMs = 1'000'000;
+constexpr int kTickMs = 2;  // 500 Hz: the e-Series' period
+constexpr double kPi = 3.14159265358979323846;
+// config/pipelines/robots/ur5e-sim.yaml's arm: the parked pose, ideal drives, the PUMA's
+// acceleration limits (UR publishes none). The emulator parks there by default.
+const std::string kArmParams = "urdf: " + kUrdf + ", acceleration_limits: [8, 8, 10, 30, 30, 30]";
+const std::string kSimParams =
+    "{drive: \"\", initial_q: [2.802180, -1.581828, 1.807510, -0.225596, 1.231347, 1.570657], " + kArmParams + "}";
+
+const robot::ArmModel& model() {
+  static const robot::ArmModel m(kUrdf, "dev");
+  return m;
+}
+
+UrEmulator::Options lockstep_options() {
+  UrEmulator::Options o;
+  o.lockstep = true;
+  o.controller.urdf = kUrdf;
+  return o;
+}
+
+std::string driver_params(const UrEmulator& e, const std::string& more = "") {
+  return "{lockstep: true, reply_timeout: 0.02, rtde_port: " + std::to_string(e.rtde_port()) +
+         ", script_port: " + std::to_string(e.script_port()) +
+         ", dashboard_port: " + std::to_string(e.dashboard_port()) + ", " + kArmParams + more + "}";
+}
+
+msg::CartesianSetpoint setpoint(std::int64_t stamp_ns, const Eigen::Isometry3d& T,
+                                const Eigen::Vector3d& v = Eigen::Vector3d::Zero()) {
+  msg::CartesianSetpoint s;
+  s.header().stamp_ns(stamp_ns);
+  s.header().frame_id("base");
+  s.child_frame_id("dev");
+  msgs::to_msg(T, s.pose());
+  msgs::to_msg(v, Eigen::Vector3d::Zero(), s.twist());
+  s.source("test");
+  return s;
+}
+
+// The setpoint due at `ms`, if any: a 3 cm circle at 0.5 Hz around the parked plate streamed
+// every `period_ms`, after a 4 cm step along y held for the first second.
+bool setpoint_at(int ms, int period_ms, msg::CartesianSetpoint& out) {
+  if (ms % period_ms != 0) return false;
+  JointVector q0(6);
+  q0 << 2.802180, -1.581828, 1.807510, -0.225596, 1.231347, 1.570657;
+  Eigen::Isometry3d T = model().fk(q0);
+  const double t = ms * 1e-3;
+  T.translation() += Eigen::Vector3d(0, 0.04, 0);
+  if (t < 1.0) {
+    out = setpoint(ms * kMs, T);
+    return true;
+  }
+  const double w = 2 * kPi * 0.5, s = t - 1.0;
+  T.translation() += 0.03 * Eigen::Vector3d(0, std::sin(w * s), 1 - std::cos(w * s));
+  out = setpoint(ms * kMs, T, 0.03 * w * Eigen::Vector3d(0, std::cos(w * s), std::sin(w * s)));
+  return true;
+}
+
+// One arm component (puma_sim or ur_driver) in a Harness at 500 Hz: feeds setpoints and
+// requests, records joints and the status.
+struct Arm {
+  Harness h;
+  Output<msg::CartesianSetpoint> sp;
+  Output<msg::ArmRequest> request;
+  Input<msg::JointState> js;
+  Input<msg::RobotStatus> status;
+  msg::RobotStatus last_status;
+  std::vector<Vector6d> q, qd, effort;
+  std::int64_t t = 0;
+  int published = 0;
+
+  Arm(const std::string& type, const std::string& params)
+      : h(type, params, 1000.0 / kTickMs),
+        sp(h.feed<msg::CartesianSetpoint>("setpoint")),
+        request(h.feed<msg::ArmRequest>("request")),
+        js(h.watch<msg::JointState>("joint_state", 4)),
+        status(h.watch<msg::RobotStatus>("status", 64)) {
+    h.activate();
+  }
+  int ms() const { return static_cast<int>(t / kMs); }
+  void tick(const msg::CartesianSetpoint* s = nullptr) {
+    if (s) sp.write(*s);
+    h.tick(Time{t});
+    t += kTickMs * kMs;
+    msg::JointState j;
+    published = 0;
+    while (js.take(j)) {
+      ++published;
+      Vector6d a, b, c;
+      for (std::size_t k = 0; k < 6; ++k) a[k] = j.position()[k], b[k] = j.velocity()[k], c[k] = j.effort()[k];
+      q.push_back(a), qd.push_back(b), effort.push_back(c);
+    }
+    while (status.take(last_status)) {
+    }
+  }
+  // A tick with the setpoint stream's sample due now (every `period_ms`).
+  void follow(int period_ms) {
+    msg::CartesianSetpoint s;
+    tick(setpoint_at(ms(), period_ms, s) ? &s : nullptr);
+  }
+  void hold_here() {
+    const msg::CartesianSetpoint s = setpoint(t, model().fk(JointVector(q.back())));
+    tick(ms() % 20 == 0 ? &s : nullptr);
+  }
+  void clear(const std::string& why) {
+    msg::ArmRequest r;
+    r.header().stamp_ns(t);
+    r.request(msg::ARM_CLEAR_INPUT_FAULT);
+    r.reason(why);
+    request.write(r);
+  }
+  int state() const { return static_cast<int>(last_status.state()); }
+  std::string reason() const { return last_status.reason().c_str(); }
+};
+
+struct Difference {
+  double q = 0, qd = 0, effort = 0;
+};
+
+Difference run_both(int ms, int period_ms) {
+  UrEmulator emulator(lockstep_options());
+  Arm sim("puma_sim", kSimParams);
+  Arm driver("ur_driver", driver_params(emulator));
+  for (int i = 0; i < ms / kTickMs; ++i) {
+    sim.follow(period_ms);
+    driver.follow(period_ms);
+    if (::testing::Test::HasFailure()) break;
+  }
+  EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
+  EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
+  EXPECT_EQ(sim.q.size(), static_cast<std::size_t>(ms / kTickMs));
+  EXPECT_EQ(driver.q.size(), static_cast<std::size_t>(ms / kTickMs));
+  Difference d;
+  double travel = 0;
+  for (std::size_t i = 0; i < std::min(sim.q.size(), driver.q.size()); ++i) {
+    d.q = std::max(d.q, (sim.q[i] - driver.q[i]).cwiseAbs().maxCoeff());
+    d.qd = std::max(d.qd, (sim.qd[i] - driver.qd[i]).cwiseAbs().maxCoeff());
+    d.effort = std::max(d.effort, (sim.effort[i] - driver.effort[i]).cwiseAbs().maxCoeff());
+    travel = std::max(travel, (sim.q[i] - sim.q[0]).cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(travel, 0.02) << "the arm should have moved";
+  EXPECT_EQ(emulator.counters().packages_refused, 0u);
+  std::printf(
+      "[measured] %d ms of setpoints every %d ms: puma_sim (UR5e) vs ur_driver + UR emulator, largest difference "
+      "%.3g rad, %.3g rad/s, %.3g N m (joint travel %.3f rad)\n",
+      ms, period_ms, d.q, d.qd, d.effort, travel);
+  return d;
+}
+
+TEST(UrDriver, FollowsTheSameJointTrajectoryAsPumaSimWithTheUr5e) {
+  // The driver and puma_sim share the setpoint follower and the gate; the emulator and puma_sim
+  // share the servo and the arm; RTDE carries doubles unchanged: the same arithmetic in the
+  // same order, so the trajectories agree to the last bit.
+  for (int period : {20, 2}) {
+    const Difference d = run_both(3000, period);
+    EXPECT_EQ(d.q, 0.0);
+    EXPECT_EQ(d.qd, 0.0);
+    EXPECT_EQ(d.effort, 0.0);
+  }
+}
+
+// A driver following the stream for 1.5 s, then `inject`: the arm holds within 3 periods, its
+// status names `expected`, it publishes nothing stale and the emulated arm stays where it was.
+void holds_on(const std::string& fault, const std::function<void(UrEmulator&)>& inject, const std::string& expected) {
+  SCOPED_TRACE(fault);
+  UrEmulator emulator(lockstep_options());
+  Arm driver("ur_driver", driver_params(emulator));
+  for (int i = 0; i < 750; ++i) driver.follow(20);
+  ASSERT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
+  inject(emulator);
+  int held_after = -1;
+  for (int i = 0; i < 50; ++i) {
+    driver.follow(20);
+    if (held_after < 0 && driver.state() == msg::ARM_FAULT) held_after = i;
+  }
+  const JointVector held = emulator.true_q();
+  for (int i = 0; i < 200; ++i) driver.follow(20);
+  std::printf("[measured] %s: held after %d periods (reason: %s)\n", fault.c_str(), held_after,
+              driver.reason().c_str());
+  EXPECT_EQ(driver.state(), msg::ARM_FAULT);
+  EXPECT_GE(held_after, 0);
+  EXPECT_LE(held_after, 3);
+  EXPECT_NE(driver.reason().find(expected), std::string::npos) << driver.reason();
+  EXPECT_EQ(driver.h.health(), Health::kFault);
+  EXPECT_LT((emulator.true_q() - held).cwiseAbs().maxCoeff(), 2e-3) << "the arm holds while the stream goes on";
+}
+
+TEST(UrDriver, EveryInjectedFaultHoldsTheArmWithinThreePeriodsAndIsNamed) {
+  holds_on(
+      "protective stop", [](UrEmulator& e) { e.protective_stop("test: a collision"); }, "PROTECTIVE_STOP");
+  holds_on(
+      "dropped connections", [](UrEmulator& e) { e.drop_connections(); }, "closed the connection");
+  holds_on(
+      "outputs 5 periods late", [](UrEmulator& e) { e.delay_outputs(5); }, "no output package");
+  holds_on(
+      "a package cut short", [](UrEmulator& e) { e.send_malformed(); }, "cut short");
+}
+
+TEST(UrDriver, APackageCutShortIsRefusedCountedAndTheLinkReopened) {
+  UrEmulator emulator(lockstep_options());
+  Arm driver("ur_driver", driver_params(emulator));
+  for (int i = 0; i < 100; ++i) driver.follow(20);
+  const std::uint64_t warnings = driver.h.warnings();
+  emulator.send_malformed();
+  for (int i = 0; i < 100; ++i) driver.follow(20);
+  EXPECT_EQ(driver.h.warnings(), warnings + 1) << "one refused package, counted";
+  EXPECT_EQ(emulator.counters().rtde_connections, 2u) << "reconnected";
+  EXPECT_GE(driver.published, 1) << "measurements come again on the new connection";
+  EXPECT_EQ(driver.state(), msg::ARM_FAULT);
+}
+
+TEST(UrDriver, AfterAProtectiveStopItHoldsUntilTheSupervisorClearsThenRecovers) {
+  UrEmulator emulator(lockstep_options());
+  Arm driver("ur_driver", driver_params(emulator));
+  for (int i = 0; i < 750; ++i) driver.follow(20);
+  ASSERT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
+  emulator.protective_stop("test: a collision");
+  for (int i = 0; i < 500; ++i) driver.follow(20);  // a second of setpoints: nothing moves
+  EXPECT_EQ(driver.state(), msg::ARM_FAULT);
+  EXPECT_EQ(emulator.safety_mode(), rtde::SafetyMode::kProtectiveStop) << "the driver unlocks nothing by itself";
+  const JointVector stopped = emulator.true_q();
+
+  driver.clear("test: the collision is gone");
+  for (int i = 0; i < 100 && driver.state() != msg::ARM_HOLDING; ++i) driver.hold_here();
+  EXPECT_EQ(driver.state(), msg::ARM_HOLDING) << driver.reason();
+  EXPECT_EQ(emulator.safety_mode(), rtde::SafetyMode::kNormal);
+  EXPECT_EQ(emulator.program_state(), rtde::follow::ProgramState::kFollowing);
+  EXPECT_LT((emulator.true_q() - stopped).cwiseAbs().maxCoeff(), 2e-3) << "holds where it stopped";
+  for (int i = 0; i < 100; ++i) driver.hold_here();
+  EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
+}
+
+TEST(UrDriver, NoControllerIsAClearActivationError) {
+  std::uint16_t free_port;
+  {
+    UrEmulator probe(lockstep_options());  // ports that were free a moment ago
+    free_port = probe.rtde_port();
+  }
+  try {
+    Harness h("ur_driver", "{connect_timeout: 0.1, lockstep: false, rtde_port: " + std::to_string(free_port) +
+                               ", script_port: " + std::to_string(free_port) + ", " + kArmParams + "}");
+    h.activate();
+    FAIL() << "activated without a controller";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("127.0.0.1:" + std::to_string(free_port)), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace wysiwyf::test
