@@ -3,10 +3,11 @@
 // wrist sensors give it: the controller's actual_TCP_force is the wrench at the TCP with base
 // axes (N, N m), the payload set on the pendant compensated. The driver takes the pendant's TCP to
 // be the tool flange (no TCP offset: set it so), turns the wrench into the URDF's sensor frame
-// (ft_sensor) about that frame's origin, and adds back the weight of the pendant's payload, so
-// the reading is what a wrist sensor carrying the tool reads (the supervisor and admittance_sim
-// take the tool's weight out themselves, as for an ATI Net F/T). Bias: the controller's own zero
-// (zero_ftsensor(), or the pendant) with the arm at rest; nothing is subtracted here.
+// (ft_sensor) about that frame's origin, and adds back the weight of the tool the display's
+// consumers expect in a wrist reading (the supervisor and admittance_sim take the scene's
+// tool_mass out themselves, as for an ATI Net F/T); the rest of the pendant's payload stays
+// compensated. Bias: the controller's own zero (zero_ftsensor(), or the pendant) with the arm at
+// rest; nothing is subtracted here.
 #include <array>
 #include <string>
 
@@ -17,7 +18,7 @@
 namespace wysiwyf::robot::ur {
 
 struct Payload {
-  double mass = 0;                                       // kg, as set on the pendant
+  double mass = 0;                                       // kg: the tool the reading carries
   Eigen::Vector3d com_flange = Eigen::Vector3d::Zero();  // m, its centre of gravity in the flange frame
 };
 

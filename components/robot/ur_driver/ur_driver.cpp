@@ -94,8 +94,9 @@ class UrDriver final : public Component {
         "controller's zero_ftsensor() at rest); off: `wrench` is an input from an external wrist sensor");
     const auto payload = ctx.param<std::array<double, 4>>(
         "tcp_payload", {0, 0, 0, 0},
-        "the payload set on the pendant, which the controller compensates: mass (kg), centre of gravity in the "
-        "flange frame (m); its weight is added back to the TCP force",
+        "tcp_force: the tool whose weight the reading carries, as the display's consumers expect (the scene's "
+        "tool_mass, kg, and tool_com moved to the flange frame, m); the controller compensates the pendant's whole "
+        "payload (set it to this tool and whatever else is on the flange), and this part is added back",
         Range{-100, 100});
     sensor_frame_ = ctx.param<std::string>("sensor_frame", "ft_sensor", "tcp_force: the frame the wrench is given in");
     const auto flange_frame = ctx.param<std::string>("flange_frame", "flange", "tcp_force: the UR's tool flange");
