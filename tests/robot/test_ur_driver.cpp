@@ -257,6 +257,33 @@ TEST(UrDriver, AfterAProtectiveStopItHoldsUntilTheSupervisorClearsThenRecovers) 
   EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
 }
 
+TEST(UrDriver, TheTcpForceIsTheWristReadingOfTheToolInTheSensorFrame) {
+  // The emulated sensor reads no load (the pendant's payload compensated): the reading is the
+  // tool's weight put back, in ft_sensor about its origin, as puma_sim's noiseless wrist sensor
+  // reads the same tool (its mass and centre from the URDF; the scene's tool_mass 1.1563 kg
+  // 0.01665 m beyond ft_sensor, which is 0.03 m along the flange).
+  UrEmulator emulator(lockstep_options());
+  Arm driver("ur_driver", driver_params(emulator, ", tcp_force: true, tcp_payload: [1.1563, 0, 0, 0.04665]"));
+  Arm sim("puma_sim", kSimParams.substr(0, kSimParams.size() - 1) + ", ft_noise_force: 0, ft_noise_torque: 0}");
+  Input<msg::WrenchStamped> from_driver = driver.h.watch<msg::WrenchStamped>("wrench", 4);
+  Input<msg::WrenchStamped> from_sim = sim.h.watch<msg::WrenchStamped>("wrench", 4);
+  driver.tick();
+  sim.tick();
+  msg::WrenchStamped d, s;
+  ASSERT_TRUE(from_driver.take(d));
+  ASSERT_TRUE(from_sim.take(s));
+  EXPECT_EQ(std::string(d.header().frame_id().c_str()), "ft_sensor");
+  const Eigen::Vector3d fd = msgs::to_eigen(d.wrench().force()), fs = msgs::to_eigen(s.wrench().force());
+  const Eigen::Vector3d td = msgs::to_eigen(d.wrench().torque()), ts = msgs::to_eigen(s.wrench().torque());
+  std::printf(
+      "[measured] TCP force %.4f %.4f %.4f N, %.4f %.4f %.4f N m; puma_sim's sensor %.4f %.4f %.4f N, %.4f %.4f "
+      "%.4f N m\n",
+      fd.x(), fd.y(), fd.z(), td.x(), td.y(), td.z(), fs.x(), fs.y(), fs.z(), ts.x(), ts.y(), ts.z());
+  EXPECT_NEAR(fd.norm(), 1.1563 * 9.81, 1e-9);
+  EXPECT_LT((fd - fs).norm(), 1e-3);
+  EXPECT_LT((td - ts).norm(), 1e-3);
+}
+
 TEST(UrDriver, NoControllerIsAClearActivationError) {
   std::uint16_t free_port;
   {
