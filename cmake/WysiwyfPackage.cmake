@@ -30,5 +30,5 @@ set(CPACK_STRIP_FILES ON)  # the build is RelWithDebInfo: 477 MB installed with 
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${CMAKE_BINARY_DIR}/lib)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libfastrtps-dev, libfastcdr-dev, fastddsgen, libeigen3-dev, libyaml-cpp-dev, cmake, g++, libgtest-dev")
+    "libfastrtps-dev, libfastcdr-dev, fastddsgen, libeigen3-dev, libyaml-cpp-dev, cmake, g++, libgtest-dev, liburdfdom-dev, liborocos-kdl-dev")
 include(CPack)

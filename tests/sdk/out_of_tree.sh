@@ -20,6 +20,8 @@ cmake --install "$build" --prefix "$prefix" >"$scratch/install.log"
 for f in bin/wysiwyf bin/puma-link-emulator bin/rdt-emulator lib/libwysiwyf_core.so lib/libwysiwyf_msgs.so \
          lib/libwysiwyf_kernel_msgs.so lib/libwysiwyf_msgs_idl.so lib/wysiwyf/wysiwyf_puma_sim.so \
          include/wysiwyf/component.hpp include/wysiwyf/build_info.hpp include/wysiwyf/idl/std_msgs.h \
+         include/wysiwyf/libs/arm_model/arm_model.hpp include/wysiwyf/libs/safety_gate/safety_gate.hpp \
+         lib/libwysiwyf_arm_model.a lib/libwysiwyf_rtde.a share/wysiwyf/config/robots/ur5e.urdf \
          share/wysiwyf/idl/std_msgs.idl share/wysiwyf/config/pipelines/demo-sim.yaml \
          lib/cmake/wysiwyf/wysiwyfConfig.cmake; do
   [ -e "$prefix/$f" ] || fail "the install lacks $f"
@@ -58,6 +60,12 @@ python3 "$source/scripts/extract-doc-code" "$source/docs/writing-a-component.md"
   CMakeLists.txt example_msgs.idl contact_summary.cpp test_contact_summary.cpp contacts.yaml
 cmake_user "$project"
 ctest --test-dir "$project/build" --output-on-failure || fail "the walk-through's tests"
+
+step "a lab's arm tool against the installed arm libraries (arm model, safety gate, joint servo, RTDE)"
+cp -r "$source/tests/sdk/arm_sdk" "$scratch/arm_sdk"
+cmake_user "$scratch/arm_sdk"
+"$scratch/arm_sdk/build/lab_arm" | tee "$scratch/lab_arm.txt"
+grep -q "^ok$" "$scratch/lab_arm.txt" || fail "the lab's arm tool"
 
 step "installed beside WYSIWYF, the tools find the component and the type with no variable"
 cmake --install "$project/build" --prefix "$prefix" >/dev/null
