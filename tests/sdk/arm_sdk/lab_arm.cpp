@@ -30,8 +30,8 @@ int main() {
   robot::JointServo servo(*model, drive, robot::JointServoConfig{}, q);
   robot::ArmDynamics arm(*model, drive, 0, 0.01);
   arm.reset(q);
-  arm.step(1e-3, servo.torque(q, robot::JointVector::Zero(6), q, robot::JointVector::Zero(6),
-                              robot::JointVector::Zero(6)),
+  arm.step(1e-3,
+           servo.torque(q, robot::JointVector::Zero(6), q, robot::JointVector::Zero(6), robot::JointVector::Zero(6)),
            robot::JointVector::Zero(6));
   if ((arm.q() - q).norm() > 1e-4) return std::puts("the servo let the arm fall"), 1;
 
