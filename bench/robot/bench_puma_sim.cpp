@@ -1,6 +1,8 @@
-// puma_sim's real-time factor: 1 kHz ticks run through the Harness (no DDS, no executor), the
-// arm following a 50 Hz Cartesian setpoint stream (a 3 cm circle at 0.5 Hz around the ready pose),
-// with the fingertip parked, or pressing on the plate (contact, Jacobian, sensor each substep).
+// puma_sim's real-time factor on each shipped arm (the PUMA 560 with its drive train, the UR5e
+// and the FR3 with ideal drives, parked as their robots/<arm>-sim.yaml): 1 kHz ticks run through
+// the Harness (no DDS, no executor), the arm following a 50 Hz Cartesian setpoint stream (a 3 cm
+// circle at 0.5 Hz around its parked pose), with the fingertip parked, or pressing on the plate
+// (contact, Jacobian, sensor each substep). The time per iteration is the tick's cost.
 // Counters: real_time_factor = simulated seconds per wall second (ticks per second / 1000; goal
 // >= 20), allocs_per_tick = operator new calls per tick in steady state.
 #include <benchmark/benchmark.h>
@@ -21,8 +23,8 @@ using namespace wysiwyf;
 constexpr std::int64_t kMs = 1'000'000;
 constexpr double kPi = 3.14159265358979323846;
 
-void run(benchmark::State& state, bool touch) {
-  Harness h("puma_sim", "{}", 1000);
+void run(benchmark::State& state, bool touch, const char* params) {
+  Harness h("puma_sim", params, 1000);
   auto setpoints = h.feed<msg::CartesianSetpoint>("setpoint");
   auto hand = h.feed<msg::PoseStamped>("hand_target");
   auto pose_in = h.watch<msg::PoseStamped>("device_pose", 2);
@@ -92,11 +94,30 @@ void run(benchmark::State& state, bool touch) {
   if (status.state() == msg::ARM_FAULT) state.SkipWithError(status.reason().c_str());
 }
 
-void BM_PumaSimFollowing(benchmark::State& state) { run(state, false); }
-void BM_PumaSimHandOnPlate(benchmark::State& state) { run(state, true); }
+void BM_ArmSimFollowing(benchmark::State& state, const char* params) { run(state, false, params); }
+void BM_ArmSimHandOnPlate(benchmark::State& state, const char* params) { run(state, true, params); }
 
-BENCHMARK(BM_PumaSimFollowing)->UseRealTime()->MinTime(wysiwyf::bench::min_time(2.0))->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PumaSimHandOnPlate)->UseRealTime()->MinTime(wysiwyf::bench::min_time(2.0))->Unit(benchmark::kMicrosecond);
+constexpr const char* kPuma = "{}";  // puma_sim's defaults: the PUMA 560, its drive file, its ready pose
+constexpr const char* kUr5e =
+    "{urdf: robots/ur5e.urdf, drive: '', acceleration_limits: [8, 8, 10, 30, 30, 30],"
+    " initial_q: [2.802180, -1.581828, 1.807510, -0.225596, 1.231347, 1.570657]}";
+constexpr const char* kFr3 =
+    "{urdf: robots/fr3.urdf, drive: '', acceleration_limits: [10, 10, 10, 10, 10, 10, 10],"
+    " initial_q: [0.284092, 0.238745, -0.305931, -2.463769, -0.015183, 4.263556, -1.493028]}";
+
+#define WYSIWYF_ARM_SIM_BENCHMARKS(arm, params)        \
+  BENCHMARK_CAPTURE(BM_ArmSimFollowing, arm, params)   \
+      ->UseRealTime()                                  \
+      ->MinTime(wysiwyf::bench::min_time(2.0))         \
+      ->Unit(benchmark::kMicrosecond);                 \
+  BENCHMARK_CAPTURE(BM_ArmSimHandOnPlate, arm, params) \
+      ->UseRealTime()                                  \
+      ->MinTime(wysiwyf::bench::min_time(2.0))         \
+      ->Unit(benchmark::kMicrosecond)
+
+WYSIWYF_ARM_SIM_BENCHMARKS(puma560, kPuma);
+WYSIWYF_ARM_SIM_BENCHMARKS(ur5e, kUr5e);
+WYSIWYF_ARM_SIM_BENCHMARKS(fr3, kFr3);
 
 }  // namespace
 

@@ -244,7 +244,8 @@ TEST(ArmClearance, ThePumasPlateAndKnobStandWhereTheDeviceIs) {
 }
 
 TEST(ArmClearance, AJointStateOfAnotherJointCountIsRefusedWithBothCounts) {
-  msg::JointState m;  // six positions
+  msg::JointState m;
+  m.position().assign(6, 0.0);  // six positions
   JointVector q = JointVector::Zero(7);
   const std::string why = msgs::joint_positions(m, 7, q);
   EXPECT_NE(why.find("6 joint positions, expected 7"), std::string::npos) << why;
