@@ -1,5 +1,5 @@
 // puma-link-emulator: a PUMA 560 joint controller on 127.0.0.1 (docs/puma-link.md), running the
-// same joint servo and arm dynamics as puma_sim, so pipelines with puma_driver run without the arm.
+// same joint servo and arm dynamics as arm_sim, so pipelines with puma_driver run without the arm.
 //   puma-link-emulator [--port 47000] [--lockstep] [--initial-q q1 .. q6] [--encoder-counts N]
 //                      [--servo-bandwidth HZ] [--urdf FILE] [--drive FILE]
 // --lockstep: one servo period per command (for pipelines on the simulated clock, with

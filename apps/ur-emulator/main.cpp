@@ -1,7 +1,7 @@
 // ur-emulator: a Universal Robots e-Series controller on 127.0.0.1 (libs/ur_controller_emulator):
 // RTDE, the primary interface's script port and the dashboard server, running the follow
 // program's behaviour (config/robots/ur_follow.script) on the same joint servo and arm dynamics
-// as puma_sim with the UR5e's URDF, so pipelines with ur_driver run without the arm.
+// as arm_sim with the UR5e's URDF, so pipelines with ur_driver run without the arm.
 //   ur-emulator [--rtde-port 30004] [--script-port 30002] [--dashboard-port 29999] [--lockstep]
 //               [--urdf FILE] [--drive FILE] [--initial-q q1 .. q6] [--encoder-counts N]
 //               [--servo-bandwidth HZ]

@@ -1,5 +1,5 @@
 #pragma once
-// The parameters puma_sim and puma_driver declare alike (the robot file and the tip frame, the
+// The parameters arm_sim and puma_driver declare alike (the robot file and the tip frame, the
 // Cartesian tracker's bandwidth, the safety gate's limits), and the arm model they load from
 // them: any serial arm's URDF (ArmModel). One declaration, so both components describe and check
 // them the same way.

@@ -1,5 +1,5 @@
 #pragma once
-// The ports puma_sim and puma_driver share, declared once with one description each: the
+// The ports arm_sim and puma_driver share, declared once with one description each: the
 // setpoint input, and the joint_state, device_pose and status outputs with the messages of one
 // measurement (reused: no allocation per tick).
 #include <cstdint>

@@ -22,7 +22,7 @@
 namespace wysiwyf::robot::link {
 
 ControllerEmulator::Options::Options() {
-  // puma_sim's ready pose (plate centre at (0.7, 0, 0.2) m facing +x).
+  // arm_sim's ready pose (plate centre at (0.7, 0, 0.2) m facing +x).
   initial_q << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403;
 }
 

@@ -1,11 +1,11 @@
 #pragma once
 // The controller end of puma-link on 127.0.0.1: the PUMA's 1 kHz joint servo and arm dynamics
-// (the ones puma_sim runs, from arm_sim), answering a puma_driver. Two ways to keep time:
+// (the ones arm_sim runs, from arm_sim), answering a puma_driver. Two ways to keep time:
 //  - real time: a 1 kHz loop on the steady clock; each period it applies the newest command,
 //    advances the arm and sends its state to the host; with no valid command for
 //    timeout_periods it holds the arm where it is (status holding, fault "command timeout");
 //  - lockstep: the arm advances one servo period per command and the state answers it, so a
-//    driver on the simulated clock (its `lockstep` parameter) sees exactly what puma_sim would.
+//    driver on the simulated clock (its `lockstep` parameter) sees exactly what arm_sim would.
 // Like a real controller it checks every command: outside the joint limits, a step beyond
 // the velocity limit, or an overspeed reference latch a fault (the arm holds) until a command
 // with the reset flag. Damaged or stale datagrams are dropped and counted.
@@ -29,8 +29,8 @@ class ControllerEmulator {
     int timeout_periods = 3;                          // real time: periods without a command before holding
     std::string urdf = "robots/puma560.urdf";         // found like every config file (cwd, config/, ...)
     std::string drive = "robots/puma560_drive.yaml";  // empty: ideal drives
-    Vector6d initial_q;                               // at rest here at start (default: puma_sim's ready pose)
-    JointServoConfig servo;                           // puma_sim's defaults
+    Vector6d initial_q;                               // at rest here at start (default: arm_sim's ready pose)
+    JointServoConfig servo;                           // arm_sim's defaults
     int encoder_counts = 1000;
     int substeps = 4;
     Options();

@@ -1,5 +1,5 @@
 #pragma once
-// Pieces every reader of a URDF through urdfdom needs (PumaModel, ArmModel, puma_sim's tool side):
+// Pieces every reader of a URDF through urdfdom needs (PumaModel, ArmModel, arm_sim's tool side):
 // a urdf::Pose as an isometry, a joint type's name for errors, and the merging of links' inertias
 // into one rigid body. Include it only where urdfdom is linked.
 #include <Eigen/Geometry>

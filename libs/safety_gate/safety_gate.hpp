@@ -1,7 +1,7 @@
 #pragma once
 // The driver-level safety layer of an arm of n joints: everything that may command the arm (the
 // admittance loop, a script, the user's hand through the display) passes through it on the way to
-// the joint servo. One piece of code for the simulated arm (puma_sim) and the real driver.
+// the joint servo. One piece of code for the simulated arm (arm_sim) and the real driver.
 //
 // Every servo period it turns the latest joint target (the inverse kinematics of the interpolated
 // Cartesian setpoint) into the joint reference the servo may follow. Whatever the input, that

@@ -2,7 +2,7 @@
 // From Cartesian setpoints to the safety gate's joint targets, once per servo period: each
 // setpoint (base_T_dev and its twist, at any period of 1 to 20 ms) is screened by the gate,
 // tracked by the CartesianTracker, and the tracked pose's nearest IK solution becomes the gate's
-// joint target. The same code runs in puma_sim and in puma_driver, so both arms are commanded
+// joint target. The same code runs in arm_sim and in puma_driver, so both arms are commanded
 // identically, for any arm the ArmModel loads.
 #include <cstdint>
 #include <string>

@@ -4,7 +4,7 @@
 // the follow program, config/robots/ur_follow.script, is executed: its behaviour is emulated, not
 // its text interpreted), the robot's and the safety system's modes, and the arm the program drives.
 // servoj toward the registers' reference runs the same JointServo and ArmDynamics as the
-// simulated arm (puma_sim with the UR5e's URDF), so the two move alike to the last bit.
+// simulated arm (arm_sim with the UR5e's URDF), so the two move alike to the last bit.
 // Like the real controller it stops on its own: a target further than one period at the joints'
 // velocity limits (a speed violation) or outside the limits is a protective stop, and a program
 // whose counter stops for kWatchdogPeriods periods stops the arm and ends.

@@ -85,7 +85,7 @@ inline std::string loop_yaml(const LoopSetup& s, const std::filesystem::path& di
     << script
     << "]},\n    topics: {objects: haptics/objects, hand_pose: sim/hand_pose, hand_target: sim/hand_target, "
        "events: user/events}}\n"
-    << "  arm: {type: puma_sim, rate: 1000, params: {initial_q: " << s.initial_q << ", setpoint_source: supervisor},\n"
+    << "  arm: {type: arm_sim, rate: 1000, params: {initial_q: " << s.initial_q << ", setpoint_source: supervisor},\n"
     << "    topics: {setpoint: robot/setpoint, hand_target: sim/hand_target, joint_state: robot/joint_state,\n"
     << "             device_pose: robot/device_pose, wrench: robot/wrench, hand_pose: sim/hand_pose, status: "
        "robot/status,\n             request: robot/request}}\n"

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <yaml-cpp/yaml.h>
 #include <sstream>
 #include <string>
@@ -22,6 +23,7 @@
 #include "arm_clearance/speed_separation.hpp"
 #include "arm_model/arm_model.hpp"
 #include "demo_runs.hpp"
+#include "wysiwyf/validator.hpp"
 
 namespace wysiwyf::test {
 namespace {
@@ -108,6 +110,29 @@ TEST(DemoArms, EachArmsDemoIsDemoSimWithItsLastIncludeReplaced) {
     expected.back() = "robots/" + arm + "-sim.yaml";
     EXPECT_EQ(includes("demo-sim-" + arm + ".yaml"), expected) << arm;
   }
+}
+
+// A lab's URDF without a frame the display needs: `wysiwyf validate` (validate_pipeline) names the
+// frame, the file and what it is for on every component that needs it, and nothing starts.
+TEST(DemoArms, AUrdfWithoutTheKnobIsRefusedByFrameFileAndPurpose) {
+  std::ifstream in(std::string(WYSIWYF_CONFIG_DIR) + "/robots/ur5e.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string urdf = std::regex_replace(text.str(), std::regex("<link name=\"knob\">[\\s\\S]*?</link>"), "");
+  urdf = std::regex_replace(urdf, std::regex("<joint name=\"knob_joint\"[\\s\\S]*?</joint>"), "");
+  const auto dir = std::filesystem::path(WYSIWYF_TEST_SCRATCH_DIR) / "DemoArms.NoKnob";
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "ur5e-without-knob.urdf").string();
+  std::ofstream(file) << urdf;
+  std::vector<std::string> overrides;
+  for (const char* part : {"arm", "camera", "camera_pose", "planner", "device"})
+    overrides.push_back(std::string(part) + ".params.urdf=" + file);
+  Loader loader({WYSIWYF_COMPONENT_DIR});
+  const ValidationResult v = validate_pipeline(load_pipeline(kPipelines + "demo-sim-ur5e.yaml", overrides), loader);
+  int naming = 0;
+  for (const auto& e : v.errors)
+    if (e.str().find(file + " has no link 'knob', the plate's knob") != std::string::npos) ++naming;
+  EXPECT_GE(naming, 4) << "camera, camera_pose, planner and device each say so";
 }
 
 class DemoOnEachArm : public ::testing::TestWithParam<Arm> {};

@@ -54,8 +54,7 @@ TEST(DemoPipelines, SimAndRealDifferByOneLineAndNothingSimulatedLeaksIntoTheReal
   EXPECT_EQ(differing, 1);
 
   Loader loader({WYSIWYF_COMPONENT_DIR});
-  const std::set<std::string> simulators = {"puma_sim", "camera_sim", "user_sim", "hand_tracker_sim",
-                                            "display_metrics"};
+  const std::set<std::string> simulators = {"arm_sim", "camera_sim", "user_sim", "hand_tracker_sim", "display_metrics"};
   for (const char* name : {"demo-sim.yaml", "demo-real.yaml"}) {
     SCOPED_TRACE(name);
     const PipelineSpec spec = load_pipeline(kPipelines + name);

@@ -1,4 +1,4 @@
-// The encountered-type loop end to end on the sim clock (puma_sim, user_sim, hand_tracker_sim,
+// The encountered-type loop end to end on the sim clock (arm_sim, user_sim, hand_tracker_sim,
 // surface_planner, admittance_sim, supervisor), each run checked against stated truths:
 // - speed and separation monitoring (ISO/TS 15066) at every 1 ms sample of surface mode, with the
 //   separation from the true fingertip to every part of the arm (upper arm, forearm, wrist,

@@ -310,7 +310,7 @@ TEST(OneWriter, ASecondWriterToTheRobotsSetpointIsRefused) {
 // Across processes the arm refuses setpoints whose source is not the supervisor's.
 TEST(OneWriter, TheArmRefusesAnotherSource) {
   Loader loader({WYSIWYF_COMPONENT_DIR});
-  Harness h("puma_sim", "{setpoint_source: supervisor}", 1000, &loader);
+  Harness h("arm_sim", "{setpoint_source: supervisor}", 1000, &loader);
   auto setpoints = h.feed<msg::CartesianSetpoint>("setpoint");
   auto pose = h.watch<msg::PoseStamped>("device_pose");
   auto status = h.watch<msg::RobotStatus>("status");

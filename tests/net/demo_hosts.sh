@@ -1,6 +1,6 @@
 #!/bin/bash
 # The display itself split over hosts (config/pipelines/demo-hosts.yaml): network namespaces h1
-# (vision: the hand tracker), h2 (display: planner, physics, supervisor), h3 (robot: puma_sim and
+# (vision: the hand tracker), h2 (display: planner, physics, supervisor), h3 (robot: arm_sim and
 # the scripted user) and h4 (monitor: display_metrics), each with its own address on a bridge,
 # DDS over UDP only, the real clock. First the user's scripted run end to end: the hand's track,
 # the wrist's force, the setpoints and the arm's state cross the hosts, the display switches to

@@ -1,6 +1,6 @@
 #!/bin/bash
 # Several hosts in one machine: Linux network namespaces h1 (the display's process group: a
-# moving setpoint script, 100 Hz), h2 (the robot's: puma_sim) and h3 (a monitor), each with its
+# moving setpoint script, 100 Hz), h2 (the robot's: arm_sim) and h3 (a monitor), each with its
 # own address on a bridge in a fourth namespace, talking DDS over UDP only (multicast discovery).
 # First the hosts exchange data (the monitor on h3 reads the arm's joint state from h2 and the
 # setpoint from h1); then, for each fault of the display's group (SIGKILL, SIGSTOP, its link taken
@@ -50,7 +50,7 @@ components:
                   7.5, 0.70,  0.00, 0.20, 0.0, 1.57079633, 0.0]
     topics: {setpoint: robot/setpoint, arm_status: robot/status, arm_request: robot/request}
   arm:
-    type: puma_sim
+    type: arm_sim
     rate: 1000
     process: robot
     params: {setpoint_source: script}

@@ -13,9 +13,9 @@ common=(--set domain="$domain" --set clock.duration=1s --set clock.pace=0 --set 
 rc=$?
 cat "$out"
 [ $rc -eq 1 ] || { echo "expected exit status 1 for a faulted arm, got $rc"; exit 1; }
-grep -Eq "^arm +puma_sim .* fault: setpoint rejected: 0.5590 m from the arm's position" "$out" \
+grep -Eq "^arm +arm_sim .* fault: setpoint rejected: 0.5590 m from the arm's position" "$out" \
   || { echo "the table's state column does not give the arm's fault"; exit 1; }
-grep -q "error: component 'arm' (puma_sim) faulted during the run" "$out" || { echo "no error line"; exit 1; }
+grep -q "error: component 'arm' (arm_sim) faulted during the run" "$out" || { echo "no error line"; exit 1; }
 "$bin/wysiwyf" run "$config/pipelines/puma-setpoints.yaml" "${common[@]}" >"$out" 2>&1
 rc=$?
 [ $rc -eq 0 ] || { cat "$out"; echo "the unchanged pipeline exited $rc"; exit 1; }

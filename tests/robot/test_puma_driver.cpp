@@ -1,5 +1,5 @@
 // puma_driver against apps/puma-link-emulator's controller (in this process, on loopback), on the
-// simulated clock: the same setpoint stream gives the same joint trajectory as puma_sim; a lost
+// simulated clock: the same setpoint stream gives the same joint trajectory as arm_sim; a lost
 // link holds and faults, and recovers; no controller is a clear activation error. And the
 // emulated controller alone: it refuses commands beyond the limits, drops damaged and stale
 // datagrams, and holds when commands stop. Measured figures are printed as "[measured]" lines.
@@ -35,7 +35,7 @@ using robot::link::LinkClient;
 const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf";
 constexpr std::int64_t kMs = 1'000'000;
 constexpr double kPi = 3.14159265358979323846;
-// puma_sim's and the emulator's default start: the ready pose.
+// arm_sim's and the emulator's default start: the ready pose.
 const Vector6d kReady =
     (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
 
@@ -81,7 +81,7 @@ bool setpoint_at(int ms, int period_ms, msg::CartesianSetpoint& out) {
   return true;
 }
 
-// One arm component (puma_sim or puma_driver) in a Harness: feeds setpoints, records joints.
+// One arm component (arm_sim or puma_driver) in a Harness: feeds setpoints, records joints.
 struct Arm {
   Harness h;
   Output<msg::CartesianSetpoint> sp;
@@ -129,7 +129,7 @@ struct Difference {
 
 Difference run_both(int ms, int period_ms) {
   ControllerEmulator controller(lockstep_options());
-  Arm sim("puma_sim", "{}");
+  Arm sim("arm_sim", "{}");
   Arm driver("puma_driver", "{lockstep: true, port: " + std::to_string(controller.port()) + "}");
   msg::CartesianSetpoint s;
   for (int i = 0; i < ms; ++i) {
@@ -152,14 +152,14 @@ Difference run_both(int ms, int period_ms) {
   }
   EXPECT_GT(travel, 0.02) << "the arm should have moved";
   std::printf(
-      "[measured] %d ms of setpoints every %d ms: puma_sim vs puma_driver + emulator, largest difference "
+      "[measured] %d ms of setpoints every %d ms: arm_sim vs puma_driver + emulator, largest difference "
       "%.3g rad, %.3g rad/s, %.3g N m (joint travel %.3f rad)\n",
       ms, period_ms, d.q, d.qd, d.effort, travel);
   return d;
 }
 
-TEST(PumaDriver, FollowsTheSameJointTrajectoryAsPumaSim) {
-  // The driver and puma_sim share the setpoint follower and the gate; the emulator and puma_sim
+TEST(PumaDriver, FollowsTheSameJointTrajectoryAsArmSim) {
+  // The driver and arm_sim share the setpoint follower and the gate; the emulator and arm_sim
   // share the servo and the arm; puma-link carries doubles unchanged. Stated tolerance: 1e-9 rad
   // (what is measured is 0: the same arithmetic in the same order).
   for (int period : {20, 1}) {

@@ -1,6 +1,6 @@
 // ur_driver against the UR emulator (libs/ur_controller_emulator, in this process, on loopback),
 // on the simulated clock in lockstep: the same setpoint stream gives the same joint trajectory as
-// puma_sim with the UR5e's URDF; every injected fault (a protective stop, dropped connections,
+// arm_sim with the UR5e's URDF; every injected fault (a protective stop, dropped connections,
 // outputs late beyond 3 periods, a package cut short) holds the arm within 3 periods and is
 // named in its status; after a protective stop it stays held until the supervisor's clear
 // request, then recovers. Measured figures are printed as "[measured]" lines.
@@ -83,7 +83,7 @@ bool setpoint_at(int ms, int period_ms, msg::CartesianSetpoint& out) {
   return true;
 }
 
-// One arm component (puma_sim or ur_driver) in a Harness at 500 Hz: feeds setpoints and
+// One arm component (arm_sim or ur_driver) in a Harness at 500 Hz: feeds setpoints and
 // requests, records joints and the status.
 struct Arm {
   Harness h;
@@ -146,7 +146,7 @@ struct Difference {
 
 Difference run_both(int ms, int period_ms) {
   UrEmulator emulator(lockstep_options());
-  Arm sim("puma_sim", kSimParams);
+  Arm sim("arm_sim", kSimParams);
   Arm driver("ur_driver", driver_params(emulator));
   for (int i = 0; i < ms / kTickMs; ++i) {
     sim.follow(period_ms);
@@ -168,14 +168,14 @@ Difference run_both(int ms, int period_ms) {
   EXPECT_GT(travel, 0.02) << "the arm should have moved";
   EXPECT_EQ(emulator.counters().packages_refused, 0u);
   std::printf(
-      "[measured] %d ms of setpoints every %d ms: puma_sim (UR5e) vs ur_driver + UR emulator, largest difference "
+      "[measured] %d ms of setpoints every %d ms: arm_sim (UR5e) vs ur_driver + UR emulator, largest difference "
       "%.3g rad, %.3g rad/s, %.3g N m (joint travel %.3f rad)\n",
       ms, period_ms, d.q, d.qd, d.effort, travel);
   return d;
 }
 
-TEST(UrDriver, FollowsTheSameJointTrajectoryAsPumaSimWithTheUr5e) {
-  // The driver and puma_sim share the setpoint follower and the gate; the emulator and puma_sim
+TEST(UrDriver, FollowsTheSameJointTrajectoryAsArmSimWithTheUr5e) {
+  // The driver and arm_sim share the setpoint follower and the gate; the emulator and arm_sim
   // share the servo and the arm; RTDE carries doubles unchanged: the same arithmetic in the
   // same order, so the trajectories agree to the last bit.
   for (int period : {20, 2}) {
@@ -259,12 +259,12 @@ TEST(UrDriver, AfterAProtectiveStopItHoldsUntilTheSupervisorClearsThenRecovers) 
 
 TEST(UrDriver, TheTcpForceIsTheWristReadingOfTheToolInTheSensorFrame) {
   // The emulated sensor reads no load (the pendant's payload compensated): the reading is the
-  // tool's weight put back, in ft_sensor about its origin, as puma_sim's noiseless wrist sensor
+  // tool's weight put back, in ft_sensor about its origin, as arm_sim's noiseless wrist sensor
   // reads the same tool (its mass and centre from the URDF; the scene's tool_mass 1.1563 kg
   // 0.01665 m beyond ft_sensor, which is 0.03 m along the flange).
   UrEmulator emulator(lockstep_options());
   Arm driver("ur_driver", driver_params(emulator, ", tcp_force: true, tcp_payload: [1.1563, 0, 0, 0.04665]"));
-  Arm sim("puma_sim", kSimParams.substr(0, kSimParams.size() - 1) + ", ft_noise_force: 0, ft_noise_torque: 0}");
+  Arm sim("arm_sim", kSimParams.substr(0, kSimParams.size() - 1) + ", ft_noise_force: 0, ft_noise_torque: 0}");
   Input<msg::WrenchStamped> from_driver = driver.h.watch<msg::WrenchStamped>("wrench", 4);
   Input<msg::WrenchStamped> from_sim = sim.h.watch<msg::WrenchStamped>("wrench", 4);
   driver.tick();
@@ -276,7 +276,7 @@ TEST(UrDriver, TheTcpForceIsTheWristReadingOfTheToolInTheSensorFrame) {
   const Eigen::Vector3d fd = msgs::to_eigen(d.wrench().force()), fs = msgs::to_eigen(s.wrench().force());
   const Eigen::Vector3d td = msgs::to_eigen(d.wrench().torque()), ts = msgs::to_eigen(s.wrench().torque());
   std::printf(
-      "[measured] TCP force %.4f %.4f %.4f N, %.4f %.4f %.4f N m; puma_sim's sensor %.4f %.4f %.4f N, %.4f %.4f "
+      "[measured] TCP force %.4f %.4f %.4f N, %.4f %.4f %.4f N m; arm_sim's sensor %.4f %.4f %.4f N, %.4f %.4f "
       "%.4f N m\n",
       fd.x(), fd.y(), fd.z(), td.x(), td.y(), td.z(), fs.x(), fs.y(), fs.z(), ts.x(), ts.y(), ts.z());
   EXPECT_NEAR(fd.norm(), 1.1563 * 9.81, 1e-9);

@@ -11,7 +11,7 @@ deb=$(ls "$scratch"/wysiwyf_*.deb)
 dpkg-deb -I "$deb"
 dpkg-deb -c "$deb" >"$scratch/files.txt"
 for f in ./usr/bin/wysiwyf ./usr/bin/puma-link-emulator ./usr/bin/rdt-emulator ./usr/lib/libwysiwyf_core.so \
-         ./usr/lib/wysiwyf/wysiwyf_puma_sim.so ./usr/lib/cmake/wysiwyf/wysiwyfConfig.cmake \
+         ./usr/lib/wysiwyf/wysiwyf_arm_sim.so ./usr/lib/cmake/wysiwyf/wysiwyfConfig.cmake \
          ./usr/lib/cmake/wysiwyf/WysiwyfComponent.cmake ./usr/include/wysiwyf/component.hpp \
          ./usr/share/wysiwyf/config/pipelines/demo-sim.yaml; do
   grep -q " $f\$" "$scratch/files.txt" || { echo "the package lacks $f"; exit 1; }

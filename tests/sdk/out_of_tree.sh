@@ -18,7 +18,7 @@ fail() { echo "FAILED: $*"; exit 1; }
 step "install into $prefix"
 cmake --install "$build" --prefix "$prefix" >"$scratch/install.log"
 for f in bin/wysiwyf bin/puma-link-emulator bin/rdt-emulator lib/libwysiwyf_core.so lib/libwysiwyf_msgs.so \
-         lib/libwysiwyf_kernel_msgs.so lib/libwysiwyf_msgs_idl.so lib/wysiwyf/wysiwyf_puma_sim.so \
+         lib/libwysiwyf_kernel_msgs.so lib/libwysiwyf_msgs_idl.so lib/wysiwyf/wysiwyf_arm_sim.so \
          include/wysiwyf/component.hpp include/wysiwyf/build_info.hpp include/wysiwyf/idl/std_msgs.h \
          include/wysiwyf/libs/arm_model/arm_model.hpp include/wysiwyf/libs/safety_gate/safety_gate.hpp \
          lib/libwysiwyf_arm_model.a lib/libwysiwyf_rtde.a share/wysiwyf/config/robots/ur5e.urdf \

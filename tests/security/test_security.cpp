@@ -1,5 +1,5 @@
 // DDS-Security on a pipeline split into two process groups, the display's (the setpoint's one
-// writer) and the robot's (puma_sim), with the shipped policy (config/security/policy.yaml) made
+// writer) and the robot's (arm_sim), with the shipped policy (config/security/policy.yaml) made
 // into keys by scripts/security. Outsiders are a plain Fast DDS participant (an intruder) and
 // participants with the policy's own identities. A control run without security shows that each
 // check can fail: there the intruder sees the topics, its setpoint writer (claiming exclusive
@@ -201,7 +201,7 @@ class Security : public ::testing::Test {
   }
 
   // The display's group (a setpoint script holding kPose at 100 Hz: the arm holds after three
-  // periods of silence, and 30 ms is a margin a loaded machine keeps) and the robot's (puma_sim).
+  // periods of silence, and 30 ms is a margin a loaded machine keeps) and the robot's (arm_sim).
   void start(int domain, bool secured) {
     domain_ = domain;
     pipeline_ = dir_ / "pipeline.yaml";
@@ -218,7 +218,7 @@ class Security : public ::testing::Test {
         << ", 0, 1.57079633, 0]}\n"
            "    topics: {setpoint: robot/setpoint}\n"
            "  arm:\n"
-           "    type: puma_sim\n    rate: 1000\n    process: robot\n"
+           "    type: arm_sim\n    rate: 1000\n    process: robot\n"
            "    params: {setpoint_source: script}\n"
            "    topics: {setpoint: robot/setpoint, joint_state: robot/joint_state, status: robot/status,\n"
            "             wrench: robot/wrench, device_pose: robot/device_pose}\n";
@@ -433,7 +433,7 @@ TEST_F(Security, AWriterOfTheSetpointInAnotherGroupMustDeclareItselfItsOneWriter
   std::ofstream(file) << "wysiwyf: 1\ndomain: 115\nclock: {mode: real}\ncomponents:\n"
                          "  physics: {type: admittance_sim, rate: 1000, process: display,\n"
                          "            topics: {setpoint: robot/setpoint, wrench: robot/wrench}}\n"
-                         "  arm: {type: puma_sim, rate: 1000, process: robot, topics: {setpoint: robot/setpoint}}\n";
+                         "  arm: {type: arm_sim, rate: 1000, process: robot, topics: {setpoint: robot/setpoint}}\n";
   const fs::path log = dir_ / "validate.log";
   EXPECT_EQ(run_cli({"validate", file.string()}, log, std::chrono::seconds(60)), 2);
   EXPECT_NE(read_text(log).find("split.yaml:6:32: error: topic 'robot/setpoint': port physics.setpoint (process "

@@ -1,6 +1,6 @@
 // user_sim: a scripted user, in terms of the virtual scene (what a person sees), not of the robot:
 // reach for a named feature, touch it, push with a force, drag, release, withdraw, reach another.
-// It drives the fingertip that puma_sim simulates (hand_target: puma_sim's impedance pulls the
+// It drives the fingertip that arm_sim simulates (hand_target: arm_sim's impedance pulls the
 // finger there, and the plate's contact stops it), so a push is a target behind the surface by
 // force / hand_stiffness. It does not know where the robot is: if the plate is not on the virtual
 // surface when the finger gets there, the finger passes through it. What happened is published
@@ -53,10 +53,10 @@ class UserSim final : public Component {
         "the user's actions, one a line: reach FEATURE [at U V] [speed V], push F T, drag DX DY DZ T, release T, "
         "withdraw D T, move X Y Z T, wait T");
     const auto start = ctx.param<std::array<double, 3>>(
-        "start", {1.1, 0.0, 0.2}, "where the fingertip is at the start, base frame, m (puma_sim's hand_park)");
+        "start", {1.1, 0.0, 0.2}, "where the fingertip is at the start, base frame, m (arm_sim's hand_park)");
     hand_k_ =
-        ctx.param<double>("hand_stiffness", 500.0, "N/m: puma_sim's impedance from target to fingertip", Range{1, 1e5});
-    finger_radius_ = ctx.param<double>("finger_radius", 0.01, "m: puma_sim's fingertip radius", Range{0.001, 0.1});
+        ctx.param<double>("hand_stiffness", 500.0, "N/m: arm_sim's impedance from target to fingertip", Range{1, 1e5});
+    finger_radius_ = ctx.param<double>("finger_radius", 0.01, "m: arm_sim's fingertip radius", Range{0.001, 0.1});
     press_ = ctx.param<double>(
         "touch_press", 0.003,
         "a reach aims this far behind the surface (a touch of press x stiffness newtons: 1.5 N, below the "
@@ -71,7 +71,7 @@ class UserSim final : public Component {
     stop_when_done_ = ctx.param<bool>("stop_when_done", false, "end the run when the script is done");
     objects_in_ =
         ctx.input<msg::ObjectState>("objects", "where the virtual objects are (admittance_sim)", Qos::reliable(64));
-    hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "where the fingertip really is (puma_sim)", Qos::sensor(4));
+    hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "where the fingertip really is (arm_sim)", Qos::sensor(4));
     target_out_ = ctx.output<msg::PoseStamped>(
         "hand_target", "where the user moves the fingertip, base frame; the hand's orientation: x along the finger");
     events_out_ =

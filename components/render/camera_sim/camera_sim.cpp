@@ -36,7 +36,7 @@ const Eigen::Vector4f kCloth(0.10f, 0.16f, 0.62f, 1), kAluminium(0.72f, 0.72f, 0
     kSkin(0.86f, 0.62f, 0.50f, 1), kBlack(0, 0, 0, 1), kWhite(1, 1, 1, 1), kMaskDevice(0, 0, 1, 1);
 
 // The hand, in the fingertip's frame (x along the pointing index finger, z out of the back of the
-// hand, the origin the fingertip sphere's centre, as puma_sim simulates it): finger segments and
+// hand, the origin the fingertip sphere's centre, as arm_sim simulates it): finger segments and
 // the palm as (mesh, pose) pairs are laid out once.
 constexpr double kFingerRadius = 0.009, kIndexLength = 0.075;
 // The LED on the index fingernail (a 5 mm dome): its centre 6 mm behind the fingertip, on the nail.

@@ -1,6 +1,6 @@
 // puma_driver: the real PUMA 560 through its joint controller over puma-link (docs/puma-link.md).
 //
-// The host half of what puma_sim does, with the same code: every tick (1 kHz) the controller's
+// The host half of what arm_sim does, with the same code: every tick (1 kHz) the controller's
 // latest state (encoder angles, velocities, torques) is published and checked by the safety gate
 // (limits, overspeed, following error, and the wrist force when a `wrench` is connected);
 // Cartesian setpoints go through the SetpointFollower (gate screening, RCCL-style tracking, IK)
@@ -10,7 +10,7 @@
 // hold flag; when states come back the gate restarts from the measured joints (holding until a
 // setpoint near the arm arrives). A fault the controller reports faults the gate too. With
 // `lockstep` (for the simulated clock, against apps/puma-link-emulator --lockstep) each tick
-// waits for the controller's answer, so the pipeline sees exactly what puma_sim would show.
+// waits for the controller's answer, so the pipeline sees exactly what arm_sim would show.
 #include <chrono>
 #include <memory>
 #include <stdexcept>
@@ -49,7 +49,7 @@ class PumaDriver final : public Component {
   void configure(Context& ctx) override {
     ctx.summary(
         "the real PUMA 560 over puma-link (UDP to its joint controller), behind the same safety gate and "
-        "setpoint following as puma_sim");
+        "setpoint following as arm_sim");
     host_ = ctx.param<std::string>("host", "127.0.0.1", "the joint controller's IPv4 address");
     port_ = ctx.param<int>("port", link::kDefaultPort, "the controller's puma-link UDP port", Range{1, 65535});
     lockstep_ = ctx.param<bool>("lockstep", false,
@@ -63,7 +63,7 @@ class PumaDriver final : public Component {
     link_timeout_ =
         ctx.param<int>("link_timeout_periods", 3,
                        "ticks without a valid state before the link counts as lost (the arm holds)", Range{1, 1000});
-    // ---- the robot, the setpoint tracker and the safety gate (as puma_sim)
+    // ---- the robot, the setpoint tracker and the safety gate (as arm_sim)
     arm_ = declare_arm_params(ctx);
 
     ports_.declare(ctx, {[this](const auto& in, const std::string& why) { reject(in, why); },
@@ -159,7 +159,7 @@ class PumaDriver final : public Component {
     const JointReference& ref = gate_->step(now.ns);
 
     // ---- 5. to the controller: the reference now and the acceleration to the next period
-    // (what puma_sim's servo gets); without a link, hold wherever the arm is.
+    // (what arm_sim's servo gets); without a link, hold wherever the arm is.
     link::Command c;
     c.hold = link_lost_;
     for (int j = 0; j < kLinkJoints; ++j) {

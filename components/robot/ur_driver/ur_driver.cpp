@@ -1,6 +1,6 @@
 // ur_driver: a Universal Robots e-Series arm over RTDE (Real-Time Data Exchange, protocol 2).
 //
-// The host half of what puma_sim does, with the same code (setpoint following, safety gate):
+// The host half of what arm_sim does, with the same code (setpoint following, safety gate):
 // every tick (the rate is RTDE's frequency: 500 Hz, the controller's period) the controller's
 // newest output package (actual joints, velocities, commanded torques, TCP force, robot and
 // safety modes, the follow program's state) is published on the arm's ports and checked by the
@@ -17,7 +17,7 @@
 // ArmRequest CLEAR_INPUT_FAULT lets the arm move again: then the dashboard unlocks a protective
 // stop, the program is sent again, and once it runs the gate restarts from the measured joints.
 // With `lockstep` (the simulated clock, against apps/ur-emulator --lockstep) each tick waits for
-// the answer to its input package, so the pipeline sees exactly what puma_sim would show.
+// the answer to its input package, so the pipeline sees exactly what arm_sim would show.
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -59,7 +59,7 @@ class UrDriver final : public Component {
   void configure(Context& ctx) override {
     ctx.summary(
         "a Universal Robots e-Series arm over RTDE (servoj toward the safety gate's reference, config/robots/"
-        "ur_follow.script), behind the same safety gate and setpoint following as puma_sim");
+        "ur_follow.script), behind the same safety gate and setpoint following as arm_sim");
     controller_.host =
         ctx.param<std::string>("host", "127.0.0.1", "the controller's address (the pendant in Remote Control)");
     rtde_port_ = ctx.param<int>("rtde_port", 30004, "the controller's RTDE port", Range{1, 65535});
@@ -201,7 +201,7 @@ class UrDriver final : public Component {
     const JointReference& ref = gate_->step(now.ns);
 
     // ---- 4. to the controller: the reference now and the acceleration to the next period (what
-    // puma_sim's servo gets); while the controller holds, the program holds where the arm is.
+    // arm_sim's servo gets); while the controller holds, the program holds where the arm is.
     link_->send_inputs(next_counter(), controller_hold_ ? follow::kHold : follow::kFollow, ref_q, ref_qd, ref.qdd);
     if (lockstep_) missed_ = link_->await_output(reply_timeout_) ? 0 : std::min(missed_ + 1, kMaxMissed);
     if (link_->refused() != refused_seen_) {

@@ -24,7 +24,7 @@ class HandTrackerSim final : public Component {
     outages_ = ctx.param<std::vector<double>>("outages", {}, "rows [from s, to s]: the hand is not seen at all",
                                               Range{0, 1e9}, Length::rows_of(2));
     seed_ = ctx.param<int>("seed", 7, "noise and dropout seed (runs are repeatable)", Range{0, 1e9});
-    in_ = ctx.input<msg::PoseStamped>("hand_pose", "the fingertip's true position (puma_sim, base frame)",
+    in_ = ctx.input<msg::PoseStamped>("hand_pose", "the fingertip's true position (arm_sim, base frame)",
                                       Qos::sensor(64));
     out_ = ctx.output<msg::HandPosition>("hand", "the tracked fingertip, base frame", Qos::sensor(4));
   }

@@ -1,7 +1,7 @@
 // The simulated arm on arms other than the PUMA 560, with ideal drives (no drive file): the UR5e
 // (6 joints) and the FR3 (7 joints), each at its parked pose of config/pipelines/robots/. The
-// arm-side loop (ArmDynamics, JointServo, SafetyGate, SetpointFollower, as puma_sim runs it) and
-// puma_sim itself through the Harness: loads, holds still under gravity, follows a 2 cm Cartesian
+// arm-side loop (ArmDynamics, JointServo, SafetyGate, SetpointFollower, as arm_sim runs it) and
+// arm_sim itself through the Harness: loads, holds still under gravity, follows a 2 cm Cartesian
 // setpoint step to within 1 mm and keeps every joint within its limits at every sample. Per-joint
 // parameters of another length than the URDF's joint count are refused at their parameter.
 #include <cmath>
@@ -75,7 +75,7 @@ struct Outcome {
   bool following = false;
 };
 
-// The arm-side loop as puma_sim runs it (without the fingertip): 1 s holding at q0, then a
+// The arm-side loop as arm_sim runs it (without the fingertip): 1 s holding at q0, then a
 // setpoint kStep further along base x streamed every 20 ms for 2 s.
 Outcome run_loop(const ArmCase& c) {
   ArmModel model(urdf(c), "dev");
@@ -136,21 +136,21 @@ TEST_P(ArmLoop, HoldsUnderGravityFollowsACartesianStepAndStaysWithinItsLimits) {
 INSTANTIATE_TEST_SUITE_P(AnyArm, ArmLoop, ::testing::Values(kUr5e, kFr3),
                          [](const auto& info) { return std::string(info.param.name); });
 
-// puma_sim's parameters for the arm, ideal drives.
+// arm_sim's parameters for the arm, ideal drives.
 std::string params(const ArmCase& c) {
   return std::string("{urdf: robots/") + c.name + ".urdf, drive: '', initial_q: " + list(c.initial_q) +
          ", acceleration_limits: " + list(c.acceleration) + "}";
 }
 
-class PumaSimOnArm : public ::testing::TestWithParam<ArmCase> {};
+class ArmSimOnArm : public ::testing::TestWithParam<ArmCase> {};
 
-TEST_P(PumaSimOnArm, LoadsHoldsFollowsACartesianStepAndStaysWithinItsLimits) {
+TEST_P(ArmSimOnArm, LoadsHoldsFollowsACartesianStepAndStaysWithinItsLimits) {
   const ArmCase& c = GetParam();
   const int n = static_cast<int>(c.initial_q.size());
   if (!robot::joint_state_carries(n)) {
     // The arm is refused at its URDF, saying what the JointState message carries.
     try {
-      Harness h("puma_sim", params(c), 1000);
+      Harness h("arm_sim", params(c), 1000);
       ADD_FAILURE() << "an arm the JointState message cannot carry was loaded";
     } catch (const ConfigError& e) {
       EXPECT_NE(std::string(e.what()).find("JointState message carries"), std::string::npos) << e.what();
@@ -158,7 +158,7 @@ TEST_P(PumaSimOnArm, LoadsHoldsFollowsACartesianStepAndStaysWithinItsLimits) {
     GTEST_SKIP() << c.name << ": the JointState message carries " << robot::joint_state_capacity();
   }
   const ArmModel model(urdf(c), "dev");
-  Harness h("puma_sim", params(c), 1000);
+  Harness h("arm_sim", params(c), 1000);
   auto sp = h.feed<msg::CartesianSetpoint>("setpoint");
   auto js = h.watch<msg::JointState>("joint_state", 4);
   auto dev = h.watch<msg::PoseStamped>("device_pose", 4);
@@ -189,7 +189,7 @@ TEST_P(PumaSimOnArm, LoadsHoldsFollowsACartesianStepAndStaysWithinItsLimits) {
     if (ms < 1000) hold_dev = std::max(hold_dev, (last_dev.translation() - start.translation()).norm());
   }
   const double error = (last_dev.translation() - goal.translation()).norm();
-  std::printf("[measured] puma_sim on the %s: holding %.3f mm off, step error %.3f mm, least joint margin %.3f rad\n",
+  std::printf("[measured] arm_sim on the %s: holding %.3f mm off, step error %.3f mm, least joint margin %.3f rad\n",
               c.name, hold_dev * 1e3, error * 1e3, worst_margin);
   EXPECT_LT(hold_dev, 1e-4) << "holds still at its parked pose under gravity";
   EXPECT_LT(error, 1e-3) << "follows the 2 cm step to within 1 mm";
@@ -197,14 +197,14 @@ TEST_P(PumaSimOnArm, LoadsHoldsFollowsACartesianStepAndStaysWithinItsLimits) {
   EXPECT_EQ(last_status.state(), msg::ARM_OK) << last_status.reason().c_str();
 }
 
-INSTANTIATE_TEST_SUITE_P(AnyArm, PumaSimOnArm, ::testing::Values(kUr5e, kFr3),
+INSTANTIATE_TEST_SUITE_P(AnyArm, ArmSimOnArm, ::testing::Values(kUr5e, kFr3),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // A per-joint list of another length than the URDF's joints is refused at its own parameter,
 // with both counts.
 void expect_refused(const std::string& p, const std::string& parameter, const std::string& what) {
   try {
-    Harness h("puma_sim", p, 1000);
+    Harness h("arm_sim", p, 1000);
     ADD_FAILURE() << p << " was accepted";
   } catch (const ConfigError& e) {
     const std::string why = e.what();
@@ -213,7 +213,7 @@ void expect_refused(const std::string& p, const std::string& parameter, const st
   }
 }
 
-TEST(PumaSimParameters, PerJointListsOfAnotherLengthAreRefusedAtTheirParameter) {
+TEST(ArmSimParameters, PerJointListsOfAnotherLengthAreRefusedAtTheirParameter) {
   expect_refused("{acceleration_limits: [8, 8, 10]}", "acceleration_limits", "6 values, got 3");
   expect_refused("{acceleration_limits: [8, 8, 10, 30, 30, 30, 30]}", "acceleration_limits", "6 values, got 7");
   expect_refused("{urdf: robots/ur5e.urdf, drive: '', initial_q: " + list(kUr5e.initial_q) +

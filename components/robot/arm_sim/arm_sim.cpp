@@ -1,4 +1,4 @@
-// puma_sim: the display's arm, simulated, behind the same safety gate as the real arm: the PUMA
+// arm_sim: the display's arm, simulated, behind the same safety gate as the real arm: the PUMA
 // 560 by default, or any serial arm of up to kMaxArmDof joints from its URDF (`urdf`, with the
 // ft_sensor and dev frames fixed to its last link; `drive` empty for ideal drives; `initial_q` and
 // `acceleration_limits` of one value per joint).
@@ -55,7 +55,7 @@ const Length kPerJointOrNone{1, static_cast<std::size_t>(kMaxArmDof), 1, true};
 
 }  // namespace
 
-class PumaSim final : public Component {
+class ArmSim final : public Component {
  public:
   void configure(Context& ctx) override {
     ctx.summary(
@@ -379,4 +379,4 @@ class PumaSim final : public Component {
 
 }  // namespace wysiwyf::robot::sim
 
-WYSIWYF_COMPONENT(wysiwyf::robot::sim::PumaSim, "puma_sim")
+WYSIWYF_COMPONENT(wysiwyf::robot::sim::ArmSim, "arm_sim")

@@ -1,4 +1,4 @@
-// puma_sim's real-time factor on each shipped arm (the PUMA 560 with its drive train, the UR5e
+// arm_sim's real-time factor on each shipped arm (the PUMA 560 with its drive train, the UR5e
 // and the FR3 with ideal drives, parked as their robots/<arm>-sim.yaml): 1 kHz ticks run through
 // the Harness (no DDS, no executor), the arm following a 50 Hz Cartesian setpoint stream (a 3 cm
 // circle at 0.5 Hz around its parked pose), with the fingertip parked, or pressing on the plate
@@ -24,7 +24,7 @@ constexpr std::int64_t kMs = 1'000'000;
 constexpr double kPi = 3.14159265358979323846;
 
 void run(benchmark::State& state, bool touch, const char* params) {
-  Harness h("puma_sim", params, 1000);
+  Harness h("arm_sim", params, 1000);
   auto setpoints = h.feed<msg::CartesianSetpoint>("setpoint");
   auto hand = h.feed<msg::PoseStamped>("hand_target");
   auto pose_in = h.watch<msg::PoseStamped>("device_pose", 2);
@@ -97,7 +97,7 @@ void run(benchmark::State& state, bool touch, const char* params) {
 void BM_ArmSimFollowing(benchmark::State& state, const char* params) { run(state, false, params); }
 void BM_ArmSimHandOnPlate(benchmark::State& state, const char* params) { run(state, true, params); }
 
-constexpr const char* kPuma = "{}";  // puma_sim's defaults: the PUMA 560, its drive file, its ready pose
+constexpr const char* kPuma = "{}";  // arm_sim's defaults: the PUMA 560, its drive file, its ready pose
 constexpr const char* kUr5e =
     "{urdf: robots/ur5e.urdf, drive: '', acceleration_limits: [8, 8, 10, 30, 30, 30],"
     " initial_q: [2.802180, -1.581828, 1.807510, -0.225596, 1.231347, 1.570657]}";

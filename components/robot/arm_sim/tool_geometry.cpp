@@ -1,4 +1,4 @@
-// The tool side of the URDF for puma_sim: sensor load and contact shapes; sphere contact tests.
+// The tool side of the URDF for arm_sim: sensor load and contact shapes; sphere contact tests.
 #include "tool_geometry.hpp"
 
 #include <algorithm>
@@ -13,7 +13,7 @@
 
 namespace wysiwyf::robot::sim {
 ToolGeometry load_tool_geometry(const std::string& urdf_path, const ArmModel& model, const std::string& sensor_frame) {
-  auto fail = [&](const std::string& what) { throw std::runtime_error("puma_sim: " + urdf_path + ": " + what); };
+  auto fail = [&](const std::string& what) { throw std::runtime_error("arm_sim: " + urdf_path + ": " + what); };
   {
     std::ifstream in(urdf_path);
     if (!in) fail("cannot open the file");

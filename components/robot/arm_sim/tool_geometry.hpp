@@ -1,5 +1,5 @@
 #pragma once
-// What puma_sim needs of the tool side of the URDF that ArmModel merges into the last body: the
+// What arm_sim needs of the tool side of the URDF that ArmModel merges into the last body: the
 // mass the wrist F/T sensor carries (every link below the sensor frame) and the collision shapes
 // of the links fixed to the last link (the plate, the knob, the sensor housing), for penalty
 // contact with the user's fingertip. Any serial arm's URDF with the tool frames on its flange.

@@ -1,4 +1,4 @@
-// puma_sim through the Harness, on simulated time (1 ms ticks): servo step responses against
+// arm_sim through the Harness, on simulated time (1 ms ticks): servo step responses against
 // every joint limit at every sample, holding under gravity, the watchdog, bad setpoints, poses
 // beyond a joint limit, 20 ms and 1 ms setpoint streams, the fingertip pushing the plate, and
 // repeatability. Measured figures are printed as "[measured] ..." lines.
@@ -25,7 +25,7 @@ const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urd
 constexpr std::int64_t kMs = 1'000'000;
 constexpr double kDt = 1e-3;
 constexpr double kPi = 3.14159265358979323846;
-// puma_sim's defaults, restated (the test must fail if they drift): the ready pose, the hard
+// arm_sim's defaults, restated (the test must fail if they drift): the ready pose, the hard
 // acceleration limits and the reference's share of the limits.
 const Vector6d kReady =
     (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
@@ -51,7 +51,7 @@ msg::CartesianSetpoint setpoint(std::int64_t stamp_ns, const Eigen::Isometry3d& 
   return s;
 }
 
-// One puma_sim in a Harness, every output recorded at every tick.
+// One arm_sim in a Harness, every output recorded at every tick.
 struct Sim {
   struct Sample {
     Vector6d q, qd, effort;
@@ -71,7 +71,7 @@ struct Sim {
   std::int64_t t = 0;
 
   explicit Sim(const std::string& params = "{}")
-      : h("puma_sim", params, 1000),
+      : h("arm_sim", params, 1000),
         sp(h.feed<msg::CartesianSetpoint>("setpoint")),
         hand_target(h.feed<msg::PoseStamped>("hand_target")),
         js(h.watch<msg::JointState>("joint_state", 4)),
@@ -144,7 +144,7 @@ struct Sim {
 };
 
 // Every sample from `from` on within the hard limits: position (URDF), velocity (URDF),
-// acceleration (puma_sim's acceleration_limits, from successive velocity samples). Returns the
+// acceleration (arm_sim's acceleration_limits, from successive velocity samples). Returns the
 // worst share of each limit used.
 struct LimitUse {
   double position_margin_left = 1e9;  // rad, smallest distance to a position limit
@@ -194,7 +194,7 @@ struct BlowToThePlate {
   }
 };
 
-TEST(PumaSim, HoldsStillUnderGravityAtTheReadyPose) {
+TEST(ArmSim, HoldsStillUnderGravityAtTheReadyPose) {
   Sim sim;
   for (int i = 0; i < 3000; ++i) sim.tick();
   double drift = 0, speed = 0, cart = 0;
@@ -237,11 +237,11 @@ TEST_P(JointStep, StaysWithinEveryLimitAtEverySampleAndSettles) {
   EXPECT_NE(sim.state(), msg::ARM_FAULT) << sim.reason();
 }
 
-INSTANTIATE_TEST_SUITE_P(PumaSim, JointStep,
+INSTANTIATE_TEST_SUITE_P(ArmSim, JointStep,
                          ::testing::Values(std::pair{0, 0.4}, std::pair{1, -0.3}, std::pair{2, 0.4}, std::pair{3, 1.2},
                                            std::pair{4, -0.8}, std::pair{5, 1.4}));
 
-TEST(PumaSim, CartesianStepOf5cmStaysWithinLimitsAndSettles) {
+TEST(ArmSim, CartesianStepOf5cmStaysWithinLimitsAndSettles) {
   for (const Eigen::Vector3d& step :
        {Eigen::Vector3d(-0.05, 0, 0), Eigen::Vector3d(0, 0.05, 0), Eigen::Vector3d(0, 0, 0.05)}) {
     Sim sim;
@@ -295,7 +295,7 @@ void stream_circle(Sim& sim, int ms, int period_ms, double r = 0.03, double hz =
   }
 }
 
-TEST(PumaSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
+TEST(ArmSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
   Sim sim;
   stream_circle(sim, 1500, 20, 0.05, 1.0);  // 0.31 m/s
   ASSERT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
@@ -336,7 +336,7 @@ TEST(PumaSim, WatchdogBrakesToAHoldWhenSetpointsStop) {
   EXPECT_EQ(sim.state(), msg::ARM_OK) << sim.reason();
 }
 
-TEST(PumaSim, NanSetpointHoldsAndFaultsAndTheArmDoesNotMove) {
+TEST(ArmSim, NanSetpointHoldsAndFaultsAndTheArmDoesNotMove) {
   Sim sim;
   const Eigen::Isometry3d ready = model().fk(kReady);
   sim.hold_pose(ready, 500);
@@ -359,7 +359,7 @@ TEST(PumaSim, NanSetpointHoldsAndFaultsAndTheArmDoesNotMove) {
   EXPECT_LT(moved, 2e-4);
 }
 
-TEST(PumaSim, NanWhileMovingBrakesWithinTheLimits) {
+TEST(ArmSim, NanWhileMovingBrakesWithinTheLimits) {
   Sim sim;
   stream_circle(sim, 1200, 20, 0.05, 1.0);
   msg::CartesianSetpoint bad = setpoint(sim.t, model().fk(kReady));
@@ -371,7 +371,7 @@ TEST(PumaSim, NanWhileMovingBrakesWithinTheLimits) {
   EXPECT_LT(max_abs_velocity(sim.last()), 1e-3);
 }
 
-TEST(PumaSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
+TEST(ArmSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
   // The plate accelerates at 1 m/s^2 along y (the second-order hold would extrapolate exactly
   // that) and the stream stops at 0.2 m/s. From the moment the next setpoint was due no joint may
   // go faster than it went then; the status says FAULT (held) within 3 periods of the last setpoint.
@@ -420,7 +420,7 @@ TEST(PumaSim, ALostStreamHoldsWithinThreeOfItsPeriodsAndNoJointSpeedsUp) {
   }
 }
 
-TEST(PumaSim, StaleFutureAndOutOfOrderSetpointsAreRefusedAndNeverMoveTheArm) {
+TEST(ArmSim, StaleFutureAndOutOfOrderSetpointsAreRefusedAndNeverMoveTheArm) {
   Sim sim;
   const Eigen::Isometry3d ready = model().fk(kReady);
   sim.hold_pose(ready, 300, 1);
@@ -458,7 +458,7 @@ TEST(PumaSim, StaleFutureAndOutOfOrderSetpointsAreRefusedAndNeverMoveTheArm) {
   EXPECT_NE(sim.reason().find("setpoint stream lost"), std::string::npos) << sim.reason();
 }
 
-TEST(PumaSim, AnInputFaultIsClearedOnRequestOnceTheArmStandsStillButTheArmsOwnIsNot) {
+TEST(ArmSim, AnInputFaultIsClearedOnRequestOnceTheArmStandsStillButTheArmsOwnIsNot) {
   Sim sim;
   stream_circle(sim, 1200, 1, 0.05, 1.0);
   Eigen::Isometry3d bad = sim.last().dev;
@@ -495,7 +495,7 @@ TEST(PumaSim, AnInputFaultIsClearedOnRequestOnceTheArmStandsStillButTheArmsOwnIs
   EXPECT_EQ(blow.sim.h.rejected("request"), 1u);
 }
 
-TEST(PumaSim, CommandingAPoseBeyondAJointLimitNeverExceedsIt) {
+TEST(ArmSim, CommandingAPoseBeyondAJointLimitNeverExceedsIt) {
   // Joint 5 driven past +100 deg at 0.5 rad/s, as poses, every 20 ms.
   Sim sim;
   Vector6d q = kReady;
@@ -569,7 +569,7 @@ CircleRuns run_circles(const std::string& params) {
   return out;
 }
 
-TEST(PumaSim, SetpointsAt20msAnd1msBothGiveASmoothJointTrajectory) {
+TEST(ArmSim, SetpointsAt20msAnd1msBothGiveASmoothJointTrajectory) {
   // Without encoder quantisation the joint trajectory shows what the trajectory generator makes
   // of the two streams: continuous velocity, the same peak acceleration (the path's own, far
   // below the limits) changing little from one ms to the next (no 50 Hz kicks: the 20 ms stream
@@ -595,7 +595,7 @@ TEST(PumaSim, SetpointsAt20msAnd1msBothGiveASmoothJointTrajectory) {
   EXPECT_LT(real.track1, 5e-4);
 }
 
-TEST(PumaSim, TheHandPushingThePlateIsMeasuredAndStoppedByIt) {
+TEST(ArmSim, TheHandPushingThePlateIsMeasuredAndStoppedByIt) {
   // The hand waits 2 cm in front of the plate, then is driven to 3 cm behind its face.
   const Eigen::Isometry3d ready = model().fk(kReady);
   const Eigen::Vector3d on_plate = ready * Eigen::Vector3d(0.05, 0.04, 0.0);  // off the knob
@@ -656,7 +656,7 @@ TEST(PumaSim, TheHandPushingThePlateIsMeasuredAndStoppedByIt) {
   EXPECT_LT(gives, 2e-3);
 }
 
-TEST(PumaSim, AHardBlowTripsTheForceLimit) {
+TEST(ArmSim, AHardBlowTripsTheForceLimit) {
   BlowToThePlate blow;
   // The blow itself accelerates the arm beyond what the servo would: only positions are checked.
   check_limits(blow.sim.samples, 1, false);
@@ -664,7 +664,7 @@ TEST(PumaSim, AHardBlowTripsTheForceLimit) {
   EXPECT_NE(blow.sim.reason().find("measured force"), std::string::npos) << blow.sim.reason();
 }
 
-TEST(PumaSim, TwoRunsGiveIdenticalTraces) {
+TEST(ArmSim, TwoRunsGiveIdenticalTraces) {
   auto run = [](std::vector<Sim::Sample>& out) {
     const Eigen::Isometry3d ready = model().fk(kReady);
     Sim sim("{seed: 42}");
@@ -693,7 +693,7 @@ TEST(PumaSim, TwoRunsGiveIdenticalTraces) {
   EXPECT_GT((a.back().force - a.front().force).norm(), 1.0);  // the hand did touch
 }
 
-TEST(PumaSim, RefusesParametersThatDoNotFit) {
+TEST(ArmSim, RefusesParametersThatDoNotFit) {
   EXPECT_ANY_THROW(Sim("{initial_q: [0, 0, 0, 0, 0]}"));
   EXPECT_ANY_THROW(Sim("{initial_q: [0, 0, 0, 0, 2.0, 0]}"));  // joint 5 beyond +100 deg
 }
