@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../common/allocation_counter.hpp"
+#include "../common/per_call.hpp"
 #include "arm_model/arm_model.hpp"
 
 namespace {
@@ -61,15 +61,7 @@ ArmFixture& fixture(const std::string& urdf, bool numerical = false) {
 // Runs `call(i)` over the poses; reports allocations per call.
 template <typename Call>
 void run(benchmark::State& state, Call call) {
-  std::size_t i = 0;
-  const std::uint64_t allocs_before = wysiwyf::bench::allocation_count();
-  for (auto _ : state) {
-    call(i);
-    i = (i + 1) % kPoses;
-  }
-  state.counters["allocs_per_call"] =
-      benchmark::Counter(static_cast<double>(wysiwyf::bench::allocation_count() - allocs_before) /
-                         static_cast<double>(state.iterations()));
+  wysiwyf::bench::run_per_call(state, kPoses, call);
 }
 
 void BM_ArmForwardKinematics(benchmark::State& state, const char* urdf) {

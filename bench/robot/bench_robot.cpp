@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "../common/allocation_counter.hpp"
+#include "../common/per_call.hpp"
 #include "arm_joint_sim/drive_params.hpp"
 #include "puma_model/puma_model.hpp"
 #include "../common/smoke.hpp"
@@ -54,15 +54,7 @@ Fixture& fixture() {
 // Runs `call(i)` over the poses; reports allocations per call.
 template <typename Call>
 void run(benchmark::State& state, Call call) {
-  std::size_t i = 0;
-  const std::uint64_t allocs_before = wysiwyf::bench::allocation_count();
-  for (auto _ : state) {
-    call(i);
-    i = (i + 1) % kPoses;
-  }
-  state.counters["allocs_per_call"] =
-      benchmark::Counter(static_cast<double>(wysiwyf::bench::allocation_count() - allocs_before) /
-                         static_cast<double>(state.iterations()));
+  wysiwyf::bench::run_per_call(state, kPoses, call);
 }
 
 void BM_ForwardKinematics(benchmark::State& state) {

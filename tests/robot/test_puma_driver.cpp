@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include "arm_under_test.hpp"
 #include "link_client.hpp"
 #include "puma_controller_emulator/controller_emulator.hpp"
 #include "puma_model/puma_model.hpp"
@@ -34,7 +35,6 @@ using robot::link::LinkClient;
 
 const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf";
 constexpr std::int64_t kMs = 1'000'000;
-constexpr double kPi = 3.14159265358979323846;
 // arm_sim's and the emulator's default start: the ready pose.
 const Vector6d kReady =
     (Vector6d() << 0.255486131, -0.152351627, -2.593612368, 0.275843098, 1.188686600, -0.105157403).finished();
@@ -52,76 +52,12 @@ ControllerEmulator::Options lockstep_options() {
   return o;
 }
 
-msg::CartesianSetpoint setpoint(std::int64_t stamp_ns, const Eigen::Isometry3d& T,
-                                const Eigen::Vector3d& v = Eigen::Vector3d::Zero()) {
-  msg::CartesianSetpoint s;
-  s.header().stamp_ns(stamp_ns);
-  s.header().frame_id("base");
-  s.child_frame_id("dev");
-  msgs::to_msg(T, s.pose());
-  msgs::to_msg(v, Eigen::Vector3d::Zero(), s.twist());
-  s.source("test");
-  return s;
-}
-
-// The setpoint due at tick `ms`, if any: a 3 cm circle at 0.5 Hz around the ready pose streamed
-// every `period_ms`, after a 4 cm step along y held for the first second.
+// The setpoint due at tick `ms`, if any: the circle around the ready pose.
 bool setpoint_at(int ms, int period_ms, msg::CartesianSetpoint& out) {
-  if (ms % period_ms != 0) return false;
-  Eigen::Isometry3d T = model().fk(kReady);
-  const double t = ms * 1e-3;
-  if (t < 1.0) {
-    T.translation() += Eigen::Vector3d(0, 0.04, 0);
-    out = setpoint(ms * kMs, T);
-    return true;
-  }
-  const double w = 2 * kPi * 0.5, s = t - 1.0;
-  T.translation() += Eigen::Vector3d(0, 0.04, 0) + 0.03 * Eigen::Vector3d(0, std::sin(w * s), 1 - std::cos(w * s));
-  out = setpoint(ms * kMs, T, 0.03 * w * Eigen::Vector3d(0, std::cos(w * s), std::sin(w * s)));
-  return true;
+  return circle_setpoint_at(ms, period_ms, model().fk(kReady), out);
 }
 
-// One arm component (arm_sim or puma_driver) in a Harness: feeds setpoints, records joints.
-struct Arm {
-  Harness h;
-  Output<msg::CartesianSetpoint> sp;
-  Input<msg::JointState> js;
-  Input<msg::RobotStatus> status;
-  msg::RobotStatus last_status;
-  std::vector<Vector6d> q, qd, effort;
-  std::int64_t t = 0;
-  int published = 0;
-
-  Arm(const std::string& type, const std::string& params)
-      : h(type, params, 1000),
-        sp(h.feed<msg::CartesianSetpoint>("setpoint")),
-        js(h.watch<msg::JointState>("joint_state", 4)),
-        status(h.watch<msg::RobotStatus>("status", 64)) {
-    h.activate();
-  }
-  void tick(const msg::CartesianSetpoint* s = nullptr) {
-    if (s) sp.write(*s);
-    h.tick(Time{t});
-    t += kMs;
-    msg::JointState j;
-    published = 0;
-    while (js.take(j)) {
-      ++published;
-      Vector6d a, b, c;
-      for (int k = 0; k < 6; ++k) {
-        a[k] = j.position()[static_cast<std::size_t>(k)];
-        b[k] = j.velocity()[static_cast<std::size_t>(k)];
-        c[k] = j.effort()[static_cast<std::size_t>(k)];
-      }
-      q.push_back(a), qd.push_back(b), effort.push_back(c);
-    }
-    while (status.take(last_status)) {
-    }
-  }
-  int state() const { return static_cast<int>(last_status.state()); }
-  std::string source() const { return last_status.source().c_str(); }
-  std::string reason() const { return last_status.reason().c_str(); }
-};
+using Arm = test::ArmUnderTest;  // arm_sim or puma_driver at 1 kHz
 
 struct Difference {
   double q = 0, qd = 0, effort = 0;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "arm_model/arm_model.hpp"
+#include "arm_under_test.hpp"
 #include "ur_controller_emulator/ur_emulator.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"
@@ -27,7 +28,6 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 const std::string kUrdf = std::string(WYSIWYF_CONFIG_DIR) + "/robots/ur5e.urdf";
 constexpr std::int64_t kMs = 1'000'000;
 constexpr int kTickMs = 2;  // 500 Hz: the e-Series' period
-constexpr double kPi = 3.14159265358979323846;
 // config/pipelines/robots/ur5e-sim.yaml's arm: the parked pose, ideal drives, the PUMA's
 // acceleration limits (UR publishes none). The emulator parks there by default.
 const std::string kArmParams = "urdf: " + kUrdf + ", acceleration_limits: [8, 8, 10, 30, 30, 30]";
@@ -52,74 +52,17 @@ std::string driver_params(const UrEmulator& e, const std::string& more = "") {
          ", dashboard_port: " + std::to_string(e.dashboard_port()) + ", " + kArmParams + more + "}";
 }
 
-msg::CartesianSetpoint setpoint(std::int64_t stamp_ns, const Eigen::Isometry3d& T,
-                                const Eigen::Vector3d& v = Eigen::Vector3d::Zero()) {
-  msg::CartesianSetpoint s;
-  s.header().stamp_ns(stamp_ns);
-  s.header().frame_id("base");
-  s.child_frame_id("dev");
-  msgs::to_msg(T, s.pose());
-  msgs::to_msg(v, Eigen::Vector3d::Zero(), s.twist());
-  s.source("test");
-  return s;
-}
-
-// The setpoint due at `ms`, if any: a 3 cm circle at 0.5 Hz around the parked plate streamed
-// every `period_ms`, after a 4 cm step along y held for the first second.
+// The setpoint due at `ms`, if any: the circle around the parked plate.
 bool setpoint_at(int ms, int period_ms, msg::CartesianSetpoint& out) {
-  if (ms % period_ms != 0) return false;
   JointVector q0(6);
   q0 << 2.802180, -1.581828, 1.807510, -0.225596, 1.231347, 1.570657;
-  Eigen::Isometry3d T = model().fk(q0);
-  const double t = ms * 1e-3;
-  T.translation() += Eigen::Vector3d(0, 0.04, 0);
-  if (t < 1.0) {
-    out = setpoint(ms * kMs, T);
-    return true;
-  }
-  const double w = 2 * kPi * 0.5, s = t - 1.0;
-  T.translation() += 0.03 * Eigen::Vector3d(0, std::sin(w * s), 1 - std::cos(w * s));
-  out = setpoint(ms * kMs, T, 0.03 * w * Eigen::Vector3d(0, std::cos(w * s), std::sin(w * s)));
-  return true;
+  return circle_setpoint_at(ms, period_ms, model().fk(q0), out);
 }
 
-// One arm component (arm_sim or ur_driver) in a Harness at 500 Hz: feeds setpoints and
-// requests, records joints and the status.
-struct Arm {
-  Harness h;
-  Output<msg::CartesianSetpoint> sp;
-  Output<msg::ArmRequest> request;
-  Input<msg::JointState> js;
-  Input<msg::RobotStatus> status;
-  msg::RobotStatus last_status;
-  std::vector<Vector6d> q, qd, effort;
-  std::int64_t t = 0;
-  int published = 0;
-
-  Arm(const std::string& type, const std::string& params)
-      : h(type, params, 1000.0 / kTickMs),
-        sp(h.feed<msg::CartesianSetpoint>("setpoint")),
-        request(h.feed<msg::ArmRequest>("request")),
-        js(h.watch<msg::JointState>("joint_state", 4)),
-        status(h.watch<msg::RobotStatus>("status", 64)) {
-    h.activate();
-  }
+// One arm component (arm_sim or ur_driver) at 500 Hz, with the stream of setpoint_at().
+struct Arm : test::ArmUnderTest {
+  Arm(const std::string& type, const std::string& params) : ArmUnderTest(type, params, 1000.0 / kTickMs) {}
   int ms() const { return static_cast<int>(t / kMs); }
-  void tick(const msg::CartesianSetpoint* s = nullptr) {
-    if (s) sp.write(*s);
-    h.tick(Time{t});
-    t += kTickMs * kMs;
-    msg::JointState j;
-    published = 0;
-    while (js.take(j)) {
-      ++published;
-      Vector6d a, b, c;
-      for (std::size_t k = 0; k < 6; ++k) a[k] = j.position()[k], b[k] = j.velocity()[k], c[k] = j.effort()[k];
-      q.push_back(a), qd.push_back(b), effort.push_back(c);
-    }
-    while (status.take(last_status)) {
-    }
-  }
   // A tick with the setpoint stream's sample due now (every `period_ms`).
   void follow(int period_ms) {
     msg::CartesianSetpoint s;
@@ -129,15 +72,6 @@ struct Arm {
     const msg::CartesianSetpoint s = setpoint(t, model().fk(JointVector(q.back())));
     tick(ms() % 20 == 0 ? &s : nullptr);
   }
-  void clear(const std::string& why) {
-    msg::ArmRequest r;
-    r.header().stamp_ns(t);
-    r.request(msg::ARM_CLEAR_INPUT_FAULT);
-    r.reason(why);
-    request.write(r);
-  }
-  int state() const { return static_cast<int>(last_status.state()); }
-  std::string reason() const { return last_status.reason().c_str(); }
 };
 
 struct Difference {
