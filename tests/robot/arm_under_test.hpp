@@ -2,6 +2,7 @@
 // One arm component (arm_sim, puma_driver, ur_driver) in a Harness on the sim clock: feeds it
 // setpoints and requests, records every joint state it publishes and its newest status. The
 // drivers' tests run a driver and arm_sim side by side through it and compare what they record.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -93,5 +94,22 @@ struct ArmUnderTest {
   std::string source() const { return last_status.source().c_str(); }
   std::string reason() const { return last_status.reason().c_str(); }
 };
+
+// The largest differences between two recordings, sample by sample, and how far the first moved.
+struct Difference {
+  double q = 0, qd = 0, effort = 0;  // rad, rad/s, N m
+  double travel = 0;                 // rad: the first arm's largest joint excursion from its start
+};
+
+inline Difference compare(const ArmUnderTest& a, const ArmUnderTest& b) {
+  Difference d;
+  for (std::size_t i = 0; i < std::min(a.q.size(), b.q.size()); ++i) {
+    d.q = std::max(d.q, (a.q[i] - b.q[i]).cwiseAbs().maxCoeff());
+    d.qd = std::max(d.qd, (a.qd[i] - b.qd[i]).cwiseAbs().maxCoeff());
+    d.effort = std::max(d.effort, (a.effort[i] - b.effort[i]).cwiseAbs().maxCoeff());
+    d.travel = std::max(d.travel, (a.q[i] - a.q[0]).cwiseAbs().maxCoeff());
+  }
+  return d;
+}
 
 }  // namespace wysiwyf::test

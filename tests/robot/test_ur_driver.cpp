@@ -74,10 +74,6 @@ struct Arm : test::ArmUnderTest {
   }
 };
 
-struct Difference {
-  double q = 0, qd = 0, effort = 0;
-};
-
 Difference run_both(int ms, int period_ms) {
   UrEmulator emulator(lockstep_options());
   Arm sim("arm_sim", kSimParams);
@@ -91,20 +87,13 @@ Difference run_both(int ms, int period_ms) {
   EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
   EXPECT_EQ(sim.q.size(), static_cast<std::size_t>(ms / kTickMs));
   EXPECT_EQ(driver.q.size(), static_cast<std::size_t>(ms / kTickMs));
-  Difference d;
-  double travel = 0;
-  for (std::size_t i = 0; i < std::min(sim.q.size(), driver.q.size()); ++i) {
-    d.q = std::max(d.q, (sim.q[i] - driver.q[i]).cwiseAbs().maxCoeff());
-    d.qd = std::max(d.qd, (sim.qd[i] - driver.qd[i]).cwiseAbs().maxCoeff());
-    d.effort = std::max(d.effort, (sim.effort[i] - driver.effort[i]).cwiseAbs().maxCoeff());
-    travel = std::max(travel, (sim.q[i] - sim.q[0]).cwiseAbs().maxCoeff());
-  }
-  EXPECT_GT(travel, 0.02) << "the arm should have moved";
+  const Difference d = compare(sim, driver);
+  EXPECT_GT(d.travel, 0.02) << "the arm should have moved";
   EXPECT_EQ(emulator.counters().packages_refused, 0u);
   std::printf(
       "[measured] %d ms of setpoints every %d ms: arm_sim (UR5e) vs ur_driver + UR emulator, largest difference "
       "%.3g rad, %.3g rad/s, %.3g N m (joint travel %.3f rad)\n",
-      ms, period_ms, d.q, d.qd, d.effort, travel);
+      ms, period_ms, d.q, d.qd, d.effort, d.travel);
   return d;
 }
 
