@@ -37,23 +37,28 @@ bool valid_name(std::string_view name) {
 
 std::string cut(const std::string& s) { return s.size() > 255 ? s.substr(0, 255) : s; }
 
-}  // namespace
-
-std::optional<std::vector<std::string>> split_names(std::string_view list) {
+// Splits a comma-separated list of names ([A-Za-z0-9_], 1..kMaxRecipeFields of them); with
+// `distinct`, a name may not repeat.
+std::optional<std::vector<std::string>> split_list(std::string_view list, bool distinct) {
   std::vector<std::string> names;
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = list.find(',', start);
     const std::string_view item = list.substr(start, comma == std::string_view::npos ? list.npos : comma - start);
     if (!valid_name(item) || names.size() == kMaxRecipeFields) return std::nullopt;
-    for (const auto& n : names)
-      if (n == item) return std::nullopt;
+    if (distinct)
+      for (const auto& n : names)
+        if (n == item) return std::nullopt;
     names.emplace_back(item);
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
   return names;
 }
+
+}  // namespace
+
+std::optional<std::vector<std::string>> split_names(std::string_view list) { return split_list(list, true); }
 
 void encode_request_protocol_version(std::vector<std::uint8_t>& out, std::uint16_t version) {
   const std::size_t at = begin(out, PackageType::kRequestProtocolVersion);
@@ -170,15 +175,9 @@ std::optional<SetupReply> decode_setup_reply(const std::uint8_t* p, std::size_t 
   const std::string_view list = r.rest();
   if (r.failed()) return std::nullopt;
   // NOT_FOUND and IN_USE may repeat; every item is still a name of [A-Z0-9_].
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = list.find(',', start);
-    const std::string_view item = list.substr(start, comma == std::string_view::npos ? list.npos : comma - start);
-    if (!valid_name(item) || reply.types.size() == kMaxRecipeFields) return std::nullopt;
-    reply.types.emplace_back(item);
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
+  auto types = split_list(list, false);
+  if (!types) return std::nullopt;
+  reply.types = std::move(*types);
   return reply;
 }
 
