@@ -78,20 +78,9 @@ void ArmModel::check_size(const JointRef& v, const char* what) const {
                                 " values, the arm has " + std::to_string(dof()) + " joints");
 }
 
-FrameId ArmModel::frame(const std::string& name) const {
-  for (std::size_t i = 0; i < frames_.size(); ++i)
-    if (frames_[i].name == name) return FrameId{static_cast<int>(i)};
-  std::string known;
-  for (const auto& fr : frames_) known += (known.empty() ? "" : ", ") + fr.name;
-  throw std::out_of_range("ArmModel: no frame '" + name + "' in " + urdf_path_ + " (frames: " + known + ")");
-}
+FrameId ArmModel::frame(const std::string& name) const { return frame_named(frames_, name, "ArmModel", urdf_path_); }
 
-std::vector<std::string> ArmModel::frame_names() const {
-  std::vector<std::string> names;
-  names.reserve(frames_.size());
-  for (const auto& fr : frames_) names.push_back(fr.name);
-  return names;
-}
+std::vector<std::string> ArmModel::frame_names() const { return frame_names_of(frames_); }
 
 void ArmModel::set_rotor_inertia(const JointRef& reflected) {
   check_size(reflected, "rotor inertia");

@@ -29,20 +29,9 @@ std::size_t PumaModel::check(FrameId f) const {
   return static_cast<std::size_t>(f.index);
 }
 
-FrameId PumaModel::frame(const std::string& name) const {
-  for (std::size_t i = 0; i < frames_.size(); ++i)
-    if (frames_[i].name == name) return FrameId{static_cast<int>(i)};
-  std::string known;
-  for (const auto& fr : frames_) known += (known.empty() ? "" : ", ") + fr.name;
-  throw std::out_of_range("PumaModel: no frame '" + name + "' in " + urdf_path_ + " (frames: " + known + ")");
-}
+FrameId PumaModel::frame(const std::string& name) const { return frame_named(frames_, name, "PumaModel", urdf_path_); }
 
-std::vector<std::string> PumaModel::frame_names() const {
-  std::vector<std::string> names;
-  names.reserve(frames_.size());
-  for (const auto& fr : frames_) names.push_back(fr.name);
-  return names;
-}
+std::vector<std::string> PumaModel::frame_names() const { return frame_names_of(frames_); }
 
 void PumaModel::load(const std::string& tip, const std::string& base) {
   {

@@ -1,7 +1,11 @@
 #pragma once
 // Pieces every reader of a URDF through urdfdom needs (PumaModel, ArmModel, arm_sim's tool side):
-// a urdf::Pose as an isometry, a joint type's name for errors, and the merging of links' inertias
-// into one rigid body. Include it only where urdfdom is linked.
+// a urdf::Pose as an isometry, a joint type's name for errors, the merging of links' inertias
+// into one rigid body, and a model's named frames looked up. Include it only where urdfdom is linked.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 #include <Eigen/Geometry>
 #include <urdf_model/joint.h>
 #include <urdf_model/pose.h>
@@ -59,5 +63,25 @@ struct InertiaSum {
     return b;
   }
 };
+
+// The id of the frame called `name` among a model's `frames` (each with a `name`); throws
+// std::out_of_range naming the model, the file and the frames it has.
+template <class Frames>
+FrameId frame_named(const Frames& frames, const std::string& name, const char* model, const std::string& path) {
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].name == name) return FrameId{static_cast<int>(i)};
+  std::string known;
+  for (const auto& f : frames) known += (known.empty() ? "" : ", ") + f.name;
+  throw std::out_of_range(std::string(model) + ": no frame '" + name + "' in " + path + " (frames: " + known + ")");
+}
+
+// Every frame's name, in order.
+template <class Frames>
+std::vector<std::string> frame_names_of(const Frames& frames) {
+  std::vector<std::string> names;
+  names.reserve(frames.size());
+  for (const auto& f : frames) names.push_back(f.name);
+  return names;
+}
 
 }  // namespace wysiwyf::robot
