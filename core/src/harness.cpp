@@ -2,31 +2,48 @@
 
 #include <iostream>
 
+#include "wysiwyf/loader.hpp"
+#include "wysiwyf/pipeline_spec.hpp"
+#include "wysiwyf/validator.hpp"
+
 namespace wysiwyf {
 
-Harness::Harness(const std::string& type, const std::string& params_yaml, double rate_hz, Loader* loader) {
+struct Harness::Kernel {
+  std::unique_ptr<Loader> own_loader;
+  PipelineSpec spec;
+  ComponentPtr component;  // destroyed by its library's own function, before the loader
+};
+
+Harness::Harness(const std::string& type, const std::string& params_yaml, double rate_hz, Loader* loader)
+    : kernel_(std::make_unique<Kernel>()) {
   if (!loader) {
-    own_loader_ = std::make_unique<Loader>();
-    loader = own_loader_.get();
+    kernel_->own_loader = std::make_unique<Loader>();
+    loader = kernel_->own_loader.get();
   }
+  PipelineSpec& spec = kernel_->spec;
   // A missing or broken library is reported as such (LoadError: where it looked, what it found),
   // not as an error in the harness's own pipeline text.
   loader->load(type);
   const std::string yaml = "wysiwyf: 1\nname: harness\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
                            "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml + "\n";
-  spec_ = load_pipeline_from_string(yaml, "<harness " + type + ">");
-  ValidationResult v = validate_pipeline(spec_, *loader);
+  spec = load_pipeline_from_string(yaml, "<harness " + type + ">");
+  ValidationResult v = validate_pipeline(spec, *loader);
   if (!v.ok()) throw ConfigError(v.errors);
   description_ = v.described.at("dut");
-  component_ = loader->create(type);
+  kernel_->component = loader->create(type);
+  component_ = kernel_->component.get();
   component_->attach(this, "dut");
-  Context ctx(Context::Mode::kRun, &spec_.components.front(), &bus_);
+  Context ctx(Context::Mode::kRun, &spec.components.front(), &bus_);
   component_->configure(ctx);
   if (!ctx.issues().empty()) throw ConfigError(ctx.issues());
 }
 
 Harness::~Harness() {
   if (active_) deactivate();
+}
+
+std::string Harness::topic_of(const std::string& port) const {
+  return kernel_->spec.components.front().topic_for(port);
 }
 
 void Harness::activate() {

@@ -8,6 +8,7 @@
 #include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/kernel_msgs.hpp"
 #include "wysiwyf/validator.hpp"
+#include "wysiwyf/context_access.hpp"
 
 namespace wysiwyf {
 
@@ -16,7 +17,8 @@ ComponentDescription describe_component(Loader& loader, const std::string& type)
   ComponentPtr component = loader.create(type);
   Context ctx(Context::Mode::kDescribe, nullptr, nullptr);
   component->configure(ctx);
-  return ComponentDescription{type, ctx.summary_text(), lib.path, ctx.declared_params(), ctx.declared_ports()};
+  return ComponentDescription{type, detail::ContextAccess::summary_text(ctx), lib.path,
+                              detail::ContextAccess::declared_params(ctx), detail::ContextAccess::declared_ports(ctx)};
 }
 
 namespace {
@@ -130,7 +132,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     for (const auto& issue : ctx.issues()) result.errors.push_back(issue);
 
     std::vector<std::string> param_names;
-    for (const auto& p : ctx.declared_params()) param_names.push_back(p.name);
+    for (const auto& p : detail::ContextAccess::declared_params(ctx)) param_names.push_back(p.name);
     for (const auto& [name, value] : c.params)
       if (std::find(param_names.begin(), param_names.end(), name) == param_names.end())
         error(c.param_keys.at(name), "unknown parameter '" + name + "' for " + label + "; expected one of " +
@@ -138,7 +140,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
                                          did_you_mean(name, param_names));
 
     std::vector<std::string> port_names;
-    for (const auto& p : ctx.declared_ports()) port_names.push_back(p.name);
+    for (const auto& p : detail::ContextAccess::declared_ports(ctx)) port_names.push_back(p.name);
     for (const auto& [port, topic] : c.topics)
       if (std::find(port_names.begin(), port_names.end(), port) == port_names.end())
         error(c.topic_keys.at(port), "unknown port '" + port + "' for " + label + "; expected one of " +
@@ -146,7 +148,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
                                          did_you_mean(port, port_names));
     if (c.is_triggered()) {
       std::vector<std::string> inputs;
-      for (const auto& p : ctx.declared_ports())
+      for (const auto& p : detail::ContextAccess::declared_ports(ctx))
         if (p.direction == PortDirection::kInput) inputs.push_back(p.name);
       for (const auto& port : c.trigger.value)
         if (std::find(inputs.begin(), inputs.end(), port) == inputs.end())
@@ -159,7 +161,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         error(where, "qos for unknown port '" + port + "' of " + label + "; expected one of " + join(port_names) +
                          did_you_mean(port, port_names));
 
-    for (const auto& p : ctx.declared_ports()) {
+    for (const auto& p : detail::ContextAccess::declared_ports(ctx)) {
       auto t = c.topics.find(p.name);
       const Location where = t != c.topics.end() ? t->second.where : c.where;
       const auto over = c.qos.find(p.name);  // the pipeline's qos: for the port, as the kernel applies it
@@ -168,8 +170,9 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
                                                     q.single_writer, q.reliability, q.durability, q.deadline_ns,
                                                     q.optional && t == c.topics.end(), c.process_name()});
     }
-    result.described[c.name] = ComponentDescription{c.type.value, ctx.summary_text(), loader.load(c.type.value).path,
-                                                    ctx.declared_params(), ctx.declared_ports()};
+    result.described[c.name] =
+        ComponentDescription{c.type.value, detail::ContextAccess::summary_text(ctx), loader.load(c.type.value).path,
+                             detail::ContextAccess::declared_params(ctx), detail::ContextAccess::declared_ports(ctx)};
   }
 
   for (const auto& [topic, uses] : topics) {

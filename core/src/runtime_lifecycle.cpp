@@ -6,6 +6,7 @@
 
 #include "runtime_impl.hpp"
 #include "wysiwyf/context.hpp"
+#include "wysiwyf/context_access.hpp"
 
 namespace wysiwyf {
 
@@ -59,13 +60,13 @@ bool Runtime::Impl::setup(RunResult& result) {
       fail(*slot, "configure", ConfigError(ctx.issues()).what());
       return false;
     }
-    slot->inputs = ctx.input_queues();
-    slot->inputs_by_port = ctx.input_queues_by_port();
+    slot->inputs = detail::ContextAccess::input_queues(ctx);
+    slot->inputs_by_port = detail::ContextAccess::input_queues_by_port(ctx);
     if (slot->spec->is_triggered()) {
       slot->doorbell = std::make_unique<detail::Doorbell>();
       any_triggered = true;
       for (const auto& port : slot->spec->trigger.value) {
-        auto* queue = ctx.input_queue(port);
+        auto* queue = detail::ContextAccess::input_queue(ctx, port);
         if (!queue) {
           fail(*slot, "configure",
                "trigger '" + port + "' (" + slot->spec->trigger.where.str() + ") is not one of its input ports");

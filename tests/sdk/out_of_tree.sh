@@ -26,6 +26,13 @@ for f in bin/wysiwyf bin/puma-link-emulator bin/rdt-emulator lib/libwysiwyf_core
          lib/cmake/wysiwyf/wysiwyfConfig.cmake; do
   [ -e "$prefix/$f" ] || fail "the install lacks $f"
 done
+# The SDK is installed, the kernel's internal headers (core/internal) are not.
+for f in runtime.hpp loader.hpp validator.hpp pipeline_spec.hpp dds.hpp context_access.hpp; do
+  [ ! -e "$prefix/include/wysiwyf/$f" ] || fail "the install carries the kernel-internal header $f"
+done
+for f in component.hpp context.hpp harness.hpp component_description.hpp params.hpp port.hpp; do
+  [ -e "$prefix/include/wysiwyf/$f" ] || fail "the install lacks the SDK header $f"
+done
 # Nothing installed may point back into the source or build tree.
 if grep -rlI -e "$source" -e "$build" "$prefix/lib/cmake" "$prefix/include" "$prefix/share/wysiwyf/idl"; then
   fail "installed files name the source or build tree (above)"

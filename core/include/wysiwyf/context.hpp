@@ -23,6 +23,7 @@ namespace wysiwyf {
 struct ComponentSpec;  // the pipeline's entry for this component (pipeline_spec.hpp)
 
 namespace detail {
+struct ContextAccess;
 template <class T>
 struct IsStdArray : std::false_type {};
 template <class V, std::size_t N>
@@ -68,22 +69,11 @@ class Context {
   double rate_hz() const;  // the rate the pipeline ticks this component at
   std::int64_t period_ns() const;
 
-  // What was declared and what was wrong (read by the kernel after configure).
-  const std::vector<ParamSpec>& declared_params() const { return params_; }
-  const std::vector<PortSpec>& declared_ports() const { return ports_; }
-  const std::string& summary_text() const { return summary_; }
+  // What was wrong so far (reject(), wrong values): configure() may skip work when not empty.
   const std::vector<ConfigIssue>& issues() const { return issues_; }
-  // Run mode: the queues of the component's inputs, for the kernel's diagnostics.
-  const std::vector<const detail::QueueCounters*>& input_queues() const { return input_queues_; }
-  // Run mode: the queue of each input port, by port name (per-port diagnostics).
-  const std::map<std::string, detail::QueueCounters*>& input_queues_by_port() const { return input_by_port_; }
-  // Run mode: the queue of one input port (for a trigger's doorbell); nullptr when none.
-  detail::QueueCounters* input_queue(const std::string& port) const {
-    const auto it = input_by_port_.find(port);
-    return it == input_by_port_.end() ? nullptr : it->second;
-  }
 
  private:
+  friend struct detail::ContextAccess;  // the kernel reads what was declared (core/internal)
   // One per parameter type: declare, look up, convert, check range and length (context.cpp).
   bool read(const std::string& name, const bool& default_value, const std::string& description,
             std::optional<Range> range, std::optional<Length> length, bool& out);

@@ -13,18 +13,22 @@
 #include <set>
 #include <string>
 
-#include "wysiwyf/loader.hpp"
-#include "wysiwyf/pipeline_spec.hpp"
-#include "wysiwyf/validator.hpp"
+#include "wysiwyf/component.hpp"
+#include "wysiwyf/component_description.hpp"
+#include "wysiwyf/detail/topic_bus.hpp"
+#include "wysiwyf/port.hpp"
 
 namespace wysiwyf {
 
+class Loader;  // the kernel's component loader (internal to the kernel)
+
 class Harness : private ComponentHost {
  public:
-  // Throws ConfigError when the params are wrong (the validator's messages), LoadError when the
-  // type cannot be loaded (saying where it looked). The loader searches
-  // Loader::default_search_dirs() unless given one: a test finds the components built in its own
-  // build tree (lib/wysiwyf beside or above the test program) with no environment variable.
+  // Throws ConfigError when the params are wrong (the validator's messages), std::runtime_error
+  // (a LoadError) when the type cannot be loaded, saying where it looked. It searches the default
+  // component folders unless given the kernel's loader (tests inside this tree share one): a test
+  // finds the components built in its own build tree (lib/wysiwyf beside or above the test
+  // program) or an installed prefix's with no environment variable.
   Harness(const std::string& type, const std::string& params_yaml = "{}", double rate_hz = 1000,
           Loader* loader = nullptr);
   ~Harness() override;
@@ -34,16 +38,15 @@ class Harness : private ComponentHost {
   // An output that delivers to the component's input port `port`.
   template <class T>
   Output<T> feed(const std::string& port) {
-    auto* channel = bus_.channel<T>(spec_.components.front().topic_for(port), "harness.feed");
+    auto* channel = bus_.channel<T>(topic_of(port), "harness.feed");
     channel->add_writer(Qos::reliable());
     return Output<T>(channel);
   }
   // An input receiving what the component writes on its output port `port`.
   template <class T>
   Input<T> watch(const std::string& port, int depth = 10000) {
-    return Input<T>(
-        bus_.channel<T>(spec_.components.front().topic_for(port), "harness.watch")->add_reader(Qos::reliable(depth)),
-        "watch " + port);
+    return Input<T>(bus_.channel<T>(topic_of(port), "harness.watch")->add_reader(Qos::reliable(depth)),
+                    "watch " + port);
   }
 
   void activate();
@@ -61,17 +64,18 @@ class Harness : private ComponentHost {
   const std::string& health_reason() const { return health_reason_; }
 
  private:
+  struct Kernel;  // the loader, the one-component pipeline and the library's deleter
+  std::string topic_of(const std::string& port) const;  // the topic port `port` is mapped to
   void request_stop(const std::string& reason) override;
   void log(const std::string& message) override;
   void warn_once(const std::string& key, const std::string& message) override;
   void reject_sample(const std::string& port, const std::string& why) override;
   void report_health(Health health, const std::string& reason) override;
 
-  std::unique_ptr<Loader> own_loader_;
-  PipelineSpec spec_;
   ComponentDescription description_;
   detail::TopicBus bus_;
-  ComponentPtr component_;
+  std::unique_ptr<Kernel> kernel_;  // after bus_: the component goes before the channels it points into
+  Component* component_ = nullptr;  // owned by kernel_
   bool active_ = false;
   std::string stop_request_;
   std::set<std::string> warned_;

@@ -7,19 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "wysiwyf/component_description.hpp"
 #include "wysiwyf/loader.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/port.hpp"
 
 namespace wysiwyf {
-
-struct ComponentDescription {
-  std::string type;
-  std::string summary;
-  std::string library;
-  std::vector<ParamSpec> params;
-  std::vector<PortSpec> ports;
-};
 
 // Runs the type's configure() in describe mode: its parameters and ports with their defaults.
 ComponentDescription describe_component(Loader& loader, const std::string& type);
