@@ -1,8 +1,9 @@
 #pragma once
-// What a component sees while it configures: its parameters and ports. The same configure() runs
-// in three modes: describe (no pipeline: defaults, for `components describe`), validate (the
-// pipeline's values are checked, nothing is connected) and run (ports connected to topics).
-// configure() must therefore only declare and read: open devices and threads in activate().
+/// @file
+/// What a component sees while it configures: its parameters and ports. The same configure() runs
+/// in three modes: describe (no pipeline: defaults, for `components describe`), validate (the
+/// pipeline's values are checked, nothing is connected) and run (ports connected to topics).
+/// configure() must therefore only declare and read: open devices and threads in activate().
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -30,46 +31,60 @@ template <class V, std::size_t N>
 struct IsStdArray<std::array<V, N>> : std::true_type {};
 }  // namespace detail
 
+/// What a component sees while it configures: it declares and reads its parameters, declares its
+/// ports and says what it does. The same configure() runs in three modes (Mode); it must only
+/// declare and read: open devices and threads in activate().
 class Context {
  public:
-  enum class Mode { kDescribe, kValidate, kRun };
+  /// Which of the three runs of configure() this is.
+  enum class Mode {
+    kDescribe,  ///< no pipeline: defaults, for `components describe`
+    kValidate,  ///< the pipeline's values are checked, nothing is connected
+    kRun        ///< ports connected to topics
+  };
 
-  // spec is null in describe mode; bus is non-null only in run mode.
+  /// spec is null in describe mode; bus is non-null only in run mode.
   Context(Mode mode, const ComponentSpec* spec, detail::TopicBus* bus);
 
-  // A parameter: the pipeline's value, or default_value when the pipeline gives none. T is bool,
-  // int, int64_t, double, std::string, std::vector<double>, std::vector<std::string>, or
-  // std::array<double, N> (a list of exactly N). `range` bounds numbers (each element of a
-  // list); `length` says how many elements a list may have. A wrong value is reported at its
-  // file:line:column and the default is returned.
+  /// A parameter: the pipeline's value, or default_value when the pipeline gives none. T is bool,
+  /// int, int64_t, double, std::string, `std::vector<double>`, `std::vector<std::string>`, or
+  /// `std::array<double, N>` (a list of exactly N). `range` bounds numbers (each element of a
+  /// list); `length` says how many elements a list may have. A wrong value is reported at its
+  /// file:line:column and the default is returned.
   template <class T>
   T param(const std::string& name, const T& default_value, const std::string& description,
           std::optional<Range> range = std::nullopt, std::optional<Length> length = std::nullopt);
-  // A string parameter that must be one of `choices`.
+  /// A string parameter that must be one of `choices`.
   std::string param_choice(const std::string& name, const std::string& default_value, const std::string& description,
                            const std::vector<std::string>& choices);
 
-  // Refuses the value of parameter `name` (declared before) for a reason the declaration cannot
-  // express, such as a relation between two parameters: reported like a wrong type or range, at
-  // the value's file:line:column ("parameter 'outer' of component 'keyer' (chroma_keyer): must be
-  // larger than inner (22)"). configure() goes on; the pipeline does not start.
+  /// Refuses the value of parameter `name` (declared before) for a reason the declaration cannot
+  /// express, such as a relation between two parameters: reported like a wrong type or range, at
+  /// the value's file:line:column ("parameter 'outer' of component 'keyer' (chroma_keyer): must be
+  /// larger than inner (22)"). configure() goes on; the pipeline does not start.
   void reject(const std::string& name, const std::string& why);
 
-  // Ports. `qos` is the component's default; the pipeline may override it per port.
+  /// An input port receiving T. `qos` is the component's default; the pipeline may override it
+  /// per port.
   template <class T>
   Input<T> input(const std::string& port, const std::string& description, Qos qos = Qos::reliable());
+  /// An output port publishing T. `qos` is the component's default; the pipeline may override it
+  /// per port.
   template <class T>
   Output<T> output(const std::string& port, const std::string& description, Qos qos = Qos::reliable());
 
-  // One line saying what the component does, for `wysiwyf components list`.
+  /// One line saying what the component does, for `wysiwyf components list`.
   void summary(std::string text) { summary_ = std::move(text); }
 
+  /// Which run of configure() this is: describe, validate or run.
   Mode mode() const { return mode_; }
+  /// The instance's name in the pipeline.
   const std::string& instance_name() const { return instance_; }
-  double rate_hz() const;  // the rate the pipeline ticks this component at
+  double rate_hz() const;  ///< the rate the pipeline ticks this component at
+  /// The tick period in nanoseconds (1 / rate_hz(), rounded); 0 when the pipeline gives no rate.
   std::int64_t period_ns() const;
 
-  // What was wrong so far (reject(), wrong values): configure() may skip work when not empty.
+  /// What was wrong so far (reject(), wrong values): configure() may skip work when not empty.
   const std::vector<ConfigIssue>& issues() const { return issues_; }
 
  private:
