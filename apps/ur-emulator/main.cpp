@@ -1,4 +1,4 @@
-// ur-emulator: a Universal Robots e-Series controller on 127.0.0.1 (libs/ur_controller_emulator):
+// ur-emulator: a Universal Robots e-Series controller on 127.0.0.1 (libs/robot/ur_controller_emulator):
 // RTDE, the primary interface's script port and the dashboard server, running the follow
 // program's behaviour (config/robots/ur_follow.script) on the same joint servo and arm dynamics
 // as arm_sim with the UR5e's URDF, so pipelines with ur_driver run without the arm.

@@ -58,7 +58,7 @@ class McapFeed final : public SampleFeed {
     }
   }
   std::uint64_t played() const { return played_; }
-  const mcap::Reader& reader() const { return reader_; }
+  const io::mcap::Reader& reader() const { return reader_; }
 
  private:
   void advance() {
@@ -76,10 +76,10 @@ class McapFeed final : public SampleFeed {
     }
   }
 
-  mcap::Reader reader_;
+  io::mcap::Reader reader_;
   std::vector<std::string> topics_;
   bool loop_;
-  mcap::Message next_;
+  io::mcap::Message next_;
   bool has_ = false;
   std::uint64_t offset_ = 0, last_ = 0, played_ = 0;
 };
@@ -123,7 +123,7 @@ int play_onto_domain(Args& args, const std::string& file, const std::vector<std:
   open(args, s);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   install_stop_signal_handlers();
-  mcap::Reader reader(file);
+  io::mcap::Reader reader(file);
   Publisher* publisher = s.participant->create_publisher(PUBLISHER_QOS_DEFAULT);
   std::map<std::uint16_t, DataWriter*> writers;  // by channel; null: not played
   RawCdr sample;
@@ -133,11 +133,11 @@ int play_onto_domain(Args& args, const std::string& file, const std::vector<std:
     reader.rewind();
     const auto start = Clock::now();
     std::optional<std::uint64_t> first;
-    mcap::Message m;
+    io::mcap::Message m;
     while (!stop_signal_received() && reader.next(m)) {
       auto [it, added] = writers.try_emplace(m.channel, nullptr);
       if (added) {
-        const mcap::Channel& ch = reader.channels().at(m.channel);
+        const io::mcap::Channel& ch = reader.channels().at(m.channel);
         const auto meta = [&](const char* key) {
           const auto f = ch.metadata.find(key);
           return f == ch.metadata.end() ? std::string() : f->second;

@@ -51,15 +51,15 @@ struct Recording {
   static constexpr std::size_t kMaxQueuedBytes = std::size_t{1} << 30;
 
   std::mutex mutex;  // the writer (file)
-  mcap::Writer writer;
+  io::mcap::Writer writer;
   std::atomic<std::uint64_t> lost{0};        // DDS says samples were lost before reaching the recorder
   std::atomic<std::uint64_t> overflowed{0};  // samples dropped: the writer (compression, disk) fell 1 GiB behind
 
-  Recording(const std::string& path, mcap::Compression compression)
+  Recording(const std::string& path, io::mcap::Compression compression)
       : writer(path, options(compression)), thread_([this] { write_loop(); }) {}
   ~Recording() { stop(); }
-  static mcap::WriterOptions options(mcap::Compression compression) {
-    mcap::WriterOptions o;
+  static io::mcap::WriterOptions options(io::mcap::Compression compression) {
+    io::mcap::WriterOptions o;
     o.library = "wysiwyf record";
     o.compression = compression;
     return o;
@@ -194,7 +194,7 @@ int cmd_record(Args args) {
   const double duration = number_option(args, "--duration", 0, 0, std::numeric_limits<double>::infinity(),
                                         "a number of seconds (0: until Ctrl-C)");
   const std::string compression_arg = args.value("--compression").value_or("zstd");
-  const auto compression = mcap::parse_compression(compression_arg);
+  const auto compression = io::mcap::parse_compression(compression_arg);
   if (!compression) throw UsageError("--compression: found '" + compression_arg + "'; expected zstd, lz4 or none");
   const bool progress = !args.flag("--no-progress") && isatty(STDERR_FILENO);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
@@ -270,7 +270,7 @@ int cmd_record(Args args) {
             << "; lost " << rec.lost.load() << " before the recorder, " << rec.overflowed.load()
             << " in it (the file's writer more than 1 GiB behind)\n";
   if (rec.writer.records_bytes() > 0)  // what the compression saved
-    std::cout << "chunks " << (*compression == mcap::Compression::kNone ? "uncompressed" : compression_arg) << ": "
+    std::cout << "chunks " << (*compression == io::mcap::Compression::kNone ? "uncompressed" : compression_arg) << ": "
               << rec.writer.records_bytes() << " bytes of records in a file of " << rec.writer.bytes_written()
               << " bytes ("
               << std::lround(100.0 * static_cast<double>(rec.writer.bytes_written()) /

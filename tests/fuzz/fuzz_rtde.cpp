@@ -14,7 +14,7 @@
 
 namespace {
 
-using namespace wysiwyf::rtde;
+using namespace wysiwyf::robot::rtde;
 
 // The package `encode` writes must equal the header and payload that were read.
 template <typename Encode>

@@ -1,4 +1,4 @@
-// libs/mcap: files written with each chunk compression (zstd, lz4, none) read back message for
+// libs/io/mcap: files written with each chunk compression (zstd, lz4, none) read back message for
 // message, and hostile files (a chunk claiming 100 GB, a truncated or corrupt compressed chunk,
 // an unknown compression) refused with a clear problem(), without a crash and without
 // allocating what the file claims.
@@ -19,7 +19,7 @@
 #include "mcap/mcap_records.hpp"
 #include "mcap/mcap_writer.hpp"
 
-namespace wysiwyf::mcap {
+namespace wysiwyf::io::mcap {
 namespace {
 
 namespace fs = std::filesystem;
@@ -285,4 +285,4 @@ TEST(McapHostile, FlippedBytesNeverCrashAndNeverPassUnnoticed) {
 }
 
 }  // namespace
-}  // namespace wysiwyf::mcap
+}  // namespace wysiwyf::io::mcap

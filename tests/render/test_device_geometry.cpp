@@ -17,7 +17,8 @@
 #include "arm_model/arm_model.hpp"
 #include "device_geometry/device_geometry.hpp"
 
-namespace wysiwyf::robot {
+namespace wysiwyf::render {
+using namespace robot;  // the arm model's types, which the geometry reads
 namespace {
 
 std::string urdf(const char* arm) { return std::string(WYSIWYF_CONFIG_DIR) + "/robots/" + arm + ".urdf"; }
@@ -164,4 +165,4 @@ TEST(DeviceGeometry, AUrdfWithoutALampsShapeIsRefusedByLinkAndFile) {
 }
 
 }  // namespace
-}  // namespace wysiwyf::robot
+}  // namespace wysiwyf::render

@@ -1,4 +1,4 @@
-// The generic arm model (libs/arm_model) against PumaModel on puma560.urdf (frames, limits,
+// The generic arm model (libs/robot/arm_model) against PumaModel on puma560.urdf (frames, limits,
 // bodies, FK at every frame, Jacobian, RNEA, mass matrix, forward dynamics), against the
 // published DH tables of the UR5e and the FR3, the dynamics' own identities, gravity against the
 // potential energy's gradient, load errors, and no heap allocation in the hot calls.

@@ -1,4 +1,4 @@
-// The PUMA 560 model (libs/puma_model) against config/robots/puma560.urdf:
+// The PUMA 560 model (libs/robot/puma_model) against config/robots/puma560.urdf:
 // kinematics against an independent DH chain, IK round trips, Jacobian, dynamics identities,
 // hand-computed gravity torques, unreachable poses, load errors, drive file, check_urdf.
 #include <cmath>

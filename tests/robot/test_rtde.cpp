@@ -1,4 +1,4 @@
-// RTDE (libs/rtde) against the protocol as UR's RTDE Guide states it: byte layouts typed in here
+// RTDE (libs/robot/rtde) against the protocol as UR's RTDE Guide states it: byte layouts typed in here
 // from the guide (not produced by the encoder under test), round trips of every package, recipes
 // and their values, the framer on any chunking, and every malformed input refused.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include "rtde/packages.hpp"
 #include "rtde/variables.hpp"
 
-namespace wysiwyf::rtde {
+namespace wysiwyf::robot::rtde {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -238,4 +238,4 @@ TEST(Rtde, TheControllersVariablesHaveTheGuidesTypes) {
 }
 
 }  // namespace
-}  // namespace wysiwyf::rtde
+}  // namespace wysiwyf::robot::rtde

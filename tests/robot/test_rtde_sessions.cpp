@@ -7,7 +7,7 @@
 #include "rtde/client_session.hpp"
 #include "rtde/server_session.hpp"
 
-namespace wysiwyf::rtde {
+namespace wysiwyf::robot::rtde {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -180,4 +180,4 @@ TEST(RtdeSessions, TheClientRefusesAndCountsPackagesOutOfTurnOrMalformed) {
 }
 
 }  // namespace
-}  // namespace wysiwyf::rtde
+}  // namespace wysiwyf::robot::rtde

@@ -6,7 +6,7 @@
 #include "rtde/server_session.hpp"
 #include "rtde/tcp.hpp"
 
-namespace wysiwyf::rtde {
+namespace wysiwyf::robot::rtde {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -97,4 +97,4 @@ TEST(RtdeTcp, APeerThatStopsReadingIsDroppedNotBufferedWithoutBound) {
 }
 
 }  // namespace
-}  // namespace wysiwyf::rtde
+}  // namespace wysiwyf::robot::rtde

@@ -1,4 +1,4 @@
-// The safety gate (libs/safety_gate) on its own: every guarantee of safety_gate.hpp on
+// The safety gate (libs/robot/safety_gate) on its own: every guarantee of safety_gate.hpp on
 // synthetic targets, stepped on simulated time (no clock).
 #include <cmath>
 #include <limits>

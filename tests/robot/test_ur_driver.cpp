@@ -1,4 +1,4 @@
-// ur_driver against the UR emulator (libs/ur_controller_emulator, in this process, on loopback),
+// ur_driver against the UR emulator (libs/robot/ur_controller_emulator, in this process, on loopback),
 // on the simulated clock in lockstep: the same setpoint stream gives the same joint trajectory as
 // arm_sim with the UR5e's URDF; every injected fault (a protective stop, dropped connections,
 // outputs late beyond 3 periods, a package cut short) holds the arm within 3 periods and is
@@ -167,14 +167,14 @@ TEST(UrDriver, AfterAProtectiveStopItHoldsUntilTheSupervisorClearsThenRecovers) 
   emulator.protective_stop("test: a collision");
   for (int i = 0; i < 500; ++i) driver.follow(20);  // a second of setpoints: nothing moves
   EXPECT_EQ(driver.state(), msg::ARM_FAULT);
-  EXPECT_EQ(emulator.safety_mode(), rtde::SafetyMode::kProtectiveStop) << "the driver unlocks nothing by itself";
+  EXPECT_EQ(emulator.safety_mode(), robot::rtde::SafetyMode::kProtectiveStop) << "the driver unlocks nothing by itself";
   const JointVector stopped = emulator.true_q();
 
   driver.clear("test: the collision is gone");
   for (int i = 0; i < 100 && driver.state() != msg::ARM_HOLDING; ++i) driver.hold_here();
   EXPECT_EQ(driver.state(), msg::ARM_HOLDING) << driver.reason();
-  EXPECT_EQ(emulator.safety_mode(), rtde::SafetyMode::kNormal);
-  EXPECT_EQ(emulator.program_state(), rtde::follow::ProgramState::kFollowing);
+  EXPECT_EQ(emulator.safety_mode(), robot::rtde::SafetyMode::kNormal);
+  EXPECT_EQ(emulator.program_state(), robot::rtde::follow::ProgramState::kFollowing);
   EXPECT_LT((emulator.true_q() - stopped).cwiseAbs().maxCoeff(), 2e-3) << "holds where it stopped";
   for (int i = 0; i < 100; ++i) driver.hold_here();
   EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();

@@ -29,7 +29,7 @@ std::filesystem::path scratch() {
 
 // camera_sim's default view.
 const Eigen::Isometry3d kEyeTBase =
-    frames::look_at(Eigen::Vector3d(1.3, -0.5, 0.75), Eigen::Vector3d(0.55, 0.0, 0.35)).inverse();
+    vision::frames::look_at(Eigen::Vector3d(1.3, -0.5, 0.75), Eigen::Vector3d(0.55, 0.0, 0.35)).inverse();
 
 cv::Mat to_cv(const Eigen::Matrix4d& m) {
   cv::Mat out;
@@ -97,7 +97,7 @@ TEST(CameraFixed, PublishesTheCalibratedPoseInEachFileForm) {
 // The shipped calibration of the display's simulated camera is its view (hardware/sim.yaml).
 TEST(CameraFixed, TheShippedSimCalibrationIsTheSimulatedCamerasView) {
   const Eigen::Isometry3d eye_T_base =
-      frames::look_at(Eigen::Vector3d(1.6, -0.35, 0.7), Eigen::Vector3d(0.75, 0.0, 0.15)).inverse();
+      vision::frames::look_at(Eigen::Vector3d(1.6, -0.35, 0.7), Eigen::Vector3d(0.75, 0.0, 0.15)).inverse();
   Harness h("camera_fixed", "{extrinsics: calibration/sim_camera.yaml}", 30);
   auto base = h.watch<msg::PoseStamped>("eye_T_base");
   h.activate();

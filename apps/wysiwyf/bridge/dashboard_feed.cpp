@@ -102,8 +102,8 @@ void DashboardFeed::on_sample(const std::string& topic, const std::string& type,
 }
 
 void DashboardFeed::video_frame(const msg::Image& m) {
-  if (!image::problem(m, {"rgb8", "bgr8", "rgba8", "mono8"}).empty()) return;
-  const cv::Mat pixels = image::view(m);
+  if (!vision::image::problem(m, {"rgb8", "bgr8", "rgba8", "mono8"}).empty()) return;
+  const cv::Mat pixels = vision::image::view(m);
   cv::Mat bgr;
   const std::string enc = m.encoding().to_string();
   if (enc == "rgb8")

@@ -22,8 +22,8 @@ void BleedThrough::measure(const msg::Image& shown) {
     return;  // its frame's truth is gone or never came
   // The device's own pixels, not its outline: at an edge the image's blur and the keyer's soft
   // matte mix it with what is next to it (the hand over it, the cloth around it).
-  cv::erode(image::view(*mask), inner_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
-  cv::Mat seen = image::view(shown) > 127;
+  cv::erode(vision::image::view(*mask), inner_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+  cv::Mat seen = vision::image::view(shown) > 127;
   seen &= inner_;
   const int bleed = cv::countNonZero(seen);
   px_.add(bleed, shown.header().stamp_ns());

@@ -240,7 +240,7 @@ class DisplayMetrics final : public Component {
 
   // Whether the image just taken from `in` is mono8; if not, it is rejected there.
   bool mono8(const Input<msg::Image>& in) {
-    const std::string problem = image::problem(image_msg_, {"mono8"});
+    const std::string problem = vision::image::problem(image_msg_, {"mono8"});
     if (!problem.empty()) reject(in, problem);
     return problem.empty();
   }

@@ -79,7 +79,7 @@ class Camera final : public Component {
       lost_since_ns_ = now.ns;
       return;
     }
-    to_rgb(image::allocate(msg_, bgr_.cols, bgr_.rows, "rgb8"));
+    to_rgb(vision::image::allocate(msg_, bgr_.cols, bgr_.rows, "rgb8"));
     publish(now);
   }
 
@@ -129,7 +129,7 @@ class Camera final : public Component {
       next_ = 0;
     }
     const cv::Mat& f = loaded_[next_++];
-    f.copyTo(image::allocate(msg_, f.cols, f.rows, "rgb8"));
+    f.copyTo(vision::image::allocate(msg_, f.cols, f.rows, "rgb8"));
     publish(now);
   }
 

@@ -37,8 +37,8 @@ class Display final : public Component {
 
   void tick(Time) override {
     if (!in_.take_latest(frame_) || headless_) return;
-    if (const std::string bad = image::problem(frame_, {"rgb8"}); !bad.empty()) return reject(in_, bad);
-    cv::cvtColor(image::view(frame_), bgr_, cv::COLOR_RGB2BGR);
+    if (const std::string bad = vision::image::problem(frame_, {"rgb8"}); !bad.empty()) return reject(in_, bad);
+    cv::cvtColor(vision::image::view(frame_), bgr_, cv::COLOR_RGB2BGR);
     cv::imshow(title_, bgr_);
     cv::waitKey(1);
   }

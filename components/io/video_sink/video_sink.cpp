@@ -29,11 +29,11 @@ class VideoSink final : public Component {
 
   void tick(Time) override {
     while (in_.take(frame_)) {
-      if (const std::string bad = image::problem(frame_, {"rgb8", "bgr8"}); !bad.empty()) {
+      if (const std::string bad = vision::image::problem(frame_, {"rgb8", "bgr8"}); !bad.empty()) {
         reject(in_, bad);
         continue;
       }
-      const cv::Mat view = image::view(frame_);
+      const cv::Mat view = vision::image::view(frame_);
       if (std::string_view(frame_.encoding().c_str()) == "rgb8")
         cv::cvtColor(view, bgr_, cv::COLOR_RGB2BGR);
       else

@@ -109,11 +109,11 @@ class CameraSim final : public Component {
     camera_.fx = K[0], camera_.fy = K[1], camera_.cx = K[2], camera_.cy = K[3];
     camera_.near_m = 0.05, camera_.far_m = 10;
     if (eye == target) ctx.reject("look_at", "must differ from eye");
-    base_T_eye_ =
-        frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]), Eigen::Vector3d(target[0], target[1], target[2]));
+    base_T_eye_ = vision::frames::look_at(Eigen::Vector3d(eye[0], eye[1], eye[2]),
+                                          Eigen::Vector3d(target[0], target[1], target[2]));
     try {
       model_ = robot::load_display_arm(find_config_file(urdf_), "flange");
-      device_ = std::make_unique<robot::DeviceGeometry>(*model_);
+      device_ = std::make_unique<DeviceGeometry>(*model_);
       q_ = robot::JointVector::Zero(model_->dof());
     } catch (const std::exception& e) {
       ctx.reject("urdf", e.what());
@@ -133,7 +133,7 @@ class CameraSim final : public Component {
     curled_ = renderer_->add_mesh(Mesh::capsule(0.0095f, 0.012f));
     thumb_ = renderer_->add_mesh(Mesh::capsule(0.0105f, 0.022f));
     led_ = renderer_->add_mesh(Mesh::sphere(0.005f));
-    // The arm and its device (libs/device_geometry): a mesh per shape, the sizes are constant.
+    // The arm and its device (libs/render/device_geometry): a mesh per shape, the sizes are constant.
     for (const auto& shape : device_->shapes()) device_meshes_.push_back(renderer_->add_mesh(device_mesh(shape)));
     effects_ = SensorEffects(
         SensorEffectsParams{noise_, blur_, spill_, cv::Scalar(kCloth.x() * 255, kCloth.y() * 255, kCloth.z() * 255)},
@@ -251,7 +251,7 @@ class CameraSim final : public Component {
       return Eigen::Vector3d(a[k] + s * (b[k] - a[k]), a[k + 1] + s * (b[k + 1] - a[k + 1]),
                              a[k + 2] + s * (b[k + 2] - a[k + 2]));
     };
-    return frames::look_at(lerp(1), lerp(4));
+    return vision::frames::look_at(lerp(1), lerp(4));
   }
 
   // One pass of the scene; mask_pass: unlit, the hand white, the device blue, everything else black.
@@ -269,20 +269,20 @@ class CameraSim final : public Component {
     if (have_joints_) {
       device_->poses(q_, device_poses_);
       for (std::size_t i = 0; i < device_poses_.size(); ++i) {
-        const robot::DeviceShape& shape = device_->shapes()[i];
+        const DeviceShape& shape = device_->shapes()[i];
         const Eigen::Isometry3d eye_T_shape = eye_T_base * device_poses_[i];
         switch (shape.part) {
-          case robot::DeviceShape::Part::kArm:
+          case DeviceShape::Part::kArm:
             renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kCloth), !mask_pass);
             break;
-          case robot::DeviceShape::Part::kPlate:
+          case DeviceShape::Part::kPlate:
             renderer_->draw(device_meshes_[i], eye_T_shape, device_color(plate_cloth_ ? kCloth : kAluminium),
                             !mask_pass);
             break;
-          case robot::DeviceShape::Part::kKnob:
+          case DeviceShape::Part::kKnob:
             renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kAluminium), !mask_pass);
             break;
-          case robot::DeviceShape::Part::kLamp:
+          case DeviceShape::Part::kLamp:
             if (!lamp_hidden(shape.index)) renderer_->draw(device_meshes_[i], eye_T_shape, device_color(kLamp), false);
             break;
         }
@@ -341,7 +341,7 @@ class CameraSim final : public Component {
   }
 
   void publish_image(Output<msg::Image>& out, const cv::Mat& m, const char* encoding, Time now) {
-    cv::Mat pixels = image::allocate(out_msg_, m.cols, m.rows, encoding);
+    cv::Mat pixels = vision::image::allocate(out_msg_, m.cols, m.rows, encoding);
     m.copyTo(pixels);  // (same size and type: into the message's buffer)
     fill_header(out_msg_.header(), now.ns, seq_, "eye");
     out.write(out_msg_);
@@ -360,7 +360,7 @@ class CameraSim final : public Component {
   int table_ = -1, backdrop_ = -1, palm_ = -1, index_ = -1, curled_ = -1, thumb_ = -1, led_ = -1;
   bool marker_ = false, plate_cloth_ = false;
   Eigen::Vector4f marker_colour_ = kWhite;
-  std::unique_ptr<robot::DeviceGeometry> device_;
+  std::unique_ptr<DeviceGeometry> device_;
   std::vector<int> device_meshes_;
   std::vector<Eigen::Isometry3d> device_poses_;
   robot::JointVector q_;

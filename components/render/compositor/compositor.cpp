@@ -84,8 +84,8 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::
       if (alpha) cv::v_store(alpha + x, ha);
       const cv::v_uint8x16 inverse = full - ha;
       // (+ saturates on 8 bits; the sum cannot pass 255 anyway: the hand is premultiplied)
-      cv::v_store_interleave(out + 3 * x, hr + image::mul_div255(sr, inverse), hg + image::mul_div255(sg, inverse),
-                             hb + image::mul_div255(sb, inverse));
+      cv::v_store_interleave(out + 3 * x, hr + vision::image::mul_div255(sr, inverse),
+                             hg + vision::image::mul_div255(sg, inverse), hb + vision::image::mul_div255(sb, inverse));
     }
 #endif
     for (; x < scene.cols; ++x) {
@@ -95,7 +95,7 @@ void blend_rows(const cv::Mat& scene, const cv::Mat& hand, const Depths& d, cv::
       const unsigned a = h[4 * x + 3] * keep, inverse = 255u - a;
       if (alpha) alpha[x] = static_cast<std::uint8_t>(a);
       for (int c = 0; c < 3; ++c) {
-        const unsigned blended = h[4 * x + c] * keep + image::mul_div255(sc[3 * x + c], inverse);
+        const unsigned blended = h[4 * x + c] * keep + vision::image::mul_div255(sc[3 * x + c], inverse);
         out[3 * x + c] = static_cast<std::uint8_t>(blended > 255u ? 255u : blended);
       }
     }
@@ -176,24 +176,24 @@ class Compositor final : public Component {
     }
     const std::uint32_t w = scene_.image.width(), h = scene_.image.height();
     // The composite is written straight into the outgoing message (sized once).
-    cv::Mat out = image::allocate(out_msg_, static_cast<int>(w), static_cast<int>(h), "rgb8");
+    cv::Mat out = vision::image::allocate(out_msg_, static_cast<int>(w), static_cast<int>(h), "rgb8");
     const std::uint64_t seq = seq_++;  // the composite's and its `shown` alpha's
     fill_header(out_msg_.header(), now.ns, seq, scene_.image.header().frame_id().c_str());
-    const cv::Mat scene = image::view(scene_.image);
+    const cv::Mat scene = vision::image::view(scene_.image);
     if (same_size(hand_in_, hand_, w, h)) {
       Depths d;
       d.margin = margin_, d.device_margin = device_margin_;
-      if (same_size(real_depth_in_, real_depth_, w, h)) d.real = image::view(real_depth_.image);
+      if (same_size(real_depth_in_, real_depth_, w, h)) d.real = vision::image::view(real_depth_.image);
       const bool z_key = use_depth_ && !d.real.empty() && same_size(scene_depth_in_, scene_depth_, w, h);
-      if (z_key) d.virt = image::view(scene_depth_.image);
-      if (same_size(device_in_, device_, w, h)) d.device = image::view(device_.image);
+      if (z_key) d.virt = vision::image::view(scene_depth_.image);
+      if (same_size(device_in_, device_, w, h)) d.device = vision::image::view(device_.image);
       if (device_edge_px_ > 0 && !d.device.empty() && !d.real.empty()) shrink_nearer(d);
       cv::Mat shown;
       if (publish_shown_) {
-        shown = image::allocate(shown_msg_, static_cast<int>(w), static_cast<int>(h), "mono8");
+        shown = vision::image::allocate(shown_msg_, static_cast<int>(w), static_cast<int>(h), "mono8");
         fill_header(shown_msg_.header(), hand_.image.header().stamp_ns(), seq, "eye");
       }
-      blend(scene, image::view(hand_.image), d, z_key, out, publish_shown_ ? &shown : nullptr);
+      blend(scene, vision::image::view(hand_.image), d, z_key, out, publish_shown_ ? &shown : nullptr);
       if (publish_shown_) shown_out_.write(shown_msg_);
     } else {
       scene.copyTo(out);
@@ -232,7 +232,7 @@ class Compositor final : public Component {
   // The sample just taken into `s`: usable, or rejected. True when usable.
   bool accept(Input<msg::Image>& in, Stream& s, std::initializer_list<std::string_view> encodings) {
     s.seen = true;
-    const std::string bad = image::problem(s.image, encodings);
+    const std::string bad = vision::image::problem(s.image, encodings);
     s.usable = bad.empty();
     if (!s.usable) reject(in, bad);
     return s.usable;
@@ -282,9 +282,9 @@ class Compositor final : public Component {
   // A premultiplied RGBA hand layer from a camera image and a 0/255 mask of the same size.
   bool hand_from_mask() {
     if (!camera_.usable || !same_size(mask_in_, mask_, camera_.image.width(), camera_.image.height())) return false;
-    cv::Mat rgba = image::allocate(hand_.image, static_cast<int>(camera_.image.width()),
-                                   static_cast<int>(camera_.image.height()), "rgba8");
-    const cv::Mat cam = image::view(camera_.image), mask = image::view(mask_.image);
+    cv::Mat rgba = vision::image::allocate(hand_.image, static_cast<int>(camera_.image.width()),
+                                           static_cast<int>(camera_.image.height()), "rgba8");
+    const cv::Mat cam = vision::image::view(camera_.image), mask = vision::image::view(mask_.image);
     cv::Mat premultiplied;
     cam.copyTo(premultiplied);
     premultiplied.setTo(0, ~mask);

@@ -1,5 +1,5 @@
 // device_mask: where the real device is in the camera image, from its geometry (the robot model
-// and libs/device_geometry: the collision shapes of the arm's URDF), the measured joints and the camera's pose: the device's metric depth
+// and libs/render/device_geometry: the collision shapes of the arm's URDF), the measured joints and the camera's pose: the device's metric depth
 // per pixel (0 where it is not). The compositor keeps the device out of the real layer with it
 // and lets depth decide only between the hand and the virtual scene: the real plate, knob, lamps
 // and arm never show through a virtual surface, while a finger in front of the plate still does.
@@ -42,7 +42,7 @@ class DeviceMask final : public Component {
     if (camera_.near_m >= camera_.far_m) ctx.reject("far", "must be larger than near");
     try {
       model_ = robot::load_display_arm(find_config_file(urdf_), "flange");
-      device_ = std::make_unique<robot::DeviceGeometry>(*model_);
+      device_ = std::make_unique<DeviceGeometry>(*model_);
     } catch (const std::exception& e) {
       ctx.reject("urdf", e.what());
     }
@@ -83,7 +83,7 @@ class DeviceMask final : public Component {
     for (std::size_t i = 0; i < poses_.size(); ++i)
       renderer_->draw(meshes_[i], eye_T_base_ * poses_[i], Eigen::Vector4f(1, 1, 1, 1), false);
     renderer_->read_depth(depth_);
-    std::memcpy(image::allocate(depth_msg_, camera_.width, camera_.height, "32FC1").data, depth_.data(),
+    std::memcpy(vision::image::allocate(depth_msg_, camera_.width, camera_.height, "32FC1").data, depth_.data(),
                 depth_.size() * sizeof(float));
     fill_header(depth_msg_.header(), pose_stamp_, seq_++, "eye");
     depth_out_.write(depth_msg_);
@@ -104,10 +104,10 @@ class DeviceMask final : public Component {
     renderer_ = std::make_unique<OffscreenRenderer>(*gl_, camera_, 1);
     meshes_.clear();
     const float grow = static_cast<float>(grow_);
-    for (robot::DeviceShape shape : device_->shapes()) {
+    for (DeviceShape shape : device_->shapes()) {
       shape.size.x() += grow;  // radius or half extent
-      if (shape.kind == robot::DeviceShape::Kind::kBox) shape.size += Eigen::Vector3f(0, grow, grow);
-      if (shape.kind == robot::DeviceShape::Kind::kCylinder) shape.size.y() += grow;
+      if (shape.kind == DeviceShape::Kind::kBox) shape.size += Eigen::Vector3f(0, grow, grow);
+      if (shape.kind == DeviceShape::Kind::kCylinder) shape.size.y() += grow;
       meshes_.push_back(renderer_->add_mesh(device_mesh(shape)));
     }
   }
@@ -116,7 +116,7 @@ class DeviceMask final : public Component {
   double grow_ = 0.004;
   Pinhole camera_;
   std::unique_ptr<robot::ArmModel> model_;
-  std::unique_ptr<robot::DeviceGeometry> device_;
+  std::unique_ptr<DeviceGeometry> device_;
   std::unique_ptr<GlContext> gl_;
   std::unique_ptr<OffscreenRenderer> renderer_;
   std::vector<int> meshes_;

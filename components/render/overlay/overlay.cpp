@@ -85,8 +85,8 @@ class Overlay final : public Component {
       have_reading_ = true;
     while (take_checked(device_in_, device_msg_)) device_ = msgs::to_isometry(device_msg_.pose()), have_device_ = true;
     if (!image_in_.take_latest(image_)) return;
-    if (const std::string bad = image::problem(image_, {"rgb8"}); !bad.empty()) return reject(image_in_, bad);
-    if (show_ && have_mode_) draw(image::view(image_));
+    if (const std::string bad = vision::image::problem(image_, {"rgb8"}); !bad.empty()) return reject(image_in_, bad);
+    if (show_ && have_mode_) draw(vision::image::view(image_));
     image_out_.write(image_);
   }
 

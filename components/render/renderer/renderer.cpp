@@ -86,8 +86,9 @@ class Renderer final : public Component {
                       Eigen::Vector4f(0.75f, 0.72f, 0.68f, 1));
     renderer_->read_rgb(rgb_);
     renderer_->read_depth(depth_);
-    std::memcpy(image::allocate(color_msg_, camera_.width, camera_.height, "rgb8").data, rgb_.data(), rgb_.size());
-    std::memcpy(image::allocate(depth_msg_, camera_.width, camera_.height, "32FC1").data, depth_.data(),
+    std::memcpy(vision::image::allocate(color_msg_, camera_.width, camera_.height, "rgb8").data, rgb_.data(),
+                rgb_.size());
+    std::memcpy(vision::image::allocate(depth_msg_, camera_.width, camera_.height, "32FC1").data, depth_.data(),
                 depth_.size() * sizeof(float));
     // Stamped with the camera frame its eye_T_base was measured in: the frame it is drawn for.
     const std::int64_t stamp = pose_stamp_ ? pose_stamp_ : now.ns;

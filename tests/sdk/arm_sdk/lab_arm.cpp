@@ -36,7 +36,7 @@ int main() {
   if ((arm.q() - q).norm() > 1e-4) return std::puts("the servo let the arm fall"), 1;
 
   std::vector<std::uint8_t> package;
-  rtde::encode_request_protocol_version(package, rtde::kProtocolVersion);
+  robot::rtde::encode_request_protocol_version(package, robot::rtde::kProtocolVersion);
   if (package.size() != 5) return std::puts("RTDE"), 1;
   std::puts("ok");
   return 0;
