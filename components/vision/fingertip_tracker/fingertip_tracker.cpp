@@ -2,7 +2,7 @@
 // fingernail) seen by a rectified stereo pair: the hand tracking the paper cites for the surface
 // display ("a video camera that tracks an infrared LED attached at the user's fingertip";
 // McNeely's system used two cameras). In the left image the LED is the light of its colour
-// (libs/bright_blobs: a colour channel's excess over the others, or plain brightness for an
+// (libs/vision/bright_blobs: a colour channel's excess over the others, or plain brightness for an
 // infrared camera) looked for in a search window around where it was predicted (constant velocity
 // in the image from the last two fixes), the whole image when there is no track; in the right
 // image along the same row (rectified: epipolar lines are rows), within the disparities of the
@@ -15,6 +15,7 @@
 
 #include "bright_blobs/blob_detector.hpp"
 #include "image/image_view.hpp"
+#include "stereo_intake/stereo_intake.hpp"
 #include "stereo_point.hpp"
 #include "wysiwyf/camera_info.hpp"
 #include "wysiwyf/component.hpp"
@@ -48,8 +49,6 @@ class FingertipTracker final : public Component {
         "marker_offset_sigma", 0.01,
         "m: where the LED sits from the fingertip's centre (on the nail, about a finger's radius away), as noise",
         Range{0, 0.1});
-    baseline_ = ctx.param<double>("baseline", 0.0,
-                                  "the right camera along +x of the left, m (0: from right_camera_info)", Range{0, 2});
     min_depth_ = ctx.param<double>("min_depth", 0.2, "nearest LED looked for, m", Range{0.01, 100});
     max_depth_ = ctx.param<double>("max_depth", 3.0, "farthest LED looked for, m", Range{0.01, 100});
     row_tolerance_ = ctx.param<double>("row_tolerance", 1.5,
@@ -59,16 +58,7 @@ class FingertipTracker final : public Component {
     max_window_ = ctx.param<int>("max_window", 120, "search window half size at most, px", Range{2, 2000});
     lost_after_ =
         ctx.param<int>("lost_after", 3, "stereo pairs without the LED before the hand is LOST", Range{1, 1000});
-    max_skew_ns_ = static_cast<std::int64_t>(
-        ctx.param<double>("max_skew_ms", 5.0, "left and right frames further apart in time are not paired, ms",
-                          Range{0, 1000}) *
-        1e6);
-    left_in_ = ctx.input<msg::Image>("left", "left (reference) image, rectified: rgb8, bgr8 or mono8", Qos::sensor(2));
-    right_in_ =
-        ctx.input<msg::Image>("right", "right image, rectified, displaced along +x of the left", Qos::sensor(2));
-    info_in_ = ctx.input<msg::CameraInfo>("camera_info", "the left camera's intrinsics (K)", Qos::sensor(2));
-    right_info_in_ = ctx.input<msg::CameraInfo>(
-        "right_camera_info", "the right camera's P: the baseline (P[3] = -fx B)", Qos::sensor(2).optional_input());
+    pair_.configure(ctx, {"rgb8", "bgr8", "mono8"});
     eye_T_base_in_ =
         ctx.input<msg::PoseStamped>("eye_T_base", "the camera's pose (tracker or calibration)", Qos::sensor(4));
     hand_out_ = ctx.output<msg::HandPosition>("hand", "the fingertip in base, with covariance; LOST when not seen",
@@ -80,11 +70,17 @@ class FingertipTracker final : public Component {
   }
 
   void tick(Time now) override {
-    read_calibration();
-    left_fresh_ |= left_in_.take_latest(left_);
-    right_fresh_ |= right_in_.take_latest(right_);
-    if (!paired()) return;
-    const std::int64_t stamp = left_.header().stamp_ns() ? left_.header().stamp_ns() : now.ns;
+    while (take_checked(eye_T_base_in_, pose_))
+      base_T_eye_ = msgs::to_isometry(pose_.pose()).inverse(), have_pose_ = true;
+    pair_.read_calibration(complaints_);
+    if (!pair_.next_pair(complaints_)) return;
+    if (!have_pose_) {
+      warn_once("no camera pose yet (eye_T_base); stereo pairs are skipped until it comes");
+      return;
+    }
+    const msgs::CameraIntrinsics& K = pair_.intrinsics();
+    camera_.fx = K.fx, camera_.fy = K.fy, camera_.cx = K.cx, camera_.cy = K.cy, camera_.baseline = pair_.baseline();
+    const std::int64_t stamp = pair_.left().header().stamp_ns() ? pair_.left().header().stamp_ns() : now.ns;
     if (locate(stamp))
       misses_ = 0;
     else if (++misses_ >= lost_after_)
@@ -92,61 +88,13 @@ class FingertipTracker final : public Component {
   }
 
  private:
-  void read_calibration() {
-    while (info_in_.take(info_)) {
-      if (const auto K = msgs::intrinsics(info_))
-        camera_.fx = K->fx, camera_.fy = K->fy, camera_.cx = K->cx, camera_.cy = K->cy;
-      else
-        reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
-    }
-    while (right_info_in_.take(right_info_)) {
-      if (const auto baseline = msgs::stereo_baseline(right_info_))
-        info_baseline_ = *baseline;
-      else
-        reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
-    }
-    while (take_checked(eye_T_base_in_, pose_))
-      base_T_eye_ = msgs::to_isometry(pose_.pose()).inverse(), have_pose_ = true;
-    camera_.baseline = baseline_ > 0 ? baseline_ : info_baseline_;
-  }
-
-  // A new left/right pair of one exposure, one size and encoding, with what triangulation needs.
-  bool paired() {
-    if (!left_fresh_ || !right_fresh_) return false;
-    const std::int64_t skew = elapsed_ns(left_.header().stamp_ns(), right_.header().stamp_ns());
-    if (std::abs(skew) > max_skew_ns_) {
-      (skew > 0 ? right_fresh_ : left_fresh_) = false;  // drop the older side, wait for its partner
-      return false;
-    }
-    left_fresh_ = right_fresh_ = false;
-    if (const std::string bad = image::problem(left_, {"rgb8", "bgr8", "mono8"}); !bad.empty()) {
-      reject(left_in_, bad);
-      return false;
-    }
-    if (const std::string bad = image::problem(right_, {left_.encoding().c_str()}, left_.width(), left_.height());
-        !bad.empty()) {
-      reject(right_in_, bad + " (a rectified pair has one encoding and size)");
-      return false;
-    }
-    const char* missing = camera_.fx <= 0 ? "no intrinsics yet (camera_info)"
-                          : camera_.baseline <= 0
-                              ? "no baseline: set the baseline parameter or connect right_camera_info"
-                          : !have_pose_ ? "no camera pose yet (eye_T_base)"
-                                        : nullptr;
-    if (missing) {
-      warn_once(std::string(missing) + "; stereo pairs are skipped until it comes");
-      return false;
-    }
-    return true;
-  }
-
   // The LED in both images of the pair, triangulated and published; false when it is not found.
   bool locate(std::int64_t stamp) {
-    const std::string_view enc = left_.encoding().c_str();
+    const std::string_view enc = pair_.left().encoding().c_str();
     const PixelLayout layout = enc == "rgb8"   ? PixelLayout::kRgb8
                                : enc == "bgr8" ? PixelLayout::kBgr8
                                                : PixelLayout::kMono8;
-    const cv::Mat left = image::view(left_), right = image::view(right_);
+    const cv::Mat left = image::view(pair_.left()), right = image::view(pair_.right());
     // Left: in the window around the prediction; the whole image without a track or when it is not there.
     found_.clear();
     cv::Point2d predicted;
@@ -224,24 +172,23 @@ class FingertipTracker final : public Component {
 
   BlobDetector detector_;
   StereoCamera camera_;
-  double pixel_sigma_ = 0.3, offset_sigma_ = 0.01, baseline_ = 0, info_baseline_ = 0, min_depth_ = 0.2, max_depth_ = 3,
-         row_tolerance_ = 1.5;
+  StereoIntake pair_;
+  const StereoIntake::Complaints complaints_{
+      [this](const Input<msg::Image>& in, const std::string& why) { reject(in, why); },
+      [this](const Input<msg::CameraInfo>& in, const std::string& why) { reject(in, why); },
+      [this](const std::string& what) { warn_once(what); }};
+  double pixel_sigma_ = 0.3, offset_sigma_ = 0.01, min_depth_ = 0.2, max_depth_ = 3, row_tolerance_ = 1.5;
   int min_window_ = 16, max_window_ = 120, lost_after_ = 3, misses_ = 0;
-  std::int64_t max_skew_ns_ = 0;
   // the track, in the left image
   int fixes_ = 0;
   cv::Point2d last_{0, 0}, velocity_{0, 0};  // px, px/s
   std::int64_t last_ns_ = 0;
   std::vector<Blob> found_, right_found_;
   Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity();
-  bool have_pose_ = false, left_fresh_ = false, right_fresh_ = false;
+  bool have_pose_ = false;
   std::uint64_t seq_ = 0;
-  msg::Image left_, right_;
-  msg::CameraInfo info_, right_info_;
   msg::PoseStamped pose_;
   msg::HandPosition hand_msg_;
-  Input<msg::Image> left_in_, right_in_;
-  Input<msg::CameraInfo> info_in_, right_info_in_;
   Input<msg::PoseStamped> eye_T_base_in_;
   Output<msg::HandPosition> hand_out_;
 };

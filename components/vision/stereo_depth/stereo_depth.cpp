@@ -12,6 +12,7 @@
 #include "disparity_depth.hpp"
 #include "hand_point.hpp"
 #include "image/image_view.hpp"
+#include "stereo_intake/stereo_intake.hpp"
 #include "wysiwyf/camera_info.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/msg_checks.hpp"
@@ -28,9 +29,6 @@ class StereoDepth final : public Component {
     s.algorithm = ctx.param_choice("algorithm", "sgbm",
                                    "bm: block matching; sgbm: semi-global, 5 paths; sgbm_3way: 3 paths, threaded",
                                    {"bm", "sgbm", "sgbm_3way"});
-    baseline_ = ctx.param<double>("baseline", 0.0,
-                                  "distance of the right camera along +x of the left, m (0: from right_camera_info)",
-                                  Range{0, 2});
     s.num_disparities = ctx.param<int>(
         "num_disparities", 0, "disparity search range at the matched size, a multiple of 16 (0: from the depth range)",
         Range{0, 512});
@@ -69,17 +67,7 @@ class StereoDepth final : public Component {
     const auto box = ctx.param<std::array<double, 6>>(
         "device_box", {-0.11, 0.11, -0.11, 0.11, -0.02, 0.06},
         "with eye_T_dev: keyed points in this box (dev frame, xmin xmax ymin ymax zmin zmax, m) are device, not hand");
-    max_skew_ns_ = static_cast<std::int64_t>(
-        ctx.param<double>("max_skew_ms", 5.0, "left and right frames further apart in time are not paired, ms",
-                          Range{0, 1000}) *
-        1e6);
-    left_in_ = ctx.input<msg::Image>("left", "left (reference) image, rectified, rgb8 or mono8", Qos::sensor(2));
-    right_in_ = ctx.input<msg::Image>("right", "right image, rectified, displaced along +x, same encoding and size",
-                                      Qos::sensor(2));
-    info_in_ = ctx.input<msg::CameraInfo>("camera_info", "the left camera's intrinsics (K)", Qos::sensor(2));
-    right_info_in_ = ctx.input<msg::CameraInfo>("right_camera_info",
-                                                "optional: the right camera's P gives the baseline (P[3] = -fx B)",
-                                                Qos::sensor(2).optional_input());
+    pair_.configure(ctx, {"rgb8", "mono8"});
     keyed_in_ = ctx.input<msg::Image>("keyed", "optional: the keyer's rgba8 hand of the left image (alpha = hand)",
                                       Qos::sensor(2).optional_input());
     eye_T_base_in_ = ctx.input<msg::PoseStamped>(
@@ -109,10 +97,9 @@ class StereoDepth final : public Component {
   }
 
   void tick(Time now) override {
-    read_calibration();
-    left_fresh_ |= left_in_.take_latest(left_);
-    right_fresh_ |= right_in_.take_latest(right_);
-    if (paired()) compute_depth(now);
+    read_poses();
+    pair_.read_calibration(complaints_);
+    if (pair_.next_pair(complaints_)) compute_depth(now);
     if (keyed_in_.take_latest(keyed_)) keyed_pending_ = true;
     // The keyed frame may arrive before or after its stereo pair: use it once both are there.
     if (keyed_pending_ && depth_stamp_ >= 0 && keyed_.header().stamp_ns() == depth_stamp_) {
@@ -122,71 +109,28 @@ class StereoDepth final : public Component {
   }
 
  private:
-  void read_calibration() {
-    while (info_in_.take(info_)) {
-      if (const auto K = msgs::intrinsics(info_))
-        K_ = Intrinsics{K->fx, K->fy, K->cx, K->cy}, K_size_ = cv::Size(K->width, K->height);
-      else
-        reject(info_in_, "no focal length (expected K[0], K[4] > 0)");
-    }
-    while (right_info_in_.take(right_info_)) {
-      if (const auto baseline = msgs::stereo_baseline(right_info_))
-        info_baseline_ = *baseline;
-      else
-        reject(right_info_in_, "no baseline (expected P[0] > 0 and P[3] = -fx B < 0)");
-    }
+  // The camera pose and the plate pose, when connected.
+  void read_poses() {
     while (take_checked(eye_T_base_in_, pose_))
       base_T_eye_ = msgs::to_isometry(pose_.pose()).inverse(), have_pose_ = true;
     while (take_checked(eye_T_dev_in_, pose_)) dev_T_eye_ = msgs::to_isometry(pose_.pose()).inverse(), have_dev_ = true;
   }
 
-  // A new left/right pair of matching time, size and encoding, with what depth needs.
-  bool paired() {
-    if (!left_fresh_ || !right_fresh_) return false;  // wait for the partner
-    const std::int64_t skew = elapsed_ns(left_.header().stamp_ns(), right_.header().stamp_ns());
-    if (std::abs(skew) > max_skew_ns_) {  // not one exposure: drop the older side, wait for its partner
-      (skew > 0 ? right_fresh_ : left_fresh_) = false;
-      return false;
-    }
-    left_fresh_ = right_fresh_ = false;
-    if (const std::string bad = image::problem(left_, {"rgb8", "mono8"}); !bad.empty()) {
-      reject(left_in_, bad);
-      return false;
-    }
-    if (const std::string bad = image::problem(right_, {left_.encoding().c_str()}, left_.width(), left_.height());
-        !bad.empty()) {
-      reject(right_in_, bad + " (a rectified pair has one encoding and size)");
-      return false;
-    }
-    std::string missing;
-    if (K_.fx <= 0)
-      missing = "no intrinsics yet (camera_info)";
-    else if (K_size_.width != static_cast<int>(left_.width()) || K_size_.height != static_cast<int>(left_.height()))
-      missing = "camera_info is for " + std::to_string(K_size_.width) + "x" + std::to_string(K_size_.height) +
-                " but the images are " + size_text(left_);
-    else if (baseline() <= 0)
-      missing = "no baseline: set the baseline parameter or connect right_camera_info";
-    if (!missing.empty()) {
-      warn_once(missing + "; stereo pairs are skipped until it comes");
-      return false;
-    }
-    return true;
-  }
-
   void compute_depth(Time now) {
-    const bool mono = std::string_view(left_.encoding().c_str()) == "mono8";
-    const cv::Mat left = image::view(left_), right = image::view(right_);
+    const msg::Image& left_image = pair_.left();
+    const bool mono = std::string_view(left_image.encoding().c_str()) == "mono8";
+    const cv::Mat left = image::view(left_image), right = image::view(pair_.right());
     if (mono) {
       left_grey_ = left, right_grey_ = right;
     } else {
       cv::cvtColor(left, left_grey_, cv::COLOR_RGB2GRAY);
       cv::cvtColor(right, right_grey_, cv::COLOR_RGB2GRAY);
     }
-    matcher_->compute(left_grey_, right_grey_, K_.fx, baseline(), depth_);
-    depth_stamp_ = left_.header().stamp_ns();
+    matcher_->compute(left_grey_, right_grey_, pair_.intrinsics().fx, pair_.baseline(), depth_);
+    depth_stamp_ = left_image.header().stamp_ns();
     cv::Mat pixels = image::allocate(depth_msg_, depth_.cols, depth_.rows, "32FC1");
     depth_.copyTo(pixels);
-    fill_header(depth_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, left_.header().seq(), "eye");
+    fill_header(depth_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, left_image.header().seq(), "eye");
     depth_out_.write(depth_msg_);
   }
 
@@ -198,7 +142,9 @@ class StereoDepth final : public Component {
       return;
     }
     cv::extractChannel(image::view(keyed_), alpha_, 3);
-    const auto hand = estimate_hand_point(depth_, alpha_, K_, hand_, have_dev_ ? &dev_T_eye_ : nullptr, points_);
+    const msgs::CameraIntrinsics& K = pair_.intrinsics();
+    const auto hand = estimate_hand_point(depth_, alpha_, Intrinsics{K.fx, K.fy, K.cx, K.cy}, hand_,
+                                          have_dev_ ? &dev_T_eye_ : nullptr, points_);
     if (!hand) return;  // no hand in view (or too little of it with depth)
     fill_header(hand_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, keyed_.header().seq(),
                 have_pose_ ? "base" : "eye");
@@ -210,28 +156,23 @@ class StereoDepth final : public Component {
     hand_out_.write(hand_msg_);
   }
 
-  double baseline() const { return baseline_ > 0 ? baseline_ : info_baseline_; }
-
-  static std::string size_text(const msg::Image& m) {
-    return std::to_string(m.width()) + "x" + std::to_string(m.height());
-  }
-
   std::optional<DisparityDepth> matcher_;
   HandPointOptions hand_;
-  double baseline_ = 0, info_baseline_ = 0, hand_sigma_ = 0.04;
-  std::int64_t max_skew_ns_ = 0, depth_stamp_ = -1;
-  Intrinsics K_;
-  cv::Size K_size_;
+  StereoIntake pair_;
+  const StereoIntake::Complaints complaints_{
+      [this](const Input<msg::Image>& in, const std::string& why) { reject(in, why); },
+      [this](const Input<msg::CameraInfo>& in, const std::string& why) { reject(in, why); },
+      [this](const std::string& what) { warn_once(what); }};
+  double hand_sigma_ = 0.04;
+  std::int64_t depth_stamp_ = -1;
   Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity(), dev_T_eye_ = Eigen::Isometry3d::Identity();
-  bool have_pose_ = false, have_dev_ = false, keyed_pending_ = false, left_fresh_ = false, right_fresh_ = false;
+  bool have_pose_ = false, have_dev_ = false, keyed_pending_ = false;
   cv::Mat left_grey_, right_grey_, depth_, alpha_;
   std::vector<Eigen::Vector3f> points_;
-  msg::Image left_, right_, keyed_, depth_msg_;
-  msg::CameraInfo info_, right_info_;
+  msg::Image keyed_, depth_msg_;
   msg::PoseStamped pose_;
   msg::HandPosition hand_msg_;
-  Input<msg::Image> left_in_, right_in_, keyed_in_;
-  Input<msg::CameraInfo> info_in_, right_info_in_;
+  Input<msg::Image> keyed_in_;
   Input<msg::PoseStamped> eye_T_base_in_, eye_T_dev_in_;
   Output<msg::Image> depth_out_;
   Output<msg::HandPosition> hand_out_;

@@ -13,11 +13,13 @@ int cv_type(std::string_view e) {
   return -1;
 }
 
-std::string problem(const msg::Image& m, std::initializer_list<std::string_view> encodings) {
+namespace {
+std::string problem_of(const msg::Image& m, const std::string_view* encodings, std::size_t count) {
   const std::string_view encoding = m.encoding().c_str();
   bool accepted = false;
   std::string expected;
-  for (std::string_view e : encodings) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string_view e = encodings[i];
     accepted = accepted || e == encoding;
     expected += (expected.empty() ? "" : " or ") + std::string(e);
   }
@@ -33,6 +35,15 @@ std::string problem(const msg::Image& m, std::initializer_list<std::string_view>
     return "data of " + std::to_string(m.data().size()) +
            " bytes, shorter than step x height = " + std::to_string(static_cast<std::size_t>(m.step()) * m.height());
   return {};
+}
+}  // namespace
+
+std::string problem(const msg::Image& m, std::initializer_list<std::string_view> encodings) {
+  return problem_of(m, encodings.begin(), encodings.size());
+}
+
+std::string problem(const msg::Image& m, const std::vector<std::string_view>& encodings) {
+  return problem_of(m, encodings.data(), encodings.size());
 }
 
 std::string problem(const msg::Image& m, std::initializer_list<std::string_view> encodings, std::uint32_t width,

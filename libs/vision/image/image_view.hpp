@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
@@ -19,6 +20,7 @@ int cv_type(std::string_view encoding);
 // encoding, no pixels, a row step shorter than a row, data shorter than step x height. Empty
 // when nothing is.
 std::string problem(const msg::Image& m, std::initializer_list<std::string_view> encodings);
+std::string problem(const msg::Image& m, const std::vector<std::string_view>& encodings);
 // As above, and the image must also be `width` x `height` (the size of another stream it goes with).
 std::string problem(const msg::Image& m, std::initializer_list<std::string_view> encodings, std::uint32_t width,
                     std::uint32_t height);
