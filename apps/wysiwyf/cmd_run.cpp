@@ -80,6 +80,7 @@ int cmd_run(Args args) {
   options.process = process;
   options.start_after_s = start_after;
   options.one_writer_topics = loaded->validation.one_writer_topics;
+  options.one_writer_participants = loaded->validation.one_writer_participants;
   options.progress = progress || (!no_progress && isatty(STDERR_FILENO));
   Runtime runtime(loaded->spec, loader, options);
   const RunResult result = runtime.run();

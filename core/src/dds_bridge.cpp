@@ -99,7 +99,9 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
 };
 
 DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const std::string&)> report)
-    : report_(std::move(report)), data_sharing_(dds::uses_data_sharing(o.transport)) {
+    : writer_participants_(o.writer_participants),
+      report_(std::move(report)),
+      data_sharing_(dds::uses_data_sharing(o.transport)) {
   auto* factory = DomainParticipantFactory::get_instance();
   if (!o.profiles_file.empty() && factory->load_XML_profiles_file(o.profiles_file) != ReturnCode_t::RETCODE_OK)
     throw std::runtime_error("cannot load Fast DDS XML profiles from '" + o.profiles_file + "'");
@@ -207,6 +209,8 @@ void DdsBridge::connect(TopicChannelBase& channel) {
     if (!publisher_thread_.joinable()) publisher_thread_ = std::thread([this] { publish_loop(); });
   } else if (channel.local_readers() > 0) {
     auto link = std::make_unique<ReaderLink>(*this, channel);
+    if (const auto it = writer_participants_.find(channel.topic()); it != writer_participants_.end())
+      link->expected_writer = it->second;
     DataReaderQos qos = dds::reader_qos(endpoint_qos(channel.reader_qos(), channel), instances);
     if (!data_sharing_) qos.data_sharing().off();
     if (!subscriber_->create_datareader(topic, qos, link.get(),

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -53,6 +54,10 @@ struct DdsParticipantOptions {
   std::string name;                 // announced in discovery
   std::optional<dds::SecurityIdentity> security;
   std::vector<std::string> discovery_servers;  // IPv4:port; empty: multicast discovery
+  // One-writer topics written by a process group of this pipeline: the participant
+  // ("<pipeline>/<group>") whose writers alone may own it. Any other participant's samples are
+  // refused, before and after the owner is lost.
+  std::map<std::string, std::string> writer_participants;
 };
 
 class DdsBridge {
@@ -111,7 +116,8 @@ class DdsBridge {
     if (report_) report_(line);
   }
 
-  std::unique_ptr<ParticipantNames> names_;  // the participant's listener: outlives it
+  std::map<std::string, std::string> writer_participants_;  // DdsParticipantOptions::writer_participants
+  std::unique_ptr<ParticipantNames> names_;                 // the participant's listener: outlives it
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

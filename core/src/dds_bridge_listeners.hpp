@@ -35,7 +35,10 @@ struct DdsBridge::ReaderLink final : public eprosima::fastdds::dds::DataReaderLi
   // per silence; the misses are counted (health()).
   void on_requested_deadline_missed(eprosima::fastdds::dds::DataReader*,
                                     const eprosima::fastdds::dds::RequestedDeadlineMissedStatus& status) override;
-  // A one-writer topic follows the first writer it hears until that writer leaves, or, where the
+  // A one-writer topic written by this pipeline (expected_writer set) takes samples only from
+  // that process group's participant: any other writer is refused, first or after the owner was
+  // lost (a killed display is not replaced by whoever writes next). Among the writers it may
+  // take, it follows the first it hears until that writer leaves, or, where the
   // topic has a deadline, until it misses it (DDS's ownership rule: a killed process's writer is
   // unmatched only after its lease, 5 s, and its restarted successor would wait that long). DDS
   // ownership already passes only its owner's samples, but it would hand the topic to a newcomer
@@ -52,7 +55,8 @@ struct DdsBridge::ReaderLink final : public eprosima::fastdds::dds::DataReaderLi
   TopicChannelBase& channel;
   void* sample;
   const bool one_writer;
-  std::mutex owner_mutex;  // the receive, discovery and event threads
+  std::string expected_writer;  // "<pipeline>/<group>" whose writers alone may own the topic; "" any
+  std::mutex owner_mutex;       // the receive, discovery and event threads
   std::optional<eprosima::fastdds::dds::InstanceHandle_t> owner;
   std::set<eprosima::fastdds::dds::InstanceHandle_t> named;  // the writers said to be ignored
   std::atomic<bool> late{false};                             // a deadline passed without a sample, and none came since

@@ -53,6 +53,19 @@ void DdsBridge::ReaderLink::on_requested_deadline_missed(DataReader*, const Requ
 
 bool DdsBridge::ReaderLink::follows(const InstanceHandle_t& writer) {
   std::lock_guard<std::mutex> lock(owner_mutex);
+  if (!expected_writer.empty()) {
+    // (A writer whose participant is not discovered yet has no name: refused until it has one.)
+    const std::string process = bridge.process_name(writer);
+    const bool ours = process == expected_writer || process.rfind(expected_writer + "/", 0) == 0;
+    if (!ours) {
+      counters.ignored.fetch_add(1);
+      if (!process.empty() && named.insert(writer).second)
+        bridge.say("topic '" + channel.topic() + "': samples of " + bridge.writer_name(writer) +
+                   " are refused: its one writer is process group '" + expected_writer +
+                   "' of this pipeline, and no other participant may take it over");
+      return false;
+    }
+  }
   if (!owner) owner = writer;
   if (writer == *owner) return true;
   if (late.load()) {  // (cleared by the next sample delivered: this one)

@@ -36,7 +36,8 @@ bool Runtime::Impl::setup(RunResult& result) {
                                               spec.dds.participant_profile.value,
                                               name,
                                               std::nullopt,
-                                              spec.dds.discovery_servers.value};
+                                              spec.dds.discovery_servers.value,
+                                              options.one_writer_participants};
     if (spec.security.enabled())  // (validation made sure the process has an identity)
       participant.security = dds::SecurityIdentity{
           spec.security.keys.value, spec.security.identities.at(spec.process_label(options.process)).value};

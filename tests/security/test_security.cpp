@@ -23,8 +23,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <optional>
+#include <Eigen/Core>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -202,7 +204,7 @@ class Security : public ::testing::Test {
 
   // The display's group (a setpoint script holding kPose at 100 Hz: the arm holds after three
   // periods of silence, and 30 ms is a margin a loaded machine keeps) and the robot's (arm_sim).
-  void start(int domain, bool secured) {
+  void start(int domain, bool secured, const std::vector<std::string>& groups = {"robot", "display"}) {
     domain_ = domain;
     pipeline_ = dir_ / "pipeline.yaml";
     std::ofstream out(pipeline_);
@@ -221,11 +223,36 @@ class Security : public ::testing::Test {
            "    type: arm_sim\n    rate: 1000\n    process: robot\n"
            "    params: {setpoint_source: script}\n"
            "    topics: {setpoint: robot/setpoint, joint_state: robot/joint_state, status: robot/status,\n"
-           "             wrench: robot/wrench, device_pose: robot/device_pose}\n";
+           "             wrench: robot/wrench, device_pose: robot/device_pose, request: robot/request}\n";
     out.close();
-    for (const char* group : {"robot", "display"})
-      pids_.push_back(spawn_cli({"run", pipeline_.string(), "--process", group, "--no-progress"},
-                                dir_ / (std::string(group) + ".log")));
+    for (const auto& group : groups) start_group(group);
+  }
+  // Starts one process group of the pipeline start() wrote.
+  void start_group(const std::string& group) {
+    pids_.push_back(
+        spawn_cli({"run", pipeline_.string(), "--process", group, "--no-progress"}, dir_ / (group + ".log")));
+    group_pid_[group] = pids_.back();
+  }
+  // Waits (a hang guard of a minute) until the group's log says `text`.
+  bool wait_for_log(const std::string& group, const std::string& text) {
+    for (const auto until = Clock::now() + std::chrono::seconds(60); Clock::now() < until;) {
+      if (read_text(dir_ / (group + ".log")).find(text) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return false;
+  }
+  // The plate's position (robot/device_pose as the CLI echoes it).
+  Eigen::Vector3d device_position() {
+    const fs::path log = dir_ / "device-pose.log";
+    EXPECT_EQ(run_cli({"topic", "echo", "robot/device_pose", "--pipeline", pipeline_.string(), "--count", "1"}, log,
+                      std::chrono::seconds(60)),
+              0);
+    const std::string pose = read_text(log);
+    const auto value = [&](const std::string& key) {
+      const auto at = pose.find(key + ": ");
+      return at == std::string::npos ? std::nan("") : std::atof(pose.c_str() + at + key.size() + 2);
+    };
+    return {value("x"), value("y"), value("z")};
   }
 
   // One robot/status sample as the monitor identity reads it (plain when the pipeline is), "" if none came.
@@ -282,12 +309,18 @@ class Security : public ::testing::Test {
   // The intruder: a plain participant writes a far pose and NaN poses, freshly stamped, as the
   // script's source, at 1 kHz for a second, once its writer has matched a reader (it waits up to
   // `match_wait` for one). Returns how many readers it matched.
-  int intrude(std::chrono::seconds match_wait, int strength = -1) {
+  // With `clear`, it also asks the arm, on robot/request, to clear its fault every 10 ms.
+  int intrude(std::chrono::seconds match_wait, int strength = -1, bool clear = false) {
     Participant intruder(domain_, std::nullopt);
     EXPECT_TRUE(intruder.ok());
     DataWriter* writer = intruder.writer<msg::CartesianSetpoint>("robot/setpoint", strength);
+    DataWriter* requests = clear ? intruder.writer<msg::ArmRequest>("robot/request", strength) : nullptr;
     EXPECT_NE(writer, nullptr);
     if (!writer) return 0;
+    msg::ArmRequest request;
+    request.header().frame_id("base");
+    request.request(msg::ARM_CLEAR_INPUT_FAULT);
+    request.reason("an intruder's request");
     PublicationMatchedStatus matched;
     for (const auto until = Clock::now() + match_wait; Clock::now() < until && matched.current_count == 0;) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -307,6 +340,10 @@ class Security : public ::testing::Test {
       sp.pose().position().y(nan ? std::nan("") : 0.30);
       sp.pose().position().z(0.35);
       writer->write(&sp);
+      if (requests && i % 10 == 0) {
+        request.header().stamp_ns(wall_ns());
+        requests->write(&request);
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     writer->get_publication_matched_status(matched);
@@ -336,6 +373,7 @@ class Security : public ::testing::Test {
   fs::path dir_, keys_, pipeline_;
   int domain_ = 0;
   std::vector<pid_t> pids_;
+  std::map<std::string, pid_t> group_pid_;
 };
 
 TEST_F(Security, WithoutItAnIntruderIsSeenAndHeardAndThePoseCrossesInClear) {
@@ -424,6 +462,51 @@ TEST_F(Security, WithoutItASecondSetpointWriterIsRefusedOrNamedAndIgnoredAndNeve
   const std::string robot_log = read_text(dir_ / "robot.log");
   EXPECT_NE(robot_log.find("OWNERSHIP"), std::string::npos) << robot_log;
   EXPECT_NE(robot_log.find("'intruder'"), std::string::npos) << robot_log;
+}
+
+// Only the display moves the arm, without security too: the setpoint is written by the display's
+// process group, and the arm's process takes it from that group's participant alone. A foreign
+// writer that is heard before the display (claiming exclusive ownership, stronger than the
+// display's, with the script's source in its header) is refused and named; the arm waits for
+// the display, and then follows it.
+TEST_F(Security, WithoutItAForeignWriterHeardBeforeTheDisplayIsRefusedAndNeverMovesTheArm) {
+  start(116, /*secured=*/false, {"robot"});
+  EXPECT_GT(intrude(std::chrono::seconds(20), /*strength=*/10), 0) << "the intruder's writer matched no reader";
+  const Eigen::Vector3d before_display = device_position();
+  EXPECT_GT(std::hypot(before_display.x() - 0.45, before_display.y() - 0.30), 0.1)
+      << "the arm went towards the intruder's pose: " << before_display.transpose();
+  EXPECT_EQ(arm_status().find("state: ARM_OK"), std::string::npos) << "the arm follows someone before the display";
+  const std::string robot_log = read_text(dir_ / "robot.log");
+  EXPECT_NE(robot_log.find("'intruder'"), std::string::npos) << robot_log;
+  EXPECT_NE(robot_log.find("are refused: its one writer is process group 'secured/display'"), std::string::npos)
+      << robot_log;
+  start_group("display");
+  expect_arm_following();
+  expect_not_moved_by_the_intruder();
+}
+
+// The display's process killed: the arm holds, and a foreign writer that comes afterwards (once
+// the display's participant is gone, so DDS ownership alone would hand it the topic) is refused,
+// its setpoints and its requests to clear the arm's fault alike; the arm stays where the display
+// left it.
+TEST_F(Security, WithoutItNoWriterTakesTheArmOverAfterTheDisplaysProcessIsKilled) {
+  start(117, /*secured=*/false);
+  expect_arm_following();
+  kill(group_pid_.at("display"), SIGKILL);
+  ASSERT_TRUE(wait_for_log("robot", "is lost")) << read_text(dir_ / "robot.log");
+  EXPECT_GT(intrude(std::chrono::seconds(20), /*strength=*/10, /*clear=*/true), 0)
+      << "the intruder's writer matched no reader";
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const std::string status = arm_status();
+  EXPECT_EQ(status.find("state: ARM_OK"), std::string::npos) << "the arm follows someone again:\n" << status;
+  const Eigen::Vector3d plate = device_position();
+  EXPECT_NEAR(plate.x(), kPose[0], 0.005) << plate.transpose();
+  EXPECT_NEAR(plate.y(), kPose[1], 0.005) << plate.transpose();
+  const std::string robot_log = read_text(dir_ / "robot.log");
+  EXPECT_NE(robot_log.find("are refused: its one writer is process group 'secured/display'"), std::string::npos)
+      << robot_log;
+  EXPECT_NE(robot_log.find("only what drives the arm may clear its faults"), std::string::npos) << robot_log;
+  EXPECT_EQ(robot_log.find("cleared the input fault"), std::string::npos) << robot_log;
 }
 
 // A writer of the arm's setpoint in another process group than the arm must declare itself its

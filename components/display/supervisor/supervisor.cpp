@@ -53,7 +53,7 @@ void Supervisor::configure(Context& ctx) {
                                             Qos::reliable(4));
   arm_request_out_ = ctx.output<msg::ArmRequest>(
       "arm_request", "asks the arm to clear a fault that bad input caused, once the display's inputs are good again",
-      Qos::reliable(8));
+      Qos::reliable(8).one_writer());
   try {
     scene_ = haptics::load_scene(find_config_file(scene_path_));
   } catch (const std::exception& e) {

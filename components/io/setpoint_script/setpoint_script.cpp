@@ -38,7 +38,7 @@ class SetpointScript final : public Component {
                                     Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0}.optional_input());
     arm_request_ = ctx.output<msg::ArmRequest>(
         "arm_request", "with start_arm, at its start: asks the arm to clear a fault that its input caused",
-        Qos::reliable(8));
+        Qos::reliable(8).one_writer());
     try {
       table_ = std::make_unique<Keyframes>(waypoints, 6);
     } catch (const std::invalid_argument& e) {

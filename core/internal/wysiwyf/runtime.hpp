@@ -97,6 +97,10 @@ struct RunOptions {
   // this process's DDS endpoints on them are exclusive even where no local port says so (a
   // monitor reading the robot's setpoint in another group than the arm and the supervisor).
   std::set<std::string> one_writer_topics{};
+  // ValidationResult::one_writer_participants: this process's DDS readers of those topics take
+  // samples only from that participant (a foreign writer never drives the arm, before or after
+  // the display's process is lost).
+  std::map<std::string, std::string> one_writer_participants{};
   // Each tick's cost to its thread as well as its wall time (ComponentReport::cpu_p50_us ...): two
   // clock reads and two counter reads more a tick, so off unless asked for (benchmarks).
   bool measure_tick_cost = false;

@@ -24,6 +24,9 @@ struct ValidationResult {
   // Topics that some port of the pipeline, in any process group, declares one-writer
   // (Qos::one_writer): every process's DDS endpoints on them must be exclusive (RunOptions).
   std::set<std::string> one_writer_topics;
+  // One-writer topics that a component of this pipeline writes: the participant that alone may
+  // write them ("<pipeline>/<process group>", as the kernel names its DDS participants).
+  std::map<std::string, std::string> one_writer_participants;
   bool ok() const { return errors.empty(); }
 };
 

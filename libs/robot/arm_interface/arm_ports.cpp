@@ -52,8 +52,10 @@ void ArmPorts::declare(Context& ctx, Report report) {
       "setpoint", "base_T_dev and its twist, at any period of 1-20 ms (one writer: a second is a validation error)",
       Qos::reliable(32).one_writer());
   request = ctx.input<msg::ArmRequest>(
-      "request", "the supervisor's requests: CLEAR_INPUT_FAULT once its inputs are good again (optional)",
-      Qos::reliable(8).optional_input());
+      "request",
+      "the supervisor's requests: CLEAR_INPUT_FAULT once its inputs are good again (optional; one writer, the "
+      "setpoint's)",
+      Qos::reliable(8).optional_input().one_writer());
   joint_state_out_ =
       ctx.output<msg::JointState>("joint_state", "measured joint angles (encoders), velocities, motor torques");
   device_pose_out_ = ctx.output<msg::PoseStamped>("device_pose", "base_T_dev by FK of the measured joints");
@@ -62,8 +64,21 @@ void ArmPorts::declare(Context& ctx, Report report) {
       Qos{Reliability::kReliable, Durability::kTransientLocal, 4, 0});
 }
 
+namespace {
+// A writer's process group: its DDS participant's name "<pipeline>/<group>/<pid>" without the pid
+// (a restarted process of the group is the same writer); "" for this process.
+std::string group_of(const std::string& writer) {
+  const auto slash = writer.rfind('/');
+  if (slash == std::string::npos || slash + 1 == writer.size() || writer.find('/') == slash) return writer;
+  for (std::size_t i = slash + 1; i < writer.size(); ++i)
+    if (writer[i] < '0' || writer[i] > '9') return writer;
+  return writer.substr(0, slash);
+}
+}  // namespace
+
 void ArmPorts::take_setpoints(const ArmParams& params, SetpointFollower& follower, std::int64_t now_ns) {
   while (setpoint.take(setpoint_msg_)) {
+    setpoint_group_ = group_of(setpoint.writer());  // (the topic's one writer: DDS refused any other)
     if (const std::string why = params.source_problem(setpoint_msg_); !why.empty()) {
       report_.reject_setpoint(setpoint, why);
       continue;
@@ -75,6 +90,14 @@ void ArmPorts::take_setpoints(const ArmParams& params, SetpointFollower& followe
 
 void ArmPorts::take_requests(SafetyGate& gate, std::int64_t now_ns) {
   while (request.take(request_msg_)) {
+    if (const std::string group = group_of(request.writer()); group != setpoint_group_) {
+      report_.reject_request(request,
+                             "from " + (group.empty() ? std::string("this process") : "'" + group + "'") +
+                                 ", not from the setpoint's writer (" +
+                                 (setpoint_group_.empty() ? std::string("this process") : "'" + setpoint_group_ + "'") +
+                                 "): only what drives the arm may clear its faults");
+      continue;
+    }
     if (request_msg_.request() != msg::ARM_CLEAR_INPUT_FAULT) {
       report_.reject_request(request, "unknown request " + std::to_string(static_cast<int>(request_msg_.request())));
       continue;

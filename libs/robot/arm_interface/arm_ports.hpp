@@ -69,6 +69,9 @@ class ArmPorts {
   msg::PoseStamped pose_msg_;
   msg::CartesianSetpoint setpoint_msg_;
   msg::ArmRequest request_msg_;
+  // The process group whose setpoints the arm last took ("" this process): the only one whose
+  // requests it takes (a foreign participant cannot clear a fault and take the arm over).
+  std::string setpoint_group_;
 };
 
 }  // namespace wysiwyf::robot
