@@ -293,17 +293,9 @@ class Security : public ::testing::Test {
         << "an intruder's NaN reached the arm:\n"
         << status;
     EXPECT_EQ(status.find("non-finite"), std::string::npos) << status;
-    const fs::path log = dir_ / "device-pose.log";
-    ASSERT_EQ(run_cli({"topic", "echo", "robot/device_pose", "--pipeline", pipeline_.string(), "--count", "1"}, log,
-                      std::chrono::seconds(60)),
-              0);
-    const std::string pose = read_text(log);
-    const auto value = [&](const std::string& key) {
-      const auto at = pose.find(key + ": ");
-      return at == std::string::npos ? std::nan("") : std::atof(pose.c_str() + at + key.size() + 2);
-    };
-    EXPECT_NEAR(value("x"), kPose[0], 0.005) << pose;
-    EXPECT_NEAR(value("y"), kPose[1], 0.005) << pose;
+    const Eigen::Vector3d plate = device_position();
+    EXPECT_NEAR(plate.x(), kPose[0], 0.005) << plate.transpose();
+    EXPECT_NEAR(plate.y(), kPose[1], 0.005) << plate.transpose();
   }
 
   // The intruder: a plain participant writes a far pose and NaN poses, freshly stamped, as the
