@@ -462,7 +462,7 @@ TEST_F(Security, WithoutItASecondSetpointWriterIsRefusedOrNamedAndIgnoredAndNeve
 // display's, with the script's source in its header) is refused and named; the arm waits for
 // the display, and then follows it.
 TEST_F(Security, WithoutItAForeignWriterHeardBeforeTheDisplayIsRefusedAndNeverMovesTheArm) {
-  start(116, /*secured=*/false, {"robot"});
+  start(118, /*secured=*/false, {"robot"});
   EXPECT_GT(intrude(std::chrono::seconds(20), /*strength=*/10), 0) << "the intruder's writer matched no reader";
   const Eigen::Vector3d before_display = device_position();
   EXPECT_GT(std::hypot(before_display.x() - 0.45, before_display.y() - 0.30), 0.1)
@@ -482,7 +482,7 @@ TEST_F(Security, WithoutItAForeignWriterHeardBeforeTheDisplayIsRefusedAndNeverMo
 // its setpoints and its requests to clear the arm's fault alike; the arm stays where the display
 // left it.
 TEST_F(Security, WithoutItNoWriterTakesTheArmOverAfterTheDisplaysProcessIsKilled) {
-  start(117, /*secured=*/false);
+  start(125, /*secured=*/false);
   expect_arm_following();
   kill(group_pid_.at("display"), SIGKILL);
   ASSERT_TRUE(wait_for_log("robot", "is lost")) << read_text(dir_ / "robot.log");

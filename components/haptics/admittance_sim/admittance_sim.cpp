@@ -68,14 +68,17 @@ class AdmittanceSim final : public Component {
     attached_ = ctx.param<bool>("attached_at_start", true,
                                 "the scene's device attachment holds from the start (false: wait for `attach`)");
     attach_in_ =
-        ctx.input<msg::Attachment>("attach", "where the device holds the object, or that it lets go", Qos::reliable(4));
+        ctx.input<msg::Attachment>("attach",
+                                   "where the device holds the object, or that it lets go (optional: without it the "
+                                   "scene's attachment holds as attached_at_start says)",
+                                   Qos::reliable(4).optional_input());
     wrench_ = ctx.input<msg::WrenchStamped>("wrench", "the wrist F/T sensor: user push plus tool weight, sensor frame",
                                             Qos::sensor(8));
     device_pose_ =
         ctx.input<msg::PoseStamped>("device_pose",
                                     "measured base_T_dev (optional): where the sensor really is, for removing the "
                                     "tool's weight; without it, where the object says the device should be",
-                                    Qos::sensor(4));
+                                    Qos::sensor(4).optional_input());
     setpoint_ =
         ctx.output<msg::CartesianSetpoint>("setpoint", "base_T_dev and its twist for the robot (source admittance)");
     objects_ =
