@@ -8,11 +8,22 @@
 #include <string>
 #include <thread>
 
+#include "common/option_numbers.hpp"
+
 #include "netft_rdt/rdt_emulator.hpp"
 
 static volatile std::sig_atomic_t g_stop = 0;
 
-int main(int argc, char** argv) {
+static constexpr const char* kUsage =
+    "usage: rdt-emulator [--port 49152] [--rate 1000] [--wrench fx fy fz tx ty tz]\n"
+    "                    [--counts-per-force N] [--counts-per-torque N] [--drop-every N]\n"
+    "An ATI Net F/T sensor on loopback (RDT over UDP) streaming a constant wrench (N, N m) at the\n"
+    "rate asked, so pipelines with ft_netft run without the sensor. --drop-every N leaves out every\n"
+    "Nth record (a lossy network). Ctrl-C stops it.\n";
+
+int main(int argc, char** argv) try {
+  using wysiwyf::apps::option_number;
+  using wysiwyf::apps::option_whole;
   wysiwyf::robot::rdt::Emulator::Options o;
   o.port = 49152;
   std::array<double, 6> wrench{};
@@ -25,20 +36,24 @@ int main(int argc, char** argv) {
       }
       return std::string(argv[++i]);
     };
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
     if (a == "--port")
-      o.port = static_cast<std::uint16_t>(std::stoi(next("a port")));
+      o.port = static_cast<std::uint16_t>(option_whole(a, next("a port"), 0, 65535));
     else if (a == "--rate")
-      o.rate_hz = std::stod(next("a rate in Hz"));
+      o.rate_hz = option_number(a, next("a rate in Hz"), 1, 1e5);
     else if (a == "--counts-per-force")
-      o.counts_per_force = std::stod(next("a number"));
+      o.counts_per_force = option_number(a, next("a number"), 1e-6, 1e12);
     else if (a == "--counts-per-torque")
-      o.counts_per_torque = std::stod(next("a number"));
+      o.counts_per_torque = option_number(a, next("a number"), 1e-6, 1e12);
     else if (a == "--drop-every")
-      o.drop_every = std::stoi(next("a number"));
+      o.drop_every = option_whole(a, next("a number"), 0, 1 << 30);
     else if (a == "--wrench")
-      for (auto& w : wrench) w = std::stod(next("six numbers"));
+      for (auto& w : wrench) w = option_number(a, next("six numbers"), -1e6, 1e6);
     else {
-      std::cerr << "rdt-emulator: unknown option " << a << "\n";
+      std::cerr << "rdt-emulator: unknown option " << a << "\n" << kUsage;
       return 2;
     }
   }
@@ -50,4 +65,7 @@ int main(int argc, char** argv) {
   while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   std::cout << "sent " << emulator.records_sent() << " records\n";
   return 0;
+} catch (const std::exception& e) {  // an option refused, a port in use, ...
+  std::cerr << "rdt-emulator: " << e.what() << "\n" << kUsage;
+  return 2;
 }

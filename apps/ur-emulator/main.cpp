@@ -14,19 +14,29 @@
 #include <string>
 #include <thread>
 
+#include "common/option_numbers.hpp"
+
 #include "ur_controller_emulator/ur_emulator.hpp"
 
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
 
-std::uint16_t port_number(const std::string& text) {
-  const int p = std::stoi(text);
-  if (p < 0 || p > 65535) throw std::invalid_argument("port " + text + ", expected 0 to 65535");
-  return static_cast<std::uint16_t>(p);
-}
+constexpr const char* kUsage =
+    "usage: ur-emulator [--rtde-port 30004] [--script-port 30002] [--dashboard-port 29999] [--lockstep]\n"
+    "                   [--urdf FILE] [--drive FILE] [--initial-q q1 .. q6] [--encoder-counts N]\n"
+    "                   [--servo-bandwidth HZ]\n"
+    "A Universal Robots e-Series controller on 127.0.0.1: RTDE, the script port and the dashboard\n"
+    "server, running the follow program on arm_sim's joint servo and dynamics (the UR5e's URDF by\n"
+    "default), so pipelines with ur_driver run without the arm. A port of 0 takes any free one (the\n"
+    "first line printed names them). --lockstep: one controller period per input data package (for\n"
+    "pipelines on the simulated clock, ur_driver's `lockstep: true`); without it a real-time 500 Hz\n"
+    "controller. Ctrl-C stops it and prints what it did.\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  using wysiwyf::apps::option_number;
+  using wysiwyf::apps::option_whole;
   using wysiwyf::robot::ur::UrEmulator;
   UrEmulator::Options o;
   o.rtde_port = 30004, o.script_port = 30002, o.dashboard_port = 29999;
@@ -37,12 +47,16 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument(a + " needs " + what);
         return std::string(argv[++i]);
       };
+      if (a == "--help" || a == "-h") {
+        std::cout << kUsage;
+        return 0;
+      }
       if (a == "--rtde-port")
-        o.rtde_port = port_number(next("a port"));
+        o.rtde_port = static_cast<std::uint16_t>(option_whole(a, next("a port"), 0, 65535));
       else if (a == "--script-port")
-        o.script_port = port_number(next("a port"));
+        o.script_port = static_cast<std::uint16_t>(option_whole(a, next("a port"), 0, 65535));
       else if (a == "--dashboard-port")
-        o.dashboard_port = port_number(next("a port"));
+        o.dashboard_port = static_cast<std::uint16_t>(option_whole(a, next("a port"), 0, 65535));
       else if (a == "--lockstep")
         o.lockstep = true;
       else if (a == "--urdf")
@@ -50,14 +64,14 @@ int main(int argc, char** argv) {
       else if (a == "--drive")
         o.controller.drive = next("a file");
       else if (a == "--encoder-counts")
-        o.controller.encoder_counts = std::stoi(next("a count"));
+        o.controller.encoder_counts = option_whole(a, next("a count"), 0, 1 << 30);
       else if (a == "--servo-bandwidth")
-        o.controller.servo.bandwidth_hz = std::stod(next("a frequency in Hz"));
+        o.controller.servo.bandwidth_hz = option_number(a, next("a frequency in Hz"), 0.1, 1e4);
       else if (a == "--initial-q")
-        for (int j = 0; j < 6; ++j) o.controller.initial_q[j] = std::stod(next("six joint angles, rad"));
+        for (int j = 0; j < 6; ++j)
+          o.controller.initial_q[j] = option_number(a, next("six joint angles, rad"), -10, 10);
       else
-        throw std::invalid_argument("unknown option " + a +
-                                    " (see the comment at the top of apps/ur-emulator/main.cpp)");
+        throw std::invalid_argument("unknown option " + a + "\n" + kUsage);
     }
   } catch (const std::exception& e) {
     std::cerr << "ur-emulator: " << e.what() << "\n";
