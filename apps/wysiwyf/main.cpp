@@ -2,9 +2,12 @@
 #include <algorithm>
 #include <iostream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cli.hpp"
 #include "wysiwyf/build_info.hpp"
+#include "wysiwyf/validator.hpp"  // closest_name
 
 namespace wysiwyf::cli {
 
@@ -213,8 +216,12 @@ int main(int argc, char** argv) {
     if (command == "monitor") return wysiwyf::cli::cmd_monitor(std::move(rest));
     if (command == "bridge") return wysiwyf::cli::cmd_bridge(std::move(rest));
     if (command == "discovery-server") return wysiwyf::cli::cmd_discovery_server(std::move(rest));
-    std::cerr << "wysiwyf: unknown command '" << command << "'; expected one of:";
-    for (const auto& c : kCommands) std::cerr << " " << c.name;
+    std::vector<std::string> names;
+    for (const auto& c : kCommands) names.emplace_back(c.name);
+    const std::string near = wysiwyf::closest_name(command, names);
+    std::cerr << "wysiwyf: unknown command '" << command << "'"
+              << (near.empty() ? std::string("; expected one of:") : "; did you mean '" + near + "'? Expected one of:");
+    for (const auto& name : names) std::cerr << " " << name;
     std::cerr << "\n";
     return 2;
   } catch (const wysiwyf::cli::UsageError& e) {
