@@ -22,8 +22,10 @@ void Parser::parse_file(const std::string& path, PipelineSpec& into, const Locat
   std::ifstream in(path);
   if (!in) {
     std::string why = fs::exists(path) ? "permission denied" : "no such file";
-    if (!included_from.file.empty() && !fs::exists(path)) {
-      why += " (looked beside the including file, then in the config path:";
+    if (!fs::exists(path) && (!included_from.file.empty() || !fs::path(path).is_absolute())) {
+      why += included_from.file.empty()
+                 ? " (looked in the working directory, then in each folder of the config path and its pipelines/:"
+                 : " (looked beside the including file, then in the config path:";
       for (const auto& d : config_search_dirs()) why += " " + d;
       why += "; $WYSIWYF_CONFIG_PATH adds folders)";
     }

@@ -1,7 +1,10 @@
 // Reads pipeline files: YAML syntax, the schema, include: and --set, with a file:line:column for
 // every problem. Checks that need the component libraries are in pipeline_validator.cpp.
 // Here the entry points, load_pipeline*; the Parser, and which file holds each of its parts, in pipeline_parser.hpp.
+#include <filesystem>
+
 #include "pipeline_parser.hpp"
+#include "wysiwyf/config_files.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 
 namespace wysiwyf {
@@ -14,7 +17,19 @@ static PipelineSpec finish(detail::Parser& parser, PipelineSpec spec, const std:
   return spec;
 }
 
-PipelineSpec load_pipeline(const std::string& file, const std::vector<std::string>& overrides) {
+// The pipeline file as given (absolute, or relative to the working directory), else the first
+// folder of the config path that has it, as given or under pipelines/ (`wysiwyf run
+// demo-sim.yaml` from an installed prefix, like an include); as given when none has it.
+static std::string find_pipeline_file(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::path(file).is_absolute() || std::filesystem::exists(file, ec)) return file;
+  for (const std::string& relative : {file, "pipelines/" + file})
+    if (const std::string found = find_in_config_dirs(relative); !found.empty()) return found;
+  return file;
+}
+
+PipelineSpec load_pipeline(const std::string& given, const std::vector<std::string>& overrides) {
+  const std::string file = find_pipeline_file(given);
   detail::Parser parser;
   PipelineSpec spec;
   spec.file = file;
