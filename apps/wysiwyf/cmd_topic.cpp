@@ -235,8 +235,9 @@ int topic_hz(Args& args, const std::string& topic) {
   std::cout << "# topic " << topic << " (" << info->type << ") in domain " << s.domain
             << (schema && schema->stamped ? "; 'stamps': the rate on the pipeline's clock (sim time on the sim clock)"
                                           : "; the type has no header: wall-clock rate only")
-            << (s.latency_budget.count() > 0 ? "; from a pipeline on the real clock samples arrive in batches "
-                                               "(min/max/std of arrivals: --prompt)"
+            << (s.latency_budget.count() > 0 ? "; from a pipeline on the real clock samples arrive in batches, so "
+                                               "min/max/std below measure the batching (--prompt: each sample's "
+                                               "own arrival)"
                                              : "")
             << "\n"
             << std::flush;
