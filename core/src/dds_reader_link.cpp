@@ -53,6 +53,7 @@ void DdsBridge::ReaderLink::on_requested_deadline_missed(DataReader*, const Requ
 
 bool DdsBridge::ReaderLink::follows(const InstanceHandle_t& writer) {
   std::lock_guard<std::mutex> lock(owner_mutex);
+  if (owner && writer == *owner) return true;  // (admitted below when it became the owner)
   if (!expected_writer.empty()) {
     // (A writer whose participant is not discovered yet has no name: refused until it has one.)
     const std::string process = bridge.process_name(writer);
@@ -66,8 +67,10 @@ bool DdsBridge::ReaderLink::follows(const InstanceHandle_t& writer) {
       return false;
     }
   }
-  if (!owner) owner = writer;
-  if (writer == *owner) return true;
+  if (!owner) {
+    owner = writer;
+    return true;
+  }
   if (late.load()) {  // (cleared by the next sample delivered: this one)
     bridge.say("topic '" + channel.topic() + "': its writer " + bridge.writer_name(*owner) + " missed its deadline; " +
                bridge.writer_name(writer) + " owns it now");

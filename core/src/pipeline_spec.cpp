@@ -36,6 +36,10 @@ std::vector<std::string> PipelineSpec::processes() const {
   return out;
 }
 
+std::string PipelineSpec::participant_name(const std::string& process) const {
+  return (name.set ? name.value : "pipeline") + "/" + (process.empty() ? "all" : process);
+}
+
 std::string PipelineSpec::process_label(const std::string& process) const {
   if (!process.empty()) return process;
   const auto groups = processes();

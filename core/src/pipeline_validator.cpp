@@ -89,16 +89,15 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
                                            join(groups) + did_you_mean(process, groups));
   }
 
-  if (!spec.security.enabled() && spec.processes().size() > 1)
+  if (!spec.security.enabled() && spec.processes().size() > 1) {
+    const std::string trusted =
+        "every participant on domain " + std::to_string(spec.domain_id()) + " is trusted and its samples are read";
     result.warnings.push_back(
         {Location{spec.file, 0, 0},
-         "the process groups (" + join(spec.processes()) +
-             ") talk over DDS without security: every participant on "
-             "domain " +
-             std::to_string(spec.domain_id()) +
-             " is trusted and its samples are read. A one-writer topic (the arm's setpoint) is taken only "
-             "from the group that writes it here, by a name that is not authenticated; across machines, turn on "
-             "`security:` (docs/deployment.md)"});
+         "the process groups (" + join(spec.processes()) + ") talk over DDS without security: " + trusted +
+             ". A one-writer topic (the arm's setpoint) is taken only from the group that writes it here, by a "
+             "name that is not authenticated; across machines, turn on `security:` (docs/deployment.md)"});
+  }
 
   if (spec.security.enabled()) {
     // The process this validation is for authenticates as its group's identity.
@@ -209,9 +208,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
       // Written here: only the writer's process group may own it (the DDS readers refuse others).
       const auto writer = std::find_if(uses.begin(), uses.end(),
                                        [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
-      if (writer != uses.end())
-        result.one_writer_participants[topic] =
-            (spec.name.set ? spec.name.value : std::string("pipeline")) + "/" + spec.process_label(writer->process);
+      if (writer != uses.end()) result.one_writer_participants[topic] = spec.participant_name(writer->process);
     }
     // An input that takes one writer (a robot's setpoint): every writer after the first is an error.
     const auto one_writer = std::find_if(uses.begin(), uses.end(), [](const PortUse& u) {

@@ -27,9 +27,8 @@ bool Runtime::Impl::setup(RunResult& result) {
   }
   try {
     // (Announced in clear even with security: the process id only on a plain domain.)
-    const std::string name = (spec.name.set ? spec.name.value : "pipeline") + "/" +
-                             (options.process.empty() ? "all" : options.process) +
-                             (spec.security.enabled() ? "" : "/" + std::to_string(getpid()));
+    const std::string name =
+        spec.participant_name(options.process) + (spec.security.enabled() ? "" : "/" + std::to_string(getpid()));
     detail::DdsParticipantOptions participant{spec.domain_id(),
                                               spec.transport(),
                                               spec.dds.profiles_file.value,

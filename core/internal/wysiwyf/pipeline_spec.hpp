@@ -115,6 +115,9 @@ struct PipelineSpec {
   // The process that runs `process` ("" = every group in one process): the group's own name,
   // "main" for a pipeline without groups, "all" for several groups run together.
   std::string process_label(const std::string& process) const;
+  // The DDS participant name of the process that runs group `process` ("" the whole pipeline):
+  // "<pipeline>/<group>", or "<pipeline>/all"; the runtime appends "/<pid>" on a plain domain.
+  std::string participant_name(const std::string& process) const;
 };
 
 constexpr int kPipelineFormatVersion = 1;
