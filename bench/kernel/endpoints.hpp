@@ -61,7 +61,7 @@ class KernelEndpoint {
  public:
   KernelEndpoint(int domain, const std::string& out_topic, const std::string& in_topic, const Qos& qos,
                  std::optional<dds::SecurityIdentity> security = std::nullopt)
-      : bridge_(detail::DdsParticipantOptions{domain, "local", "", "", "bench-kernel", std::move(security), {}}) {
+      : bridge_(detail::DdsParticipantOptions{domain, "local", "", "", "bench-kernel", std::move(security), {}, {}}) {
     auto* out = bus_.channel<T>(out_topic, "bench.out");
     out->add_writer(qos);
     out_ = Output<T>(out);

@@ -39,6 +39,7 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
       : bridge(b),
         channel(c),
         always(c.writer_qos().durability == Durability::kTransientLocal),
+        one_writer(c.one_writer()),
         buffer(c.create_sample()) {
     DataWriterQos qos = dds::writer_qos(endpoint_qos(c.writer_qos(), c), instances);
     if (!b.data_sharing_) qos.data_sharing().off();
@@ -69,6 +70,14 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
     return sent;
   }
 
+  // Publisher thread: a one-writer topic's writer tells its readers it lives, whether it wrote or
+  // not (dds::kOneWriterLiveliness), every lease / dds::kOneWriterAssertions.
+  void assert_liveliness_if_due(Doorbell::Clock::time_point now) {
+    if (!one_writer || now < next_assertion) return;
+    writer->assert_liveliness();
+    next_assertion = now + dds::kOneWriterLiveliness / dds::kOneWriterAssertions;
+  }
+
   void on_publication_matched(DataWriter*, const PublicationMatchedStatus& status) override {
     matched.store(status.current_count, std::memory_order_relaxed);
     std::lock_guard<std::mutex> lock(prompt_mutex);
@@ -88,7 +97,9 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
   DdsBridge& bridge;
   TopicChannelBase& channel;
   const bool always;  // transient-local: written with or without readers, for late joiners
-  void* buffer;       // the sample being sent
+  const bool one_writer;
+  Doorbell::Clock::time_point next_assertion{};  // (publisher thread)
+  void* buffer;                                  // the sample being sent
   DataWriter* writer = nullptr;
   std::atomic<int> matched{0};
   std::atomic<bool> pending{false};
@@ -175,8 +186,12 @@ void DdsBridge::publish_loop() {
     }
     std::uint64_t sent = 0;
     {
+      const auto now = Doorbell::Clock::now();
       std::lock_guard<std::mutex> lock(writers_mutex_);
-      for (auto& link : writers_) sent += link->drain();
+      for (auto& link : writers_) {
+        sent += link->drain();
+        link->assert_liveliness_if_due(now);
+      }
     }
     if (sent > 0) {
       samples_sent_.fetch_add(sent, std::memory_order_relaxed);
@@ -217,7 +232,8 @@ void DdsBridge::connect(TopicChannelBase& channel) {
                                         StatusMask::data_available()
                                             << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()
                                             << StatusMask::subscription_matched()
-                                            << StatusMask::requested_deadline_missed()))
+                                            << StatusMask::requested_deadline_missed()
+                                            << StatusMask::liveliness_changed()))
       throw std::runtime_error("cannot create a DDS reader for topic '" + channel.topic() + "'" +
                                refused_by_permissions("subscribe to"));
     readers_.push_back(std::move(link));

@@ -38,15 +38,19 @@ struct DdsBridge::ReaderLink final : public eprosima::fastdds::dds::DataReaderLi
   // A one-writer topic written by this pipeline (expected_writer set) takes samples only from
   // that process group's participant: any other writer is refused, first or after the owner was
   // lost (a killed display is not replaced by whoever writes next). Among the writers it may
-  // take, it follows the first it hears until that writer leaves, or, where the
-  // topic has a deadline, until it misses it (DDS's ownership rule: a killed process's writer is
-  // unmatched only after its lease, 5 s, and its restarted successor would wait that long). DDS
+  // take, it follows the first it hears until that writer leaves, loses its liveliness, or, where
+  // the topic has a deadline, misses it (a killed process's writer is unmatched only after its
+  // participant's lease, 5 s, and its restarted successor would wait that long). DDS
   // ownership already passes only its owner's samples, but it would hand the topic to a newcomer
   // of equal strength and lower GUID. Another writer's samples are dropped, counted and it is
   // named once.
   bool follows(const eprosima::fastdds::dds::InstanceHandle_t& writer);
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override;
+  // A one-writer topic's owner whose liveliness lapsed (dds::kOneWriterLiveliness: its process
+  // killed or frozen) is let go: the next writer heard that may take the topic owns it.
+  void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
+                             const eprosima::fastdds::dds::LivelinessChangedStatus& status) override;
   void on_requested_incompatible_qos(eprosima::fastdds::dds::DataReader*,
                                      const eprosima::fastdds::dds::RequestedIncompatibleQosStatus& status) override;
   void on_sample_lost(eprosima::fastdds::dds::DataReader*,

@@ -79,7 +79,14 @@ EndpointQos endpoint_qos(EndpointQos qos, const Qos& q, int instances) {
   if (q.deadline_ns > 0) qos.deadline().period = to_duration(q.deadline_ns);
   // One writer: a reader follows only the owner among the matched writers, and a writer with
   // shared ownership does not match at all (reported as an OWNERSHIP incompatibility).
-  if (q.single_writer) qos.ownership().kind = EXCLUSIVE_OWNERSHIP_QOS;
+  if (q.single_writer) {
+    qos.ownership().kind = EXCLUSIVE_OWNERSHIP_QOS;
+    // Asserted by each sample and by the bridge's publisher thread (DdsBridge::assert_liveliness).
+    // (Not AUTOMATIC: Fast DDS 2.9 renews every automatic writer of a reader's domain on a
+    // liveliness message from any participant, so a killed process's would stay alive.)
+    qos.liveliness().kind = MANUAL_BY_TOPIC_LIVELINESS_QOS;
+    qos.liveliness().lease_duration = to_duration(std::chrono::nanoseconds(kOneWriterLiveliness).count());
+  }
   if (instances > 1) {
     qos.resource_limits().max_instances = instances;
     qos.resource_limits().max_samples_per_instance = q.depth;
@@ -142,6 +149,12 @@ std::string incompatibility(int policy_id, const Qos& ours, bool writer) {
   if (policy_id == OWNERSHIP_QOS_POLICY_ID)
     return name + (ours.single_writer ? ": this topic takes one writer (exclusive ownership), the other side shares it"
                                       : ": the other side takes one writer (exclusive ownership), this one shares it");
+  if (policy_id == LIVELINESS_QOS_POLICY_ID && ours.single_writer)
+    return name +
+           (writer ? ": a reader asks for a shorter liveliness lease than this writer's "
+                   : ": this one-writer topic's reader asks for a liveliness lease of ") +
+           std::to_string(kOneWriterLiveliness.count()) + " ms" +
+           (writer ? "" : ", the writer asserts it less often (or not at all)");
   return name + ": the two endpoints' settings cannot match";
 }
 

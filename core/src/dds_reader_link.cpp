@@ -99,6 +99,16 @@ void DdsBridge::ReaderLink::on_subscription_matched(DataReader*, const Subscript
   }
 }
 
+void DdsBridge::ReaderLink::on_liveliness_changed(DataReader*, const LivelinessChangedStatus& status) {
+  if (!one_writer || status.not_alive_count_change <= 0) return;
+  std::lock_guard<std::mutex> lock(owner_mutex);
+  if (!owner || status.last_publication_handle != *owner) return;
+  bridge.say("topic '" + channel.topic() + "': its writer " + bridge.writer_name(*owner) +
+             " lost its liveliness (nothing from its process for " + std::to_string(dds::kOneWriterLiveliness.count()) +
+             " ms); the next writer heard owns it");
+  owner.reset();
+}
+
 void DdsBridge::ReaderLink::on_requested_incompatible_qos(DataReader*, const RequestedIncompatibleQosStatus& status) {
   counters.incompatible.fetch_add(1);
   counters.last_policy.store(status.last_policy_id);

@@ -91,6 +91,56 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
   for (std::size_t i = 1; i < seqs.size(); ++i) EXPECT_EQ(seqs[i], seqs[i - 1] + 1);
 }
 
+// A one-writer topic without a deadline (the arm's requests): when its writer's process is killed,
+// the same group's restarted process owns it once the killed writer's liveliness lapses
+// (dds::kOneWriterLiveliness), not after the killed participant's 5 s lease.
+TEST(TwoProcesses, ARestartedWriterOwnsAOneWriterTopicOnceTheKilledOnesLivelinessLapses) {
+  const fs::path dir = scratch_dir();
+  const fs::path pipeline = dir / "one_writer.yaml";
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: handover\ndomain: 127\ndds: {transport: local}\n"
+                             "clock: {mode: real}\n"
+                             "components:\n"
+                             "  src: {type: test_probe, rate: 50, process: producer, topics: {out: requests},\n"
+                             "        params: {one_writer: true}}\n"
+                             "  sink: {type: test_probe, rate: 50, process: consumer, topics: {in: requests},\n"
+                             "         params: {one_writer: true, name_writers: true}}\n";
+  const auto run = [&](const std::string& group, const std::string& log) {
+    return spawn_cli({"run", pipeline.string(), "--process", group, "--no-progress"}, dir / log);
+  };
+  // How many processes the consumer has followed so far, waiting up to `limit` for `count`.
+  const auto followed = [&](int count, std::chrono::milliseconds limit) {
+    const auto until = std::chrono::steady_clock::now() + limit;
+    int seen = 0;
+    while (true) {
+      const std::string log = read_file(dir / "consumer.log");
+      seen = 0;
+      for (std::size_t at = log.find("samples from process 'handover/producer/"); at != std::string::npos;
+           at = log.find("samples from process 'handover/producer/", at + 1))
+        ++seen;
+      if (seen >= count || std::chrono::steady_clock::now() > until) return seen;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  };
+  const pid_t consumer = run("consumer", "consumer.log");
+  const pid_t first = run("producer", "producer.log");
+  ASSERT_EQ(followed(1, std::chrono::seconds(30)), 1) << read_file(dir / "consumer.log");
+  kill(first, SIGKILL);
+  wait_exit(first, std::chrono::seconds(10));
+  const auto restarted = std::chrono::steady_clock::now();
+  const pid_t second = run("producer", "producer2.log");
+  // (The killed participant is dropped after its 5 s lease: the new one must be followed sooner.)
+  EXPECT_EQ(followed(2, std::chrono::milliseconds(4000)), 2) << read_file(dir / "consumer.log");
+  const double after_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - restarted).count();
+  EXPECT_LT(after_s, 4.0);
+  const std::string log = read_file(dir / "consumer.log");
+  EXPECT_NE(log.find("topic 'requests': its writer 'handover/producer/"), std::string::npos) << log;
+  EXPECT_NE(log.find("lost its liveliness (nothing from its process for 500 ms)"), std::string::npos) << log;
+  for (const pid_t pid : {second, consumer}) {
+    kill(pid, SIGTERM);
+    EXPECT_EQ(wait_exit(pid, std::chrono::seconds(30)), 0);
+  }
+}
+
 // `topic echo` with no count ends when the topic's writer leaves (it used to wait forever), and
 // --count takes a whole number of samples, not seconds.
 TEST(TopicTools, EchoEndsWhenTheWriterLeaves) {

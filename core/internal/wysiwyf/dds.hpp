@@ -24,6 +24,13 @@ const std::vector<std::string>& transport_names();
 // announced twice a second.
 eprosima::fastdds::dds::DomainParticipantQos participant_qos(const std::string& transport, const std::string& name);
 constexpr int kLeaseSeconds = 5;
+// A one-writer topic's writer asserts its liveliness (DDS MANUAL_BY_TOPIC: its samples, and the
+// bridge's publisher thread kOneWriterAssertions times per lease) and its readers ask for this
+// lease: a writer whose process was killed or frozen is known lost after it, not after the
+// participant's kLeaseSeconds, so that a restarted process of the same group can take over a
+// topic without a deadline (the arm's requests).
+constexpr std::chrono::milliseconds kOneWriterLiveliness{500};
+constexpr int kOneWriterAssertions = 5;
 // Whether participant_qos gives that transport shared memory (all but "udp" and "loopback").
 bool uses_shared_memory(const std::string& transport);
 // Whether endpoints may use Fast DDS data sharing between processes of one host: where the
