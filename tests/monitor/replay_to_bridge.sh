@@ -63,7 +63,7 @@ kill -9 "${pids[-2]}"  # (play)
 pids+=($!)
 node "$js/foxglove_client.mjs" "ws://127.0.0.1:$port" 30 robot/setpoint >"$work/push.json" ||
   { cat "$work/push.json"; fail "the official client got no robot/setpoint from a writer of shared ownership"; }
-grep -q "topic 'robot/setpoint': a writer was refused (OWNERSHIP); the bridge reads it again" "$work/bridge.log" ||
+grep -Eq "topic 'robot/setpoint': a writer was refused \((OWNERSHIP|LIVELINESS)\); the bridge reads it again" "$work/bridge.log" ||
   fail "the bridge did not say it read robot/setpoint again"
 echo "ok: $(grep -o "topic 'robot/setpoint': a writer was refused.*" "$work/bridge.log" | head -1)"
 echo "PASS: the bridge kept every topic from the live run to its replay and to a writer of other QoS"

@@ -184,11 +184,12 @@ for fault in kill stop link; do
     wait "$display" 2>/dev/null
   fi
   if [[ $fault == kill ]]; then
-    # A killed group is noticed by its DDS lease (5 s), which frees the setpoint for its restart
-    # (with a discovery server, the server notices and tells the others it left).
+    # A killed group's setpoint is freed for its restart when its liveliness lapses (0.5 s); the
+    # process is noticed by its DDS lease (5 s) (with a discovery server, the server notices and
+    # tells the others it left).
     sleep 6
     if grep -Eq "process 'hosts/display/$display' (is lost|left the domain)" "$work/robot.log" &&
-      grep -q "left; the next writer heard owns it" "$work/robot.log"; then
+      grep -Eq "topic 'robot/setpoint': its writer 'hosts/display/$display' .*(lost its liveliness|left; the next writer heard owns it)" "$work/robot.log"; then
       echo "$1, kill: the robot's process named the lost display process and freed the setpoint for its restart"
     else
       echo "$1, kill: FAILED: the robot's process did not name the lost display process or free the setpoint:"
