@@ -13,27 +13,19 @@ namespace wysiwyf::cli {
 
 namespace {
 
-struct Loaded {
-  PipelineSpec spec;
-  ValidationResult validation;
-};
+using Loaded = CheckedPipeline;
 
-// Parses and validates; prints every problem; nullopt when the pipeline cannot run.
+// Parses and validates; prints every problem of the file at once: the parser's and, for the
+// components that parsed, the validator's, in the file's order, then the warnings; nullopt when
+// the pipeline cannot run.
 std::optional<Loaded> load_and_validate(Args& args, Loader& loader, std::string& process) {
   process = args.value("--process").value_or("");
   const auto sets = args.values("--set");
   const auto files = args.positional();
   if (files.size() != 1) throw UsageError("expected one pipeline file, found " + std::to_string(files.size()));
-  Loaded loaded;
-  try {
-    loaded.spec = load_pipeline(files[0], sets);
-  } catch (const ConfigError& e) {
-    std::cerr << e.what() << "\n" << e.issues().size() << " error(s); nothing was started\n";
-    return std::nullopt;
-  }
-  loaded.validation = validate_pipeline(loaded.spec, loader, process);
-  for (const auto& w : loaded.validation.warnings) std::cerr << w.where.str() << ": warning: " << w.message << "\n";
+  Loaded loaded = check_pipeline(files[0], sets, loader, process);
   for (const auto& e : loaded.validation.errors) std::cerr << e.str() << "\n";
+  for (const auto& w : loaded.validation.warnings) std::cerr << w.where.str() << ": warning: " << w.message << "\n";
   if (!loaded.validation.ok()) {
     std::cerr << loaded.validation.errors.size() << " error(s); nothing was started\n";
     return std::nullopt;

@@ -9,6 +9,7 @@
 
 #include "wysiwyf/build_info.hpp"
 #include "wysiwyf/search_paths.hpp"
+#include "wysiwyf/validator.hpp"
 
 namespace fs = std::filesystem;
 
@@ -61,11 +62,14 @@ const ComponentLibrary& Loader::load(const std::string& type) {
   if (auto it = by_type_.find(type); it != by_type_.end()) return it->second;
   const std::string path = find_file(type);
   if (path.empty()) {
+    const std::vector<std::string> types = known_types();
     std::string known;
-    for (const auto& t : known_types()) known += (known.empty() ? "" : ", ") + t;
+    for (const auto& t : types) known += (known.empty() ? "" : ", ") + t;
     std::string dirs;
     for (const auto& d : dirs_) dirs += (dirs.empty() ? "" : ":") + d;
-    throw LoadError("unknown component type '" + type + "': no " + library_file_name(type) + " in " + dirs +
+    const std::string near = closest_name(type, types);
+    throw LoadError("unknown component type '" + type + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                    ": no " + library_file_name(type) + " in " + dirs +
                     "; known types: " + (known.empty() ? "(none found)" : known));
   }
   const ComponentLibrary& lib = load_file(path);

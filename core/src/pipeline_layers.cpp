@@ -134,8 +134,10 @@ void Parser::apply_set(const std::string& assignment, PipelineSpec& into) {
   }
   cursor[path.back()] = value;
   set_location_ = where;
+  const std::size_t before = issues.size();
   apply(root, where.file, into, /*from_set=*/true);
   set_location_.reset();
+  if (issues.size() > before && path[0] == "components" && path.size() > 1) failed_components.insert(path[1]);
 }
 
 }  // namespace wysiwyf::detail

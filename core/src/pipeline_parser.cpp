@@ -9,12 +9,11 @@
 
 namespace wysiwyf {
 
-static PipelineSpec finish(detail::Parser& parser, PipelineSpec spec, const std::vector<std::string>& overrides) {
-  if (parser.issues.empty())
-    for (const auto& o : overrides) parser.apply_set(o, spec);
-  if (parser.issues.empty()) detail::check_merged(spec, parser.issues);
-  if (!parser.issues.empty()) throw ConfigError(parser.issues);
-  return spec;
+// --set layers and the merged checks, also over a file with problems: each is reported (a --set of a
+// component that failed is not applied over it).
+static void finish(detail::Parser& parser, PipelineSpec& spec, const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) parser.apply_set(o, spec);
+  detail::check_merged(spec, parser.issues, parser.failed_components);
 }
 
 // The pipeline file as given (absolute, or relative to the working directory), else the first
@@ -28,13 +27,22 @@ static std::string find_pipeline_file(const std::string& file) {
   return file;
 }
 
-PipelineSpec load_pipeline(const std::string& given, const std::vector<std::string>& overrides) {
+ParsedPipeline parse_pipeline(const std::string& given, const std::vector<std::string>& overrides) {
   const std::string file = find_pipeline_file(given);
   detail::Parser parser;
-  PipelineSpec spec;
-  spec.file = file;
-  parser.parse_file(file, spec, Location{});
-  return finish(parser, std::move(spec), overrides);
+  ParsedPipeline parsed;
+  parsed.spec.file = file;
+  parser.parse_file(file, parsed.spec, Location{});
+  finish(parser, parsed.spec, overrides);
+  parsed.issues = std::move(parser.issues);
+  parsed.failed_components = std::move(parser.failed_components);
+  return parsed;
+}
+
+PipelineSpec load_pipeline(const std::string& given, const std::vector<std::string>& overrides) {
+  ParsedPipeline parsed = parse_pipeline(given, overrides);
+  if (!parsed.issues.empty()) throw ConfigError(parsed.issues);
+  return std::move(parsed.spec);
 }
 
 PipelineSpec load_pipeline_from_string(const std::string& yaml, const std::string& file_name,
@@ -43,7 +51,9 @@ PipelineSpec load_pipeline_from_string(const std::string& yaml, const std::strin
   PipelineSpec spec;
   spec.file = file_name;
   parser.parse_text(yaml, file_name, spec);
-  return finish(parser, std::move(spec), overrides);
+  finish(parser, spec, overrides);
+  if (!parser.issues.empty()) throw ConfigError(parser.issues);
+  return spec;
 }
 
 }  // namespace wysiwyf

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ namespace wysiwyf::detail {
 class Parser {
  public:
   std::vector<ConfigIssue> issues;
+  // Components with a problem of their own (their key, a --set of theirs, a merged check): the
+  // validator skips them, so that it adds no knock-on errors to the parser's.
+  std::set<std::string> failed_components;
 
   // The layers (pipeline_layers.cpp): a file, the files it includes, a --set.
   void parse_file(const std::string& path, PipelineSpec& into, const Location& included_from);
@@ -79,6 +83,8 @@ class Parser {
 };
 
 // Checks on the merged pipeline that need no component library (pipeline_merged_checks.cpp).
-void check_merged(PipelineSpec& spec, std::vector<ConfigIssue>& issues);
+// A component's own problem is added to `failed`; "no components" only where nothing else failed
+// (a components: map that did not parse is not also reported empty).
+void check_merged(PipelineSpec& spec, std::vector<ConfigIssue>& issues, std::set<std::string>& failed);
 
 }  // namespace wysiwyf::detail

@@ -49,7 +49,9 @@ void Parser::apply(const YAML::Node& root, const std::string& file, PipelineSpec
         spec->name = name;
         spec->where = at(it->first, file);
       }
+      const std::size_t before = issues.size();
       if (expect_map(it->second, file, "component '" + name + "'")) apply_component(it->second, file, *spec);
+      if (issues.size() > before) failed_components.insert(name);
     }
     check_duplicates(n, file);
   }

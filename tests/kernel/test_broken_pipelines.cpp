@@ -26,14 +26,10 @@ std::vector<Expectation> expectations(const fs::path& file) {
   return out;
 }
 
+// Every error of the file in one check, as `wysiwyf validate` reports them.
 std::vector<ConfigIssue> all_errors(const fs::path& file) {
-  try {
-    const PipelineSpec spec = load_pipeline(file.string());
-    Loader loader(test_search_dirs());
-    return validate_pipeline(spec, loader).errors;
-  } catch (const ConfigError& e) {
-    return e.issues();
-  }
+  Loader loader(test_search_dirs());
+  return check_pipeline(file.string(), {}, loader).validation.errors;
 }
 
 class BrokenPipeline : public ::testing::TestWithParam<std::string> {};
@@ -74,6 +70,20 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BrokenPipeline, ::testing::ValuesIn(corpus()),
                            std::string n = info.param.substr(0, info.param.size() - 5);
                            return n;
                          });
+
+// A file with ten mistakes of different kinds gets ten errors from one check: none hidden by
+// another (the file's own before its components'), none reported twice as a knock-on.
+TEST(BrokenPipelineCorpus, TenMistakesAreTenErrorsInOneCheck) {
+  const fs::path file = fs::path(WYSIWYF_TEST_BROKEN_DIR) / "ten_mistakes.yaml";
+  const auto errors = all_errors(file);
+  std::string got;
+  for (const auto& e : errors) got += "  " + e.str() + "\n";
+  EXPECT_EQ(expectations(file).size(), 10u);
+  EXPECT_EQ(errors.size(), 10u) << got;
+  EXPECT_TRUE(std::is_sorted(errors.begin(), errors.end(), [](const ConfigIssue& a, const ConfigIssue& b) {
+    return a.where.line < b.where.line;
+  })) << got;
+}
 
 TEST(BrokenPipelineCorpus, HasAtLeastTwentyFiles) { EXPECT_GE(corpus().size(), 20u); }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,16 @@ constexpr int kPipelineFormatVersion = 1;
 // Reads a pipeline file and its includes, then applies `--set path=value` overrides in order.
 // Throws ConfigError listing every syntax and schema problem with file:line:column.
 PipelineSpec load_pipeline(const std::string& file, const std::vector<std::string>& overrides = {});
+
+// The same, for reporting every problem of a file at once: what parsed (a wrong value left at its
+// default), every problem found, and the components with problems of their own, which the
+// validator should skip (validate_pipeline's `skip`) so that it reports no knock-on of them.
+struct ParsedPipeline {
+  PipelineSpec spec;
+  std::vector<ConfigIssue> issues;
+  std::set<std::string> failed_components;
+};
+ParsedPipeline parse_pipeline(const std::string& file, const std::vector<std::string>& overrides = {});
 PipelineSpec load_pipeline_from_string(const std::string& yaml, const std::string& file_name,
                                        const std::vector<std::string>& overrides = {});
 

@@ -33,6 +33,17 @@ struct ValidationResult {
 // `process` non-empty: also checks that the group exists.
 ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, const std::string& process = "");
 
+// A pipeline file, its includes and `--set`s, checked whole: every problem of the parser's and
+// of validation's at once, in file order (line, column), errors only where they are not the
+// knock-on of another (a component that did not parse is not validated). The spec is what
+// parsed; it runs only if validation.ok().
+struct CheckedPipeline {
+  PipelineSpec spec;
+  ValidationResult validation;
+};
+CheckedPipeline check_pipeline(const std::string& file, const std::vector<std::string>& overrides, Loader& loader,
+                               const std::string& process = "");
+
 // Levenshtein-closest of `candidates` to `word`, or "" when none is reasonably close.
 std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
 
