@@ -39,8 +39,8 @@ class Parser {
   static inline const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile",
                                                            "discovery_server"};
   static inline const std::vector<std::string> kComponentKeys = {
-      "type", "rate",    "process",         "enabled", "spin",   "priority",
-      "cpus", "trigger", "trigger_timeout", "params",  "topics", "qos"};
+      "type",   "rate",   "process", "enabled", "spin", "priority", "cpus", "trigger", "trigger_timeout",
+      "params", "topics", "qos",     "override"};
   static inline const std::vector<std::string> kQosKeys = {"reliability", "durability", "depth", "deadline"};
 
   std::vector<std::string> stack_;
@@ -74,6 +74,10 @@ class Parser {
   void apply_clock(const YAML::Node& n, const std::string& file, ClockSpec& clock);
   void apply_dds(const YAML::Node& n, const std::string& file, DdsSpec& dds);
   void apply_security(const YAML::Node& n, const std::string& file, SecuritySpec& security);
+  // A later file's entry for a component an earlier layer defined: its changes (no type:), or,
+  // with a type:, a new definition, which `override: true` must allow (then it replaces the
+  // earlier whole and true is returned); otherwise an error naming both places, and false.
+  bool redefines(const YAML::Node& key, const YAML::Node& n, const std::string& file, ComponentSpec& earlier);
 
   // One component (pipeline_schema_component.cpp).
   void apply_component(const YAML::Node& n, const std::string& file, ComponentSpec& c);

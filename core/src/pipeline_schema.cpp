@@ -43,6 +43,7 @@ void Parser::apply(const YAML::Node& root, const std::string& file, PipelineSpec
       ComponentSpec* spec = nullptr;
       for (auto& c : into.components)
         if (c.name == name) spec = &c;
+      if (spec && !from_set && !redefines(it->first, it->second, file, *spec)) continue;
       if (!spec) {
         into.components.push_back(ComponentSpec{});
         spec = &into.components.back();
@@ -55,6 +56,30 @@ void Parser::apply(const YAML::Node& root, const std::string& file, PipelineSpec
     }
     check_duplicates(n, file);
   }
+}
+
+bool Parser::redefines(const YAML::Node& key, const YAML::Node& n, const std::string& file, ComponentSpec& earlier) {
+  if (!n.IsMap() || !n["type"]) return true;  // (a later file's changes to some of its keys)
+  bool replace = false;
+  if (const YAML::Node o = n["override"]; o && !detail::scalar_to_bool(o, replace)) {
+    error(at(o, file), "component '" + earlier.name + "' override: found " + describe_node(o) +
+                           "; expected true (this definition replaces the earlier one whole) or false");
+    failed_components.insert(earlier.name);
+    return false;
+  }
+  if (!replace) {
+    error(at(key, file), "component '" + earlier.name + "' is defined again (with a type); it was defined at " +
+                             earlier.where.str() + ". Expected either its changes only, without type: (`" +
+                             earlier.name + ": {params: {...}}` changes those keys), or `override: true` to replace " +
+                             "it whole");
+    failed_components.insert(earlier.name);
+    return false;
+  }
+  const std::string name = earlier.name;
+  earlier = ComponentSpec{};
+  earlier.name = name;
+  earlier.where = at(key, file);
+  return true;
 }
 
 void Parser::apply_clock(const YAML::Node& n, const std::string& file, ClockSpec& clock) {

@@ -48,6 +48,24 @@ TEST(PipelineFile, IncludeThenOverrideThenSet) {
   EXPECT_EQ(spec.processes(), (std::vector<std::string>{"main"}));
 }
 
+// A later file that defines an included component again (with a type) replaces it whole when it
+// says `override: true`: none of the earlier definition's parameters is kept.
+TEST(PipelineFile, AnOverrideReplacesAnIncludedComponentWhole) {
+  const auto dir = scratch_dir();
+  std::ofstream(dir / "base.yaml") << "wysiwyf: 1\nclock: {mode: sim, step: 1ms}\ncomponents:\n"
+                                      "  a: {type: test_probe, rate: 100, params: {gain: 1, record: x.txt}}\n";
+  std::ofstream(dir / "top.yaml") << "wysiwyf: 1\ninclude: base.yaml\ncomponents:\n"
+                                     "  a: {type: test_probe, rate: 50, override: true, params: {gain: 2}}\n";
+  const PipelineSpec spec = load_pipeline((dir / "top.yaml").string());
+  const ComponentSpec* a = spec.find("a");
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->rate.value, 50);
+  EXPECT_EQ(a->params.at("gain").value.as<double>(), 2.0);
+  EXPECT_EQ(a->params.count("record"), 0u);
+  EXPECT_EQ(a->where.line, 4);
+  EXPECT_NE(a->where.file.find("top.yaml"), std::string::npos);
+}
+
 // `~` in a later file or --set removes a key set before: a parameter or topic goes back to the
 // component's default, a component leaves the pipeline, a clock or real-time key is unset.
 TEST(PipelineFile, ANullRemovesAParameterATopicOrAComponent) {
