@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pipeline_parser.hpp"
+#include "yaml_delimiters.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/search_paths.hpp"
 #include "wysiwyf/validator.hpp"
@@ -12,6 +13,15 @@
 namespace fs = std::filesystem;
 
 namespace wysiwyf::detail {
+
+// "the '{' opened here is never closed", or closed by the other kind of bracket.
+static std::string describe(const UnclosedDelimiter& d) {
+  const std::string what = d.open == '"' || d.open == '\'' ? "quote" : "bracket";
+  const std::string opened = std::string("the ") + what + " " + d.open + " opened here";
+  if (!d.found) return opened + " is never closed";
+  return opened + " is closed by a '" + d.found + "' at line " + std::to_string(d.found_line) + ", column " +
+         std::to_string(d.found_column) + "; expected '" + (d.open == '[' ? ']' : '}') + "'";
+}
 
 void Parser::parse_file(const std::string& path, PipelineSpec& into, const Location& included_from) {
   const std::string canonical = fs::weakly_canonical(path).string();
@@ -42,10 +52,21 @@ void Parser::parse_file(const std::string& path, PipelineSpec& into, const Locat
 
 void Parser::parse_text(const std::string& text, const std::string& file, PipelineSpec& into) {
   YAML::Node root;
+  const auto unclosed = unclosed_delimiter(text);
   try {
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    error(Location{file, e.mark.line + 1, e.mark.column + 1}, "YAML syntax error: " + e.msg);
+    // At the bracket or quote left open, where one is: that is where the mistake is.
+    const Location noticed{file, e.mark.line + 1, e.mark.column + 1};
+    if (unclosed)
+      error(Location{file, unclosed->line, unclosed->column},
+            "YAML syntax error: " + describe(*unclosed) + " (YAML noticed at " + noticed.str() + ": " + e.msg + ")");
+    else
+      error(noticed, "YAML syntax error: " + e.msg);
+    return;
+  }
+  if (unclosed && (unclosed->open == '"' || unclosed->open == '\'')) {  // (yaml-cpp takes the rest as its text)
+    error(Location{file, unclosed->line, unclosed->column}, "YAML syntax error: " + describe(*unclosed));
     return;
   }
   if (!root.IsMap()) {

@@ -48,6 +48,27 @@ TEST(PipelineFile, IncludeThenOverrideThenSet) {
   EXPECT_EQ(spec.processes(), (std::vector<std::string>{"main"}));
 }
 
+// The search for an unclosed bracket or quote (named in a syntax error) reads YAML's rules: an
+// apostrophe or a bracket inside plain text, '' and \" inside quotes, a # inside quotes and a
+// quoted text over two lines open nothing.
+TEST(PipelineFile, QuotesAndBracketsInsideTextOpenNothing) {
+  const std::string yaml =
+      "wysiwyf: 1\n"
+      "name: don't stop # it's a comment with a [ and a \"\n"
+      "components:\n"
+      "  a: {type: 'test_probe', rate: 100, params: {record: 'it''s # not a comment'}}\n"
+      "  b:\n"
+      "    type: \"test_probe\"\n"
+      "    rate: 100\n"
+      "    params: {lifecycle_log: \"a \\\" b\n      c\", weights: [1, 0, 0]}\n"
+      "    process: x[1]\n";
+  const PipelineSpec spec = load_pipeline_from_string(yaml, "tricky.yaml");
+  EXPECT_EQ(spec.name.value, "don't stop");
+  ASSERT_NE(spec.find("b"), nullptr);
+  EXPECT_EQ(spec.find("b")->process.value, "x[1]");
+  EXPECT_EQ(spec.find("a")->params.at("record").value.as<std::string>(), "it's # not a comment");
+}
+
 // A later file that defines an included component again (with a type) replaces it whole when it
 // says `override: true`: none of the earlier definition's parameters is kept.
 TEST(PipelineFile, AnOverrideReplacesAnIncludedComponentWhole) {
