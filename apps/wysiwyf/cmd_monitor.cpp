@@ -6,7 +6,9 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
+#include <functional>
 #include <limits>
 #include <cmath>
 #include <cstdio>
@@ -87,34 +89,90 @@ std::string label(const std::string& enumerator) {
   return out;
 }
 
-int terminal_width() {
+// The terminal's size (columns, rows); 160 x 1000 when not a terminal (a pipe, a file: no limit).
+std::pair<int, int> terminal_size() {
   winsize w{};
-  if (isatty(STDOUT_FILENO) && ioctl(STDOUT_FILENO, TIOCGWINSZ, &w) == 0 && w.ws_col > 40) return w.ws_col;
-  return 160;
+  if (isatty(STDOUT_FILENO) && ioctl(STDOUT_FILENO, TIOCGWINSZ, &w) == 0 && w.ws_col > 0)
+    return {std::max<int>(w.ws_col, 40), std::max<int>(w.ws_row, 4)};
+  return {160, 1000};
 }
 
-// The table, one row per component, ordered by process group then name.
+// One column of the table: its heading, width (with the space before it), side, and the text of
+// a row. `keep`: the narrower the terminal, the fewer columns kept, lowest keep dropped first.
+struct Column {
+  const char* heading;
+  int width;
+  bool left;
+  int keep;
+  std::function<std::string(const json&, const std::string& state)> text;
+};
+
+const std::vector<Column>& columns() {
+  static const std::vector<Column> all{
+      {"component", 16, true, 100, [](const json& j, const std::string&) { return fit(j.value("instance", ""), 15); }},
+      {"type", 18, true, 10, [](const json& j, const std::string&) { return fit(j.value("type", ""), 17); }},
+      {"process", 10, true, 50, [](const json& j, const std::string&) { return fit(j.value("process", ""), 9); }},
+      {"state", 9, true, 90, [](const json&, const std::string& state) { return fit(state, 8); }},
+      {"rate Hz", 15, false, 80,
+       [](const json& j, const std::string&) { return num(j, "tick_rate_hz", 1) + "/" + num(j, "rate_hz", 0); }},
+      {"p50 us", 9, false, 20, [](const json& j, const std::string&) { return num(j, "tick_time_p50_us", 1); }},
+      {"p99 us", 9, false, 70, [](const json& j, const std::string&) { return num(j, "tick_time_p99_us", 1); }},
+      {"overrun", 9, false, 60, [](const json& j, const std::string&) { return num(j, "overruns", 0); }},
+      {"dropped", 9, false, 40, [](const json& j, const std::string&) { return num(j, "dropped_samples", 0); }},
+      {"rejected", 9, false, 30, [](const json& j, const std::string&) { return num(j, "rejected_samples", 0); }},
+      {"warn", 7, false, 45, [](const json& j, const std::string&) { return num(j, "warnings", 0); }},
+  };
+  return all;
+}
+
+// The columns that fit `width` with room for the problem column (at least kMinProblem), in order.
+constexpr int kMinProblem = 10;
+std::vector<const Column*> columns_for(int width) {
+  std::vector<const Column*> kept;
+  int total = 2 + kMinProblem;  // ("  problem")
+  for (const auto& c : columns()) {
+    kept.push_back(&c);
+    total += c.width;
+  }
+  while (total > width && kept.size() > 1) {
+    auto lowest =
+        std::min_element(kept.begin(), kept.end(), [](const Column* a, const Column* b) { return a->keep < b->keep; });
+    total -= (*lowest)->width;
+    kept.erase(lowest);
+  }
+  return kept;
+}
+
+// The table, one row per component, ordered by process group then name, fitted to the terminal:
+// no line longer than its width (columns dropped, the problem cut), no more lines than its rows.
 std::string render(int domain, const std::map<std::string, std::pair<json, Clock::time_point>>& rows,
-                   const std::map<std::string, std::pair<json, Clock::time_point>>& mode, int width) {
+                   const std::map<std::string, std::pair<json, Clock::time_point>>& mode, std::pair<int, int> size) {
+  const auto [width, height] = size;
   std::ostringstream out;
-  out << "wysiwyf monitor  domain " << domain << "  ";
+  std::ostringstream title;
+  title << "wysiwyf monitor  domain " << domain << "  ";
   if (auto it = mode.find(""); it != mode.end()) {
     const auto& m = it->second.first;
-    out << "display mode: " << label(m.value("mode", "?"));
-    if (!m.value("reason", "").empty()) out << " (" << m.value("reason", "") << ")";
+    title << "display mode: " << label(m.value("mode", "?"));
+    if (!m.value("reason", "").empty()) title << " (" << m.value("reason", "") << ")";
   } else {
-    out << "display mode: -";
+    title << "display mode: -";
   }
-  out << "\n";
+  out << fit(title.str(), static_cast<std::size_t>(width)) << "\n";
   if (rows.empty()) {
-    out << "(no component has reported yet: the kernel publishes wysiwyf/diagnostics once a second)\n";
+    out << fit("(no component has reported yet: the kernel publishes wysiwyf/diagnostics once a second)",
+               static_cast<std::size_t>(width))
+        << "\n";
     return out.str();
   }
-  out << std::left << std::setw(16) << "component" << std::setw(18) << "type" << std::setw(10) << "process"
-      << std::setw(9) << "state" << std::right << std::setw(15) << "rate Hz" << std::setw(9) << "p50 us" << std::setw(9)
-      << "p99 us" << std::setw(9) << "overrun" << std::setw(9) << "dropped" << std::setw(9) << "rejected"
-      << std::setw(7) << "warn"
-      << "  problem\n";
+  const auto shown = columns_for(width);
+  int used = 0;
+  for (const Column* c : shown) {
+    out << (c->left ? std::left : std::right) << std::setw(c->width) << c->heading;
+    used += c->width;
+  }
+  const auto problem_width = static_cast<std::size_t>(std::max(0, width - used - 2));
+  out << (problem_width >= 7 ? "  problem" : "") << "\n";
   std::vector<std::pair<std::string, const json*>> ordered;
   std::map<std::string, double> age;
   const auto now = Clock::now();
@@ -123,21 +181,25 @@ std::string render(int domain, const std::map<std::string, std::pair<json, Clock
     age[instance] = std::chrono::duration<double>(now - row.second).count();
   }
   std::sort(ordered.begin(), ordered.end());
-  for (const auto& [order, j] : ordered) {
-    const std::string instance = j->value("instance", "");
-    std::string state = label(j->value("state", "?"));
+  // (Two lines of headings; a last line says how many rows did not fit.)
+  const std::size_t room = static_cast<std::size_t>(std::max(1, height - 2));
+  const std::size_t listed = ordered.size() <= room ? ordered.size() : room - 1;
+  for (std::size_t i = 0; i < listed; ++i) {
+    const json& j = *ordered[i].second;
+    const std::string instance = j.value("instance", "");
+    std::string state = label(j.value("state", "?"));
     if (age[instance] > 3.0) state = "silent";  // its process stopped reporting
-    std::string problem = j->value("last_error", "");
-    if (problem.empty()) problem = j->value("last_warning", "");
-    if (problem.empty()) problem = dropped_by_port(*j);
-    const std::string rate = num(*j, "tick_rate_hz", 1) + "/" + num(*j, "rate_hz", 0);
-    out << std::left << std::setw(16) << fit(instance, 15) << std::setw(18) << fit(j->value("type", ""), 17)
-        << std::setw(10) << fit(j->value("process", ""), 9) << std::setw(9) << state << std::right << std::setw(15)
-        << rate << std::setw(9) << num(*j, "tick_time_p50_us", 1) << std::setw(9) << num(*j, "tick_time_p99_us", 1)
-        << std::setw(9) << num(*j, "overruns", 0) << std::setw(9) << num(*j, "dropped_samples", 0) << std::setw(9)
-        << num(*j, "rejected_samples", 0) << std::setw(7) << num(*j, "warnings", 0) << "  "
-        << fit(problem, static_cast<std::size_t>(std::max(10, width - 117))) << "\n";
+    std::string problem = j.value("last_error", "");
+    if (problem.empty()) problem = j.value("last_warning", "");
+    if (problem.empty()) problem = dropped_by_port(j);
+    for (const Column* c : shown) out << (c->left ? std::left : std::right) << std::setw(c->width) << c->text(j, state);
+    if (problem_width >= 7 && !problem.empty()) out << "  " << fit(problem, problem_width);
+    out << "\n";
   }
+  if (listed < ordered.size())
+    out << fit("... " + std::to_string(ordered.size() - listed) + " more component(s): a taller terminal shows them",
+               static_cast<std::size_t>(width))
+        << "\n";
   return out.str();
 }
 
@@ -161,6 +223,7 @@ int cmd_monitor(Args args) {
   bool reading_diagnostics = false, reading_mode = false;
   const auto start = Clock::now();
   auto next_draw = start;
+  std::pair<int, int> drawn_size{0, 0};
   if (tty && !once) std::cout << "\x1b[2J\x1b[?25l";  // a clear screen, no cursor while redrawing
   while (!stop_signal_received() && (duration == 0 || Clock::now() - start < std::chrono::duration<double>(duration))) {
     const auto topics = s.discovery.topics();
@@ -176,13 +239,21 @@ int cmd_monitor(Args args) {
       if (once) {
         if (!rows.empty() || Clock::now() - start > std::chrono::seconds(10)) {
           std::this_thread::sleep_for(std::chrono::milliseconds(2200));  // a full window from every process
-          std::cout << render(s.domain, diagnostics.samples(), mode.samples(), terminal_width()) << std::flush;
+          std::cout << render(s.domain, diagnostics.samples(), mode.samples(), terminal_size()) << std::flush;
           return rows.empty() ? 1 : 0;
         }
       } else {
-        const std::string table = render(s.domain, rows, mode.samples(), terminal_width());
-        // In place on a terminal (home, the table, clear the rest); one table after another otherwise.
-        std::cout << (tty ? "\x1b[H" : "") << table << (tty ? "\x1b[J" : "\n") << std::flush;
+        const auto size = terminal_size();
+        std::string table = render(s.domain, rows, mode.samples(), size);
+        if (tty) {  // in place: each line cleared to its end, the rest below cleared; all of it after a resize
+          for (std::size_t at = table.find('\n'); at != std::string::npos; at = table.find('\n', at + 4))
+            table.replace(at, 1, "\x1b[K\n");
+          if (!table.empty() && table.back() == '\n') table.pop_back();  // (no scroll on the last row)
+          std::cout << (size != drawn_size ? "\x1b[2J" : "") << "\x1b[H" << table << "\x1b[K\x1b[J" << std::flush;
+          drawn_size = size;
+        } else {
+          std::cout << table << "\n" << std::flush;  // one table after another
+        }
       }
       next_draw += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval));
     }

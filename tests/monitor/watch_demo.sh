@@ -6,7 +6,8 @@
 #  2. headless Chromium loads the bridge's web dashboard: the page's DOM holds every component of
 #     the demo with live rates, a plot with data and video frames (a screenshot is kept in
 #     BUILD_DIR/Testing/monitor/dashboard.png);
-#  3. `wysiwyf monitor` in tmux shows every component of the running pipeline, redrawn in place.
+#  3. `wysiwyf monitor` in tmux shows every component of the running pipeline, redrawn in place,
+#     and at 80x24, 100x30 and 200x50 every component on a row of its own, none wrapped.
 # Usage: watch_demo.sh BUILD_DIR SOURCE_DIR DOMAIN
 set -euo pipefail
 build=$1 src=$2 domain=$3
@@ -93,5 +94,20 @@ tmux -L "$tmux_socket" capture-pane -p -t monitor >"$work/pane.txt"
 [[ $(grep -c "^wysiwyf monitor" "$work/pane.txt") == 1 ]] || fail "the table is not redrawn in place"
 grep -q "^physics  *admittance_sim  *main  *active" "$work/pane.txt" || fail "physics is not shown active"
 echo "ok: the monitor shows all ${#components[@]} components, in place"
+# At 80x24, 100x30 and 200x50 (resized as a user would): every component on one row of its own,
+# no row wrapped (a wrapped row would add a line), the table redrawn whole after each resize (in
+# whatever state: the demo may have ended its script by now).
+for size in 80x24 100x30 200x50; do
+  tmux -L "$tmux_socket" resize-window -t monitor -x "${size%x*}" -y "${size#*x}"
+  sleep 1.5
+  tmux -L "$tmux_socket" capture-pane -p -t monitor >"$work/pane.txt"
+  for c in "${components[@]}"; do
+    grep -Eq "^$c +([a-z0-9_]+ +)?main +[a-z]+ " "$work/pane.txt" || { cat "$work/pane.txt"; fail "at $size, no row for $c"; }
+  done
+  lines=$(grep -c . "$work/pane.txt")
+  ((lines == ${#components[@]} + 2)) ||
+    { cat "$work/pane.txt"; fail "at $size, $lines lines for ${#components[@]} components and 2 headings"; }
+  echo "ok: at $size, ${#components[@]} rows, none wrapped: $(sed -n 2p "$work/pane.txt" | tr -s ' ')"
+done
 # Watching never hurts the watched (a tool announcing type objects once crashed a pipeline).
 kill -0 "$demo" 2>/dev/null || { tail -20 "$work/run.log"; fail "the demo died while it was watched"; }
