@@ -26,6 +26,7 @@
 
 #include "cli.hpp"
 #include "dds_session.hpp"
+#include "yaml_field.hpp"
 #include "cdr_yaml.hpp"
 #include "idl_schemas.hpp"
 #include "raw_cdr_type.hpp"
@@ -128,6 +129,7 @@ int topic_echo(Args& args, const std::string& topic) {
   open(args, s);
   const long count = count_option(args, "--count");
   const double timeout = seconds_option(args, "--timeout", 10.0);
+  const std::optional<std::string> field = args.value("--field");
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   install_stop_signal_handlers();
   const auto info = s.discovery.wait_for_writer(
@@ -165,6 +167,14 @@ int topic_echo(Args& args, const std::string& topic) {
         text = print(sample);
       } catch (const std::runtime_error& e) {
         text = "# cannot read this sample: " + std::string(e.what()) + "\n";
+      }
+      if (field && text.rfind("# cannot read", 0) != 0) {
+        try {
+          text = yaml_field(text, *field);
+        } catch (const std::invalid_argument& e) {  // (every sample of the topic has the same fields)
+          std::cerr << e.what() << "\n";
+          return 2;
+        }
       }
       std::cout << "---\n" << text << std::flush;
       ++printed;

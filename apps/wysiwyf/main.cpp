@@ -95,8 +95,10 @@ const CommandHelp kCommands[] = {
 )"},
     {"topic", R"(  topic list [--domain N | --pipeline FILE] [--transport T] [--wait SECONDS]
   topic echo TOPIC [--domain N | --pipeline FILE] [--transport T] [--count N] [--timeout SECONDS]
+                   [--field PATH]
         (--timeout: how long to wait for the first sample, default 10; echo ends after --count
-        samples, on Ctrl-C, or when the topic's last writer leaves)
+        samples, on Ctrl-C, or when the topic's last writer leaves; --field header.stamp,
+        position.0: that field of each sample only)
   topic hz TOPIC [--domain N | --pipeline FILE] [--transport T] [--window SECONDS] [--duration SECONDS]
         Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
         or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes. hz gives
