@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "wysiwyf/real_time_readiness.hpp"
 #include "wysiwyf/runtime.hpp"
 #include "wysiwyf/validator.hpp"
 
@@ -68,6 +69,10 @@ int cmd_run(Args args) {
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   if (!loaded) return 2;
   install_stop_signal_handlers();
+  // On the real clock: what the pipeline asks of this machine, and what it gives.
+  if (loaded->spec.clock_mode() == ClockMode::kReal)
+    for (const auto& line : real_time_readiness(loaded->spec, process, read_machine_facts()))
+      std::cerr << (line.warning ? "warning: " : "") << line.text << "\n";
   RunOptions options;
   options.process = process;
   options.start_after_s = start_after;
