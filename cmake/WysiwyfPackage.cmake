@@ -14,6 +14,9 @@ install(FILES ${CMAKE_BINARY_DIR}/cmake/wysiwyfConfig.cmake ${CMAKE_BINARY_DIR}/
               ${PROJECT_SOURCE_DIR}/cmake/WysiwyfComponent.cmake ${PROJECT_SOURCE_DIR}/cmake/WysiwyfMessages.cmake
         DESTINATION ${WYSIWYF_INSTALL_CMAKE_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${WYSIWYF_INSTALL_CONFIG_DIR})
+# The manual: README, the guides and references (`wysiwyf --help` points at command-line.md), the licence.
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} FILES_MATCHING PATTERN "*.md")
 
 # cpack -G DEB (scripts/package): a lab installs it with apt install ./wysiwyf_*.deb.
 set(CPACK_PACKAGE_NAME wysiwyf)

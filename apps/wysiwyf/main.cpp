@@ -73,27 +73,33 @@ std::vector<std::string> Args::unknown_options() const {
 
 namespace {
 
-// Each command's usage: `wysiwyf --help` prints them all, `wysiwyf COMMAND --help` its own.
+// Each command: a line in `wysiwyf --help`, its usage in `wysiwyf COMMAND --help` (and, for the
+// commands that join a running pipeline's domain, the options they share, once).
 struct CommandHelp {
   const char* name;
+  const char* summary;
+  bool joins_domain;
   const char* text;
 };
 
 const CommandHelp kCommands[] = {
-    {"run", R"(  run FILE [--process NAME] [--set PATH=VALUE]... [--progress|--no-progress] [--start-after SECONDS]
+    {"run", "Run a pipeline, or one process group of it", false,
+     R"(  run FILE [--process NAME] [--set PATH=VALUE]... [--progress|--no-progress] [--start-after SECONDS]
         Run a pipeline (or one process group of it) until its duration ends, a component
         stops it, or Ctrl-C. PATH is e.g. tracker.params.threshold or clock.duration.
         --start-after: wait this long with DDS up before t = 0 (a recorder misses nothing).
 )"},
-    {"validate", R"(  validate FILE [--process NAME] [--set PATH=VALUE]... [--print-components]
+    {"validate", "Check a pipeline file: every mistake at once, where it is", false,
+     R"(  validate FILE [--process NAME] [--set PATH=VALUE]... [--print-components]
         Check a pipeline against the component libraries without running it
         (--print-components: print its components' names instead, one a line).
 )"},
-    {"components", R"(  components list
+    {"components", "The component types found, and one type's parameters and ports", false, R"(  components list
   components describe TYPE
         The component types found on the search path; a type's parameters and ports.
 )"},
-    {"topic", R"(  topic list [--domain N | --pipeline FILE] [--transport T] [--wait SECONDS]
+    {"topic", "List, print (echo) or time (hz) the topics of running pipelines", true,
+     R"(  topic list [--domain N | --pipeline FILE] [--transport T] [--wait SECONDS]
   topic echo TOPIC [--domain N | --pipeline FILE] [--transport T] [--count N] [--timeout SECONDS]
                    [--field PATH]
         (--timeout: how long to wait for the first sample, default 10; echo ends after --count
@@ -103,34 +109,23 @@ const CommandHelp kCommands[] = {
         Inspect the topics of running pipelines on a DDS domain. echo prints any type this build
         or a message library (wysiwyf_add_messages, in lib/wysiwyf/messages) describes. hz gives
         the wall-clock rate and, for stamped types, the rate on the pipeline's own clock.
-        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
-        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
-        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
-        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
-    {"monitor",
+    {"monitor", "The component table of every process on a domain, live", true,
      R"(  monitor [--domain N | --pipeline FILE] [--transport T] [--interval SECONDS] [--duration SECONDS] [--once]
         The component table of every process on the domain (state, achieved rate, tick p50/p99,
         overruns, dropped and rejected samples, warnings, the last problem) and the display mode,
         redrawn in place every --interval (0.5 s). --once prints one table and exits.
-        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
-        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
-        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
-        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
-    {"bridge", R"(  bridge [TOPIC...] [--domain N | --pipeline FILE] [--transport T] [--port P] [--address A]
+    {"bridge", "Serve a domain to Foxglove and to the web dashboard", true,
+     R"(  bridge [TOPIC...] [--domain N | --pipeline FILE] [--transport T] [--port P] [--address A]
          [--video TOPIC] [--plot TOPIC:FIELD]... [--duration SECONDS] [--web-root DIR]
         Serve the domain to Foxglove (WebSocket protocol v1 at ws://A:P, default 127.0.0.1:8765:
         every topic advertised with its OMG IDL, samples as CDR, images included) and the web
         dashboard at http://A:P/ (component table, display mode, live plots, the --video topic,
         default display/view). A topic is read only while someone subscribes to it.
         --address 0.0.0.0 serves other machines too (anyone who can reach the port can watch).
-        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
-        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
-        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
-        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
-    {"record",
+    {"record", "Record topics of a running pipeline into an MCAP file", true,
      R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
          [--compression zstd|lz4|none]
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
@@ -138,43 +133,54 @@ const CommandHelp kCommands[] = {
         half second (a killed recorder leaves a file readable up to its last chunk).
         --compression: of each chunk, lossless; zstd (default, level 1: the smallest files that
         keep up with the demo's images), lz4 (faster, larger), none. play reads all three.
-        A pipeline on the real clock sends to it in batches, every 5 ms, so that watching does
-        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
-        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
-        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
-    {"play",
+    {"play", "Replay an MCAP file into a pipeline (bit for bit) or onto a domain", true,
      R"(  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]
         Run PIPELINE on the sim clock with the recorded samples delivered to its readers in the
         step of their stamps (a recorded run replays bit for bit; --rate is the pace, 0 flat out).
   play FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--topics A,B] [--rate R] [--loop]
         Publish the recorded samples onto a DDS domain on the real clock, spaced as recorded.
-        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
-        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
 )"},
-    {"discovery-server", R"(  discovery-server [--listen IPV4:PORT] [--id N] [--domain N]
+    {"discovery-server", "A Fast DDS Discovery Server, for networks without multicast", false,
+     R"(  discovery-server [--listen IPV4:PORT] [--id N] [--domain N]
         A Fast DDS Discovery Server (default 0.0.0.0:11811, id 0), for networks without multicast:
         pipelines name it (dds: {discovery_server: 10.0.0.5:11811}; a list for servers 0, 1, ...),
         the tools take --discovery-server 10.0.0.5:11811. Runs until Ctrl-C.
 )"},
-    {"new", R"(  new component NAME [--dir DIR]
+    {"new", "Write an out-of-tree component folder that builds and passes its test", false,
+     R"(  new component NAME [--dir DIR]
         Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
         a Harness test) that builds and passes as written.
 )"},
 };
 
+const char* kDomainOptions = R"(
+  Joining a running pipeline's domain (--domain N, or --pipeline FILE for its domain, transport,
+  keys and discovery servers; --transport default|local|shm|udp|loopback):
+        A pipeline on the real clock sends to a tool in batches, every 5 ms, so that watching does
+        not slow its loops; --prompt: each sample as it is written (arrival times as sent).
+        Secured domain: --identity NAME [--keys DIR] (default: the --pipeline's keys, monitor).
+        Without multicast: --discovery-server IPV4:PORT[,...] (default: the --pipeline's).
+)";
+
 const char* kFooter = R"(
-Components are searched in $WYSIWYF_COMPONENT_PATH, then lib/wysiwyf beside or above the program,
-then lib/wysiwyf beside libwysiwyf_core.so; configuration files (scenes, robots, included
-pipelines) in $WYSIWYF_CONFIG_PATH, then the prefix's share/wysiwyf/config.
-Exit status: 0 success, 1 the run failed (a component threw, faulted or held: the table's state
-column says which and why), 2 a usage or configuration error.
+Components are searched in $WYSIWYF_COMPONENT_PATH, then lib/wysiwyf beside or above the program;
+configuration files (scenes, robots, pipelines) in $WYSIWYF_CONFIG_PATH, then share/wysiwyf/config.
+Exit status: 0 success, 1 the run failed (the table's state column says why), 2 a usage or
+configuration error. Every command in full: share/doc/wysiwyf/command-line.md (docs/ in the source).
 )";
 
 void print_usage(std::ostream& out) {
-  out << "usage: wysiwyf <command> [options]     (wysiwyf <command> --help: one command)\n\n";
-  for (const auto& c : kCommands) out << c.text;
+  out << "usage: wysiwyf <command> [options]     (wysiwyf <command> --help: its options)\n\n";
+  for (const auto& c : kCommands) {
+    const std::string name = c.name;
+    out << "  " << name << std::string(name.size() < 18 ? 18 - name.size() : 1, ' ') << c.summary << "\n";
+  }
   out << kFooter;
+}
+
+void print_command_usage(const CommandHelp& c) {
+  std::cout << "usage:\n" << c.text << (c.joins_domain ? kDomainOptions : "");
 }
 
 const CommandHelp* find_command(const std::string& name) {
@@ -189,7 +195,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     if (args.size() > 1 && args[0] == "help" && find_command(args[1])) {
-      std::cout << "usage:\n" << find_command(args[1])->text;
+      print_command_usage(*find_command(args[1]));
       return 0;
     }
     print_usage(args.empty() ? std::cerr : std::cout);
@@ -203,7 +209,7 @@ int main(int argc, char** argv) {
   const CommandHelp* help = find_command(command);
   if (help && std::find_if(args.begin() + 1, args.end(),
                            [](const std::string& a) { return a == "--help" || a == "-h"; }) != args.end()) {
-    std::cout << "usage:\n" << help->text;
+    print_command_usage(*help);
     return 0;
   }
   wysiwyf::cli::Args rest(std::vector<std::string>(args.begin() + 1, args.end()));

@@ -3,7 +3,10 @@
 // the rate on the pipeline's own clock next to the wall clock's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 #include "../kernel/cli_process.hpp"
 #include "../kernel/test_support.hpp"
@@ -20,6 +23,19 @@ TEST(CommandLine, HelpWorksOnEveryCommand) {
     EXPECT_EQ(wait_exit(spawn_cli({command, "--help"}, log), std::chrono::seconds(30)), 0) << command;
     const std::string text = read_file(log);
     EXPECT_EQ(text.rfind("usage:\n  " + command, 0), 0u) << command << ": " << text;
+  }
+  // `wysiwyf --help` is a page: a line a command. A command's own help says each thing once
+  // (the options shared by the commands that join a domain are their own paragraph).
+  EXPECT_EQ(wait_exit(spawn_cli({"--help"}, dir / "all.log"), std::chrono::seconds(30)), 0);
+  const std::string all = read_file(dir / "all.log");
+  EXPECT_LE(std::count(all.begin(), all.end(), '\n'), 24) << all;
+  for (const std::string command : {"run", "validate", "topic", "monitor", "bridge", "record", "play", "new"})
+    EXPECT_NE(all.find("\n  " + command + " "), std::string::npos) << command << " is not listed:\n" << all;
+  for (const std::string command : {"topic", "monitor", "bridge", "record", "play"}) {
+    std::istringstream lines(read_file(dir / (command + ".log")));
+    std::set<std::string> seen;
+    for (std::string line; std::getline(lines, line);)
+      EXPECT_TRUE(line.size() < 20 || seen.insert(line).second) << command << " --help repeats: " << line;
   }
   // A sub-command's --help is its command's.
   EXPECT_EQ(wait_exit(spawn_cli({"topic", "echo", "--help"}, dir / "echo.log"), std::chrono::seconds(30)), 0);
