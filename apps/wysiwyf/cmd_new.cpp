@@ -20,6 +20,10 @@ cmake_minimum_required(VERSION 3.22)
 project(@NAME@ LANGUAGES CXX)
 set(CMAKE_CXX_STANDARD 17)
 set(CMAKE_CXX_STANDARD_REQUIRED ON)
+# A component runs in a 1 kHz loop: optimised, with debug information, unless asked otherwise.
+if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
+  set(CMAKE_BUILD_TYPE RelWithDebInfo CACHE STRING "Build type" FORCE)
+endif()
 
 find_package(wysiwyf REQUIRED)
 find_package(GTest REQUIRED)

@@ -60,6 +60,11 @@ step "wysiwyf new component gesture_gain: builds and its test passes as written"
 wysiwyf new component gesture_gain --dir "$scratch/scaffold"
 cmake_user "$scratch/scaffold"
 ctest --test-dir "$scratch/scaffold/build" --output-on-failure || fail "the scaffold's test"
+# Configured as its comment says, without a build type, it builds optimised with debug information.
+cmake -S "$scratch/scaffold" -B "$scratch/scaffold/build-as-written" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+  >"$scratch/scaffold.default.log" 2>&1 || { cat "$scratch/scaffold.default.log"; fail "configuring the scaffold as written"; }
+grep -q '^CMAKE_BUILD_TYPE:STRING=RelWithDebInfo$' "$scratch/scaffold/build-as-written/CMakeCache.txt" ||
+  fail "the scaffold's default build type is not RelWithDebInfo"
 
 step "docs/writing-a-component.md's project, out of tree"
 project=$scratch/contacts
