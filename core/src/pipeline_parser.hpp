@@ -32,8 +32,8 @@ class Parser {
   void apply_set(const std::string& assignment, PipelineSpec& into);
 
  private:
-  static inline const std::vector<std::string> kTopKeys = {"wysiwyf", "name", "include",  "domain",
-                                                           "clock",   "dds",  "security", "components"};
+  static inline const std::vector<std::string> kTopKeys = {"wysiwyf", "name",     "include",  "domain",    "clock",
+                                                           "dds",     "security", "insecure", "components"};
   static inline const std::vector<std::string> kSecurityKeys = {"keys", "identities"};
   static inline const std::vector<std::string> kClockKeys = {"mode", "step", "duration", "pace"};
   static inline const std::vector<std::string> kDdsKeys = {"transport", "profiles", "participant_profile",

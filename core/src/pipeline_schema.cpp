@@ -21,6 +21,14 @@ void Parser::apply(const YAML::Node& root, const std::string& file, PipelineSpec
     else
       into.domain.assign(d, at(n, file));
   }
+  if (const YAML::Node n = root["insecure"]) {
+    if (bool insecure = false; detail::scalar_to_bool(n, insecure))
+      into.insecure.assign(insecure, at(n, file));
+    else
+      error(at(n, file), "insecure: found " + describe_node(n) +
+                             "; expected true (one-writer streams between processes without DDS-Security, "
+                             "knowingly) or false");
+  }
   if (const YAML::Node n = root["clock"]; n && expect_map(n, file, "clock")) apply_clock(n, file, into.clock);
   if (const YAML::Node n = root["dds"]; n && expect_map(n, file, "dds")) apply_dds(n, file, into.dds);
   if (const YAML::Node n = root["security"]; n && expect_map(n, file, "security"))

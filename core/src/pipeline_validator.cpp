@@ -76,6 +76,25 @@ void check_across_processes(const std::string& topic, const std::vector<PortUse>
   }
 }
 
+// A one-writer input (the arm's setpoint) that takes its writer from another process group
+// without DDS-Security trusts a name any participant on the domain can claim: refused unless the
+// pipeline says `insecure: true`. (An input that no component writes, a driver's pipeline fed by
+// a program of the lab's, is left to the warning that nobody publishes it.)
+template <class Error>
+void check_remote_one_writer(const PipelineSpec& spec, const std::string& topic, const std::vector<PortUse>& uses,
+                             const PortUse& input, Error& error) {
+  if (spec.security.enabled() || (spec.insecure.set && spec.insecure.value)) return;
+  const auto writer =
+      std::find_if(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
+  if (writer == uses.end() || writer->process == input.process) return;
+  error(input.where, "topic '" + topic + "': " + input.label + " (process group '" + input.process +
+                         "') takes its one writer from " + writer->label + " in process group '" + writer->process +
+                         "'" +
+                         ", over DDS without security, where any participant on the domain can claim that name; "
+                         "expected `security:` (docs/deployment.md), or `insecure: true` at the top of the pipeline "
+                         "to accept it knowingly");
+}
+
 }  // namespace
 
 ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, const std::string& process) {
@@ -94,7 +113,8 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         "every participant on domain " + std::to_string(spec.domain_id()) + " is trusted and its samples are read";
     result.warnings.push_back(
         {Location{spec.file, 0, 0},
-         "the process groups (" + join(spec.processes()) + ") talk over DDS without security: " + trusted +
+         std::string(spec.insecure.set && spec.insecure.value ? "INSECURE (insecure: true): " : "") +
+             "the process groups (" + join(spec.processes()) + ") talk over DDS without security: " + trusted +
              ". A one-writer topic (the arm's setpoint) is taken only from the group that writes it here, by a "
              "name that is not authenticated; across machines, turn on `security:` (docs/deployment.md)"});
   }
@@ -215,6 +235,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
       return u.single_writer && u.direction == PortDirection::kInput;
     });
     if (one_writer == uses.end()) continue;
+    check_remote_one_writer(spec, topic, uses, *one_writer, error);
     // Between processes the topic has DDS exclusive ownership, which a writer must declare too.
     for (const auto& use : uses)
       if (use.direction == PortDirection::kOutput && !use.single_writer && use.process != one_writer->process)

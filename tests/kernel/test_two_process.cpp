@@ -97,7 +97,7 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
 TEST(TwoProcesses, ARestartedWriterOwnsAOneWriterTopicOnceTheKilledOnesLivelinessLapses) {
   const fs::path dir = scratch_dir();
   const fs::path pipeline = dir / "one_writer.yaml";
-  std::ofstream(pipeline) << "wysiwyf: 1\nname: handover\ndomain: 127\ndds: {transport: local}\n"
+  std::ofstream(pipeline) << "wysiwyf: 1\nname: handover\ndomain: 127\ndds: {transport: local}\ninsecure: true\n"
                              "clock: {mode: real}\n"
                              "components:\n"
                              "  src: {type: test_probe, rate: 50, process: producer, topics: {out: requests},\n"

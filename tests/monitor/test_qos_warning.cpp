@@ -62,7 +62,7 @@ fs::path producer_and_consumer(const fs::path& dir, const std::string& name, int
                                const std::string& params) {
   const fs::path pipeline = dir / (name + ".yaml");
   std::ofstream(pipeline) << "wysiwyf: 1\nname: " << name << "\ndomain: " << domain
-                          << "\ndds: {transport: local}\nclock: {mode: real, duration: " << seconds
+                          << "\ndds: {transport: local}\ninsecure: true\nclock: {mode: real, duration: " << seconds
                           << "s}\ncomponents:\n"
                              "  src: {type: test_probe, rate: 100, process: producer, topics: {out: crossing},\n"
                              "        params: "

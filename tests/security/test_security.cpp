@@ -209,7 +209,10 @@ class Security : public ::testing::Test {
     pipeline_ = dir_ / "pipeline.yaml";
     std::ofstream out(pipeline_);
     out << "wysiwyf: 1\nname: secured\ndomain: " << domain << "\ndds: {transport: loopback}\n";
-    if (secured) out << "security: {keys: " << keys_.string() << ", identities: {display: display, robot: robot}}\n";
+    if (secured)
+      out << "security: {keys: " << keys_.string() << ", identities: {display: display, robot: robot}}\n";
+    else
+      out << "insecure: true\n";  // (the arm's setpoint crosses groups without security: knowingly)
     out << "clock: {mode: real, duration: 120s}\n"
            "components:\n"
            "  setpoints:\n"

@@ -103,6 +103,9 @@ struct PipelineSpec {
   ClockSpec clock;
   DdsSpec dds;
   SecuritySpec security;
+  // `insecure: true`: the pipeline takes a one-writer stream (the arm's setpoint) from another
+  // process without DDS-Security, knowingly (validation refuses it otherwise).
+  Sourced<bool> insecure;
   std::vector<ComponentSpec> components;  // in file order (included files first)
 
   const ComponentSpec* find(const std::string& instance) const;
