@@ -9,6 +9,7 @@
 #include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
 #include "wysiwyf/dds_discovery.hpp"
+#include "wysiwyf/dds_log.hpp"
 #include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/pipeline_spec.hpp"
 #include "wysiwyf/stale_shared_memory.hpp"
@@ -39,6 +40,7 @@ DataReader* open_raw_reader(Session& s, Subscriber* subscriber, const std::strin
 
 // --domain / --pipeline / --transport -> a participant that listens to discovery.
 void open(Args& args, Session& s) {
+  dds::route_fast_dds_log();
   int domain = 0;
   std::string transport = "default";
   std::string keys;

@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "wysiwyf/dds.hpp"
+#include "wysiwyf/dds_log.hpp"
 #include "wysiwyf/dds_discovery.hpp"
 #include "wysiwyf/stale_shared_memory.hpp"
 
@@ -113,6 +114,7 @@ DdsBridge::DdsBridge(const DdsParticipantOptions& o, std::function<void(const st
     : writer_participants_(o.writer_participants),
       report_(std::move(report)),
       data_sharing_(dds::uses_data_sharing(o.transport)) {
+  dds::route_fast_dds_log();  // (Fast DDS's own messages: once each, then counted)
   auto* factory = DomainParticipantFactory::get_instance();
   if (!o.profiles_file.empty() && factory->load_XML_profiles_file(o.profiles_file) != ReturnCode_t::RETCODE_OK)
     throw std::runtime_error("cannot load Fast DDS XML profiles from '" + o.profiles_file + "'");
