@@ -87,6 +87,20 @@ wysiwyf components describe contact_summary | tee "$scratch/describe.txt"
 grep -q "example::msg::ContactSummary" "$scratch/describe.txt" || fail "describe does not show the user's type"
 grep -q "contact_force" "$scratch/describe.txt" || fail "describe does not show the parameters"
 
+step "the commands the shipped pipelines' comments name validate as an installed user types them"
+(
+  cd "$scratch"
+  commands=$(grep -rhoE "^#.*wysiwyf (run|validate) [^ ]+\.yaml( --process [a-z]+)?" "$prefix/share/wysiwyf/config" |
+    sed -E 's/^#.*wysiwyf (run|validate) //' | sort -u)
+  [ "$(wc -l <<<"$commands")" -ge 8 ] || fail "only $(wc -l <<<"$commands") commands in the shipped comments?"
+  while read -r file rest; do
+    # shellcheck disable=SC2086  # (--process NAME: two words)
+    wysiwyf validate "$file" $rest >"$scratch/comment.log" 2>&1 ||
+      { cat "$scratch/comment.log"; fail "a shipped comment's 'wysiwyf run $file $rest' does not validate"; }
+  done <<<"$commands"
+  echo "ok: $(wc -l <<<"$commands") commands"
+)
+
 step "a pipeline including a shipped one plus the user's component, echoed from another process"
 cd "$scratch"
 wysiwyf validate "$project/contacts.yaml" --set domain="$domain"
