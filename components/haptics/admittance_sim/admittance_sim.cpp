@@ -38,7 +38,7 @@ class AdmittanceSim final : public Component {
     ctx.summary("admittance display: rigid bodies with contact LCP on SUNDIALS, driven by the user's wrench");
     scene_path_ =
         ctx.param<std::string>("scene", "scenes/cube_on_table.yaml",
-                               "scene file; relative paths are tried from the working directory, then config/");
+                               "scene file; relative paths are looked up in the working directory, then config/");
     max_force_ = ctx.param<double>("max_user_force", 200.0, "user forces above this are clipped (N)", Range{1, 2000});
     rtol_ = ctx.param<double>(
         "rtol", kHapticRtol,

@@ -2,7 +2,7 @@
 // First fix of the plate from bright blobs alone (at start and after loss): which blob is which
 // lamp, and eye_T_dev, by OpenCV's IPPE (the lamps are coplanar). Every choice of four blobs (up
 // to 8 candidates), every cyclic order of them around their centre (both directions), and both
-// of IPPE's solutions for a planar target are tried; those that reproject within max_rms_px and
+// of IPPE's solutions for a planar target are evaluated; those that reproject within max_rms_px and
 // show the plate's front to the camera remain. The square's four-fold symmetry and IPPE's
 // two-fold ambiguity leave several near-equal fits; `cost` picks among those whose reprojection
 // error is within `ambiguity_px` of the best (continuity with the last estimate, or which way

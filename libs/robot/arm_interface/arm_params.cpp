@@ -10,8 +10,8 @@ namespace wysiwyf::robot {
 
 ArmParams declare_arm_params(Context& ctx) {
   ArmParams p;
-  p.urdf_path = ctx.param<std::string>("urdf", "robots/puma560.urdf",
-                                       "robot URDF; relative paths are tried from the working directory, then config/");
+  p.urdf_path = ctx.param<std::string>(
+      "urdf", "robots/puma560.urdf", "robot URDF; relative paths are looked up in the working directory, then config/");
   p.tip_frame = ctx.param<std::string>("tip_frame", "dev",
                                        "the frame the Cartesian setpoints place (fixed to the arm's last link)");
   p.tracker_hz =

@@ -59,12 +59,12 @@ struct ArmIkResult {
 
 // Settings of the numerical IK (the closed forms use none of them).
 struct ArmIkOptions {
-  int seeds = 24;                // spread seeds tried after q_ref (deterministic, within limits)
+  int seeds = 24;                // spread seeds used after q_ref (deterministic, within limits)
   int max_iterations = 150;      // per seed
   double tolerance = 1e-10;      // position [m] and rotation [rad] error at which a seed converged
   double null_tolerance = 1e-8;  // redundant arms: null-space step [rad] at which q_ref is reached
   double null_gain = 1.0;        // redundant arms: fraction of the null-space part of (q_ref - q)
-                                 // tried per step (halved while a step does not bring q nearer)
+                                 // applied per step (halved while a step does not bring q nearer)
   double max_step = 0.5;         // largest joint change per iteration [rad or m]
   double duplicate = 1e-4;       // solutions closer than this (max over joints) are one
   double local_radius = 0.25;    // ik_nearest returns the q_current seed's solution at once when
