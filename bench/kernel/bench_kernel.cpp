@@ -48,7 +48,12 @@ void fill(msg::Image& s) {
   s.data().assign(640 * 480 * 3, 128);
 }
 
-Qos qos_for(bool image) { return image ? Qos::sensor(1) : Qos::reliable(4); }
+// "one-writer": the arm's setpoint's QoS (exclusive ownership, a 0.5 s liveliness lease that
+// every sample asserts, the reader following one writer).
+Qos qos_for(bool image, const std::string& impl) {
+  if (impl == "one-writer") return Qos::reliable(4).one_writer();
+  return image ? Qos::sensor(1) : Qos::reliable(4);
+}
 
 // The topics of a ping-pong. Under bench/kernel/security-policy-topics.yaml "ping" and "pong" are
 // encrypted; the "authenticated" rows' "clear/..." topics are access-controlled but in clear, as
@@ -61,7 +66,7 @@ std::string topic_of(const std::string& impl, const char* name) {
 // steady-state allocations in the end marker's stamp.
 template <class Endpoint, class T>
 int echo(int domain, bool image, const std::string& impl) {
-  Endpoint ep(domain, topic_of(impl, "pong"), topic_of(impl, "ping"), qos_for(image));
+  Endpoint ep(domain, topic_of(impl, "pong"), topic_of(impl, "ping"), qos_for(image, impl));
   T sample;
   std::uint64_t echoed = 0, allocs_at_warm = 0;
   while (true) {
@@ -110,7 +115,7 @@ void percentiles(benchmark::State& state, std::vector<double>& hops_us) {
 template <class Endpoint, class T>
 void in_process(benchmark::State& state, int domain) {
   const bool image = std::is_same_v<T, msg::Image>;
-  Endpoint ep(domain, "loop", "loop", qos_for(image));
+  Endpoint ep(domain, "loop", "loop", qos_for(image, ""));
   T out, in;
   fill(out);
   for (int i = 0; i < kWarmup; ++i) {
@@ -143,7 +148,7 @@ template <class Endpoint, class T>
 void two_process(benchmark::State& state, const std::string& impl, int domain) {
   const bool image = std::is_same_v<T, msg::Image>;
   Child child(impl, image ? "image" : "joint", domain);
-  Endpoint ep(domain, topic_of(impl, "ping"), topic_of(impl, "pong"), qos_for(image));
+  Endpoint ep(domain, topic_of(impl, "ping"), topic_of(impl, "pong"), qos_for(image, impl));
   T out, in;
   fill(out);
   // Until the child answers (discovery), then a warm-up.
@@ -220,6 +225,9 @@ void BM_JointState_TwoProcess_Kernel(benchmark::State& s) {
 void BM_JointState_TwoProcess_RawDds(benchmark::State& s) {
   two_process<RawEndpoint<msg::JointState>, msg::JointState>(s, "raw", 105);
 }
+void BM_JointState_TwoProcess_KernelOneWriter(benchmark::State& s) {
+  two_process<KernelEndpoint<msg::JointState>, msg::JointState>(s, "one-writer", 129);
+}
 void BM_Image640x480_TwoProcess_Kernel(benchmark::State& s) {
   two_process<KernelEndpoint<msg::Image>, msg::Image>(s, "kernel", 106);
 }
@@ -251,7 +259,7 @@ void BM_Image640x480_TwoProcess_KernelSecured(benchmark::State& s) {
   two_process_secured<msg::Image>(s, "secured", 109);
 }
 void BM_Image640x480_TwoProcess_KernelAuthenticated(benchmark::State& s) {
-  two_process_secured<msg::Image>(s, "authenticated", 118);  // (110-115: the security tests)
+  two_process_secured<msg::Image>(s, "authenticated", 128);  // (110-115, 118, 125: the security tests)
 }
 
 BENCHMARK(BM_JointState_InProcess_Kernel)
@@ -275,6 +283,10 @@ BENCHMARK(BM_JointState_TwoProcess_Kernel)
     ->Iterations(wysiwyf::bench::iterations(20000))
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_JointState_TwoProcess_RawDds)
+    ->UseManualTime()
+    ->Iterations(wysiwyf::bench::iterations(20000))
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointState_TwoProcess_KernelOneWriter)
     ->UseManualTime()
     ->Iterations(wysiwyf::bench::iterations(20000))
     ->Unit(benchmark::kMicrosecond);
@@ -324,7 +336,7 @@ int main(int argc, char** argv) {
   if (argc == 5 && std::strcmp(argv[1], "--echo") == 0) {
     const bool image = std::strcmp(argv[3], "image") == 0;
     const int domain = std::atoi(argv[4]);
-    const bool kernel = std::strcmp(argv[2], "kernel") == 0;
+    const bool kernel = std::strcmp(argv[2], "kernel") == 0 || std::strcmp(argv[2], "one-writer") == 0;
     const std::string impl = argv[2];
     if (impl == "secured" || impl == "secured-topic" || impl == "authenticated")
       return image ? bench::echo_secured<msg::Image>(domain, true, impl)
