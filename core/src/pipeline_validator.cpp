@@ -1,7 +1,9 @@
 // Checks a parsed pipeline against the component libraries: runs each component's configure()
 // in validate mode (parameters read and checked, nothing connected), then checks names, topics
 // and types across the whole pipeline.
+#include <algorithm>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -80,13 +82,12 @@ void check_across_processes(const std::string& topic, const std::vector<PortUse>
 // without DDS-Security trusts a name any participant on the domain can claim: refused unless the
 // pipeline says `insecure: true`. (An input that no component writes, a driver's pipeline fed by
 // a program of the lab's, is left to the warning that nobody publishes it.)
+// `writer`: the topic's first writer in the pipeline, null when none.
 template <class Error>
-void check_remote_one_writer(const PipelineSpec& spec, const std::string& topic, const std::vector<PortUse>& uses,
+void check_remote_one_writer(const PipelineSpec& spec, const std::string& topic, const PortUse* writer,
                              const PortUse& input, Error& error) {
-  if (spec.security.enabled() || (spec.insecure.set && spec.insecure.value)) return;
-  const auto writer =
-      std::find_if(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
-  if (writer == uses.end() || writer->process == input.process) return;
+  if (spec.security.enabled() || spec.accepts_insecure()) return;
+  if (!writer || writer->process == input.process) return;
   error(input.where, "topic '" + topic + "': " + input.label + " (process group '" + input.process +
                          "') takes its one writer from " + writer->label + " in process group '" + writer->process +
                          "'" +
@@ -113,8 +114,8 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         "every participant on domain " + std::to_string(spec.domain_id()) + " is trusted and its samples are read";
     result.warnings.push_back(
         {Location{spec.file, 0, 0},
-         std::string(spec.insecure.set && spec.insecure.value ? "INSECURE (insecure: true): " : "") +
-             "the process groups (" + join(spec.processes()) + ") talk over DDS without security: " + trusted +
+         std::string(spec.accepts_insecure() ? "INSECURE (insecure: true): " : "") + "the process groups (" +
+             join(spec.processes()) + ") talk over DDS without security: " + trusted +
              ". A one-writer topic (the arm's setpoint) is taken only from the group that writes it here, by a "
              "name that is not authenticated; across machines, turn on `security:` (docs/deployment.md)"});
   }
@@ -212,10 +213,10 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         error(use.where, "topic '" + topic + "': port " + use.label + " carries " + use.type + " but port " +
                              first.label + " (" + first.where.str() + ") carries " + first.type +
                              "; expected one message type per topic");
+    const auto writer =  // (the first; a one-writer topic's others are errors below)
+        std::find_if(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
     // The kernel itself publishes every component's diagnostics.
-    const bool produced = topic == kDiagnosticsTopic || std::any_of(uses.begin(), uses.end(), [](const PortUse& u) {
-                            return u.direction == PortDirection::kOutput;
-                          });
+    const bool produced = topic == kDiagnosticsTopic || writer != uses.end();
     if (!produced)
       for (const auto& use : uses)
         if (!use.unmapped_optional)
@@ -226,8 +227,6 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     if (std::any_of(uses.begin(), uses.end(), [](const PortUse& u) { return u.single_writer; })) {
       result.one_writer_topics.insert(topic);
       // Written here: only the writer's process group may own it (the DDS readers refuse others).
-      const auto writer = std::find_if(uses.begin(), uses.end(),
-                                       [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
       if (writer != uses.end()) result.one_writer_participants[topic] = spec.participant_name(writer->process);
     }
     // An input that takes one writer (a robot's setpoint): every writer after the first is an error.
@@ -235,7 +234,7 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
       return u.single_writer && u.direction == PortDirection::kInput;
     });
     if (one_writer == uses.end()) continue;
-    check_remote_one_writer(spec, topic, uses, *one_writer, error);
+    check_remote_one_writer(spec, topic, writer == uses.end() ? nullptr : &*writer, *one_writer, error);
     // Between processes the topic has DDS exclusive ownership, which a writer must declare too.
     for (const auto& use : uses)
       if (use.direction == PortDirection::kOutput && !use.single_writer && use.process != one_writer->process)
@@ -244,17 +243,11 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
                              "'), which takes one writer only, but does not declare itself that writer: across "
                              "processes DDS would refuse its samples (ownership); expected an output declared with "
                              "Qos::one_writer(), or both in one process group");
-    const PortUse* first_writer = nullptr;
-    for (const auto& use : uses) {
-      if (use.direction != PortDirection::kOutput) continue;
-      if (!first_writer) {
-        first_writer = &use;
-        continue;
-      }
-      error(use.where, "topic '" + topic + "': port " + use.label + " writes it, but " + first_writer->label + " (" +
-                           first_writer->where.str() + ") already does, and " + one_writer->label +
-                           " takes one writer only; expected a single writer");
-    }
+    for (auto use = writer == uses.end() ? writer : std::next(writer); use != uses.end(); ++use)
+      if (use->direction == PortDirection::kOutput)
+        error(use->where, "topic '" + topic + "': port " + use->label + " writes it, but " + writer->label + " (" +
+                              writer->where.str() + ") already does, and " + one_writer->label +
+                              " takes one writer only; expected a single writer");
   }
   return result;
 }

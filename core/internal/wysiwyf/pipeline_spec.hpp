@@ -107,6 +107,7 @@ struct PipelineSpec {
   // process without DDS-Security, knowingly (validation refuses it otherwise).
   Sourced<bool> insecure;
   std::vector<ComponentSpec> components;  // in file order (included files first)
+  bool accepts_insecure() const { return insecure.set && insecure.value; }
 
   const ComponentSpec* find(const std::string& instance) const;
   std::vector<std::string> processes() const;  // distinct process groups, in order of appearance
