@@ -165,16 +165,12 @@ int topic_echo(Args& args, const std::string& topic) {
       std::string text;
       try {
         text = print(sample);
+        if (field) text = yaml_field(text, *field);
+      } catch (const std::invalid_argument& e) {  // --field: every sample of the topic has the same fields
+        std::cerr << e.what() << "\n";
+        return 2;
       } catch (const std::runtime_error& e) {
         text = "# cannot read this sample: " + std::string(e.what()) + "\n";
-      }
-      if (field && text.rfind("# cannot read", 0) != 0) {
-        try {
-          text = yaml_field(text, *field);
-        } catch (const std::invalid_argument& e) {  // (every sample of the topic has the same fields)
-          std::cerr << e.what() << "\n";
-          return 2;
-        }
       }
       std::cout << "---\n" << text << std::flush;
       ++printed;
