@@ -73,10 +73,11 @@ std::vector<double> truth(const World& w, const Vec3& hand, const Vec3& velocity
   std::vector<double> distance;
   for (const auto& f : w.scene.features) {
     const Eigen::Isometry3d obj_T_base = w.base_T_obj[static_cast<std::size_t>(f.body)].inverse();
+    const Vec3& half = w.scene.models[static_cast<std::size_t>(f.body)].half_extents;
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k <= n; ++k) {
       const Vec3 local = obj_T_base * (hand + velocity * (t_end * k / n));
-      if (f.in_front(local)) best = std::min(best, f.distance(local));
+      if (f.in_front(local)) best = std::min(best, f.distance(local) + f.past_edges(local, half));
     }
     distance.push_back(best);
   }
@@ -89,6 +90,30 @@ const haptics::DisplayFeature* first_choice(const World& w, const Vec3& hand, co
 }
 
 }  // namespace
+
+// A hand at rest beyond the edge between two faces is as near one as the other by distance (both
+// nearest points on the edge); it belongs to the face whose plane it is farther out of. The
+// stereo demo's user waits there between contacts, 40 cm out of the -y face's plane and on the
+// +x face's, and the keyed hand's centre is 10 cm behind the fingertip, toward +x.
+TEST(FeatureChoice, AHandBeyondAnEdgeBelongsToTheFaceItIsFartherOutOf) {
+  const World w;
+  const Vec3 cube = w.base_T_obj[static_cast<std::size_t>(w.scene.body_index("cube"))].translation();
+  const Vec3 half = w.scene.models[static_cast<std::size_t>(w.scene.body_index("cube"))].half_extents;
+  const double h = half.x();
+  const auto& plus_x = w.feature("cube +x face");
+  const auto& minus_y = w.feature("cube -y face");
+  for (const double out : {0.0, 0.05, 0.095, 0.2, 0.39}) {
+    const Vec3 local(h + out, -h - 0.4, 0);
+    EXPECT_NEAR(plus_x.distance(local), minus_y.distance(local), 1e-9);
+    EXPECT_NEAR(minus_y.past_edges(local, half), 0.0, 1e-12);
+    EXPECT_NEAR(plus_x.past_edges(local, half), 0.4 - out, 1e-12);
+    EXPECT_EQ(first_choice(w, cube + local, Vec3::Zero())->name, "cube -y face") << out << " m out of +x's plane";
+  }
+  // Past the bisector, a feature of the +x face's.
+  EXPECT_EQ(first_choice(w, cube + Vec3(h + 0.41, -h - 0.4, 0), Vec3::Zero())->name, "cube +x face");
+  // Straight in front of a face, nothing is added.
+  EXPECT_NEAR(plus_x.past_edges(Vec3(h + 0.3, 0.02, -0.01), half), 0.0, 1e-12);
+}
 
 TEST(FeatureChoice, AReachStraightAtAFeatureChoosesIt) {
   const World w;

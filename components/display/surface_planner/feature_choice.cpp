@@ -59,10 +59,11 @@ const haptics::DisplayFeature* FeatureChooser::choose(const haptics::Scene& scen
   for (int k = 0; k <= kSamples; ++k) path_.push_back(position + velocity * (t_end * k / kSamples));
   auto distance_to = [&](const haptics::DisplayFeature& f) {
     const Eigen::Isometry3d obj_T_base = base_T_obj[static_cast<std::size_t>(f.body)].inverse();
+    const Eigen::Vector3d& half = scene.models[static_cast<std::size_t>(f.body)].half_extents;
     double best = std::numeric_limits<double>::infinity();
     for (const auto& p : path_) {
       const Eigen::Vector3d local = obj_T_base * p;
-      if (f.in_front(local)) best = std::min(best, f.distance(local));  // (a face is touched from its outside)
+      if (f.in_front(local)) best = std::min(best, f.distance(local) + f.past_edges(local, half));
     }
     return unreachable && unreachable->count(&f) ? best + penalty_ : best;
   };

@@ -8,6 +8,9 @@
 // arm cannot display counts `unreachable_penalty` farther: where the path is as near to one the
 // arm can reach (a hand at rest between two faces), the plate goes there; a path going straight
 // for the unreachable one still chooses it (and the planner says it cannot).
+// A feature is touched from its face's outside, and a path beyond the edge between two faces, as
+// near both by distance, is nearer to the one whose plane it is farther out of: the distance
+// grows by how far the path is past the edge's bisector.
 #include <cstdint>
 #include <set>
 #include <vector>

@@ -262,6 +262,16 @@ double DisplayFeature::distance(const Vec3& p) const {
   return (d - u * touch_u - v * touch_v).norm();
 }
 
+double DisplayFeature::past_edges(const Vec3& p, const Vec3& half_extents) const {
+  const double out = (p - face_point).dot(normal);
+  Eigen::Index axis = 0;
+  normal.cwiseAbs().maxCoeff(&axis);
+  double other = out;
+  for (Eigen::Index i = 0; i < 3; ++i)
+    if (i != axis) other = std::max(other, std::abs(p[i]) - half_extents[i]);
+  return other - out;
+}
+
 Scene load_scene(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read scene file '" + path + "'");

@@ -41,6 +41,10 @@ struct DisplayFeature {
   double distance(const Vec3& p) const;
   // Whether a point (body frame) is on the face's outside, from where a finger can touch it.
   bool in_front(const Vec3& p) const { return (p - face_point).dot(normal) >= 0; }
+  // How much farther a point (body frame) is out of another face's plane of the box (half_extents:
+  // the body's) than out of this feature's face's: 0 in front of this face, growing past the
+  // bisector of its edges (beyond an edge, where both faces are as near, it tells them apart).
+  double past_edges(const Vec3& p, const Vec3& half_extents) const;
 };
 
 struct Scene {
