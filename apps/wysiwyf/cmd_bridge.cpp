@@ -247,7 +247,12 @@ int cmd_bridge(Args args) {
     for (const auto& [topic, info] : discovered) {
       auto& publishers = graph.published[topic];
       auto& subscribers = graph.subscribed[topic];
-      for (const auto& w : info.writers) publishers.insert(s.discovery.participant_of(w));
+      for (const auto& w : info.writers) {
+        publishers.insert(s.discovery.participant_of(w));
+        // a process that reads what it writes, in-process
+        if (const auto it = info.ports.find(w); it != info.ports.end() && it->second.readers > 0)
+          subscribers.insert(s.discovery.participant_of(w));
+      }
       for (const auto& r : info.readers) subscribers.insert(s.discovery.participant_of(r));
     }
     server.connection_graph(std::move(graph));

@@ -116,8 +116,8 @@ int topic_list(Args& args) {
   std::cout << std::left << std::setw(32) << "topic" << std::setw(40) << "type"
             << "writers readers\n";
   for (const auto& [name, t] : topics)
-    std::cout << std::left << std::setw(32) << name << std::setw(40) << t.type << std::setw(8) << t.writers.size()
-              << t.readers.size() << "\n";
+    std::cout << std::left << std::setw(32) << name << std::setw(40) << t.type << std::setw(8) << t.writer_ports()
+              << t.reader_ports() << "\n";
   if (topics.empty())
     std::cerr << "no topics seen in DDS domain " << s.domain << " (transport " << s.transport << ") in " << wait
               << " s (is the pipeline running, on this domain? --pipeline FILE takes its domain and transport)\n";

@@ -27,11 +27,31 @@ using Clock = std::chrono::steady_clock;
 
 struct TopicInfo {
   std::string type;
-  std::set<std::string> writers, readers;  // GUIDs
+  std::set<std::string> writers, readers;  // GUIDs of the DDS endpoints
+  // The ports each endpoint stands for (dds::EndpointPorts: a pipeline's process announces its
+  // in-process readers on its writer); an endpoint that announces nothing is one port of its kind.
+  std::map<std::string, dds::EndpointPorts> ports;
+  int writer_ports() const { return count(writers, &dds::EndpointPorts::writers); }
+  int reader_ports() const {
+    int n = count(readers, &dds::EndpointPorts::readers);
+    for (const auto& w : writers)
+      if (const auto it = ports.find(w); it != ports.end()) n += it->second.readers;
+    return n;
+  }
   eprosima::fastdds::dds::ReliabilityQosPolicyKind reliability = eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS;
   eprosima::fastdds::dds::DurabilityQosPolicyKind durability = eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
   bool keyed = false;       // the type has @key members (instances)
   bool one_writer = false;  // exclusive ownership (a robot's setpoint): a reader must ask for it too
+
+ private:
+  int count(const std::set<std::string>& endpoints, int dds::EndpointPorts::*kind) const {
+    int n = 0;
+    for (const auto& e : endpoints) {
+      const auto it = ports.find(e);
+      n += it == ports.end() ? 1 : it->second.*kind;
+    }
+    return n;
+  }
 };
 
 // Collects the topics that remote writers and readers announce.
@@ -47,8 +67,11 @@ class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
     t.type = info.info.typeName().to_string();
     if (info.status == S::REMOVED_WRITER) {
       t.writers.erase(guid.str());
+      t.ports.erase(guid.str());
     } else {
       t.writers.insert(guid.str());
+      if (const auto ports = dds::endpoint_ports_from_user_data(info.info.m_qos.m_userData.data_vec()))
+        t.ports[guid.str()] = *ports;
       t.reliability = info.info.m_qos.m_reliability.kind;
       t.durability = info.info.m_qos.m_durability.kind;
       t.keyed = info.info.topicKind() == eprosima::fastrtps::rtps::WITH_KEY;
@@ -64,10 +87,14 @@ class Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
     std::lock_guard<std::mutex> lock(mutex_);
     auto& t = topics_[info.info.topicName().to_string()];
     t.type = info.info.typeName().to_string();
-    if (info.status == S::REMOVED_READER)
+    if (info.status == S::REMOVED_READER) {
       t.readers.erase(guid.str());
-    else
+      t.ports.erase(guid.str());
+    } else {
       t.readers.insert(guid.str());
+      if (const auto ports = dds::endpoint_ports_from_user_data(info.info.m_qos.m_userData.data_vec()))
+        t.ports[guid.str()] = *ports;
+    }
     cv_.notify_all();
   }
 

@@ -44,6 +44,7 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
         buffer(c.create_sample()) {
     DataWriterQos qos = dds::writer_qos(endpoint_qos(c.writer_qos(), c), instances);
     if (!b.data_sharing_) qos.data_sharing().off();
+    qos.user_data().data_vec(dds::endpoint_ports_user_data({c.local_writers(), c.local_readers()}));
     writer = b.publisher_->create_datawriter(
         topic, qos, this, StatusMask::publication_matched() << StatusMask::offered_incompatible_qos());
     if (!writer)
@@ -230,6 +231,7 @@ void DdsBridge::connect(TopicChannelBase& channel) {
       link->expected_writer = it->second;
     DataReaderQos qos = dds::reader_qos(endpoint_qos(channel.reader_qos(), channel), instances);
     if (!data_sharing_) qos.data_sharing().off();
+    qos.user_data().data_vec(dds::endpoint_ports_user_data({0, channel.local_readers()}));
     if (!subscriber_->create_datareader(topic, qos, link.get(),
                                         StatusMask::data_available()
                                             << StatusMask::requested_incompatible_qos() << StatusMask::sample_lost()

@@ -6,6 +6,7 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,20 @@ bool uses_data_sharing(const std::string& transport);
 // silently refused.)
 eprosima::fastdds::dds::DataWriterQos writer_qos(const Qos& qos, int instances = 1);
 eprosima::fastdds::dds::DataReaderQos reader_qos(const Qos& qos, int instances = 1);
+
+// The ports of one process on a topic that its one DDS endpoint there stands for: a writer where
+// the process has writers (its readers then served in-process, unseen by DDS), else a reader for
+// its readers. Announced in the endpoint's user data, so that tools count every port of every
+// process (topic list, the bridge's connection graph), the in-process ones too.
+struct EndpointPorts {
+  int writers = 0;
+  int readers = 0;
+};
+std::vector<unsigned char> endpoint_ports_user_data(const EndpointPorts& ports);
+// What another endpoint's user data announces; nullopt where it is not this form (a tool, another
+// DDS program) or out of range (hostile: counts above kMaxAnnouncedPorts are not believed).
+std::optional<EndpointPorts> endpoint_ports_from_user_data(const std::vector<unsigned char>& data);
+constexpr int kMaxAnnouncedPorts = 100000;
 
 // The instances a keyed topic of a pipeline may have: one per component (the diagnostics), with room.
 constexpr int kKeyedTopicInstances = 256;
