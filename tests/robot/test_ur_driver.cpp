@@ -4,10 +4,12 @@
 // outputs late beyond 3 periods, a package cut short) holds the arm within 3 periods and is
 // named in its status; after a protective stop it stays held until the supervisor's clear
 // request, then recovers. Measured figures are printed as "[measured]" lines.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -178,6 +180,45 @@ TEST(UrDriver, AfterAProtectiveStopItHoldsUntilTheSupervisorClearsThenRecovers) 
   EXPECT_LT((emulator.true_q() - stopped).cwiseAbs().maxCoeff(), 2e-3) << "holds where it stopped";
   for (int i = 0; i < 100; ++i) driver.hold_here();
   EXPECT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
+}
+
+// In real time, a dashboard that takes the connection and never answers: the recovery waits for
+// it off the tick, which goes on every period (the hold package) until the recovery gives up,
+// and the request is refused saying why; the arm holds throughout. Ticked at the controller's
+// 2 ms on the wall clock against the emulator's own; the stream may miss 100 ms before it counts
+// as lost (a loaded test machine is not a real-time one).
+TEST(UrDriver, InRealTimeASilentDashboardDoesNotHoldUpTheTick) {
+  UrEmulator::Options options = lockstep_options();
+  options.lockstep = false;
+  UrEmulator emulator(options);
+  Arm driver("ur_driver",
+             "{lockstep: false, stream_timeout_periods: 50, connect_timeout: 0.5, rtde_port: " +
+                 std::to_string(emulator.rtde_port()) + ", script_port: " + std::to_string(emulator.script_port()) +
+                 ", dashboard_port: " + std::to_string(emulator.dashboard_port()) + ", " + kArmParams + "}");
+  using Wall = std::chrono::steady_clock;
+  auto next = Wall::now();
+  double longest = 0;  // s: the longest tick after the clear
+  auto run = [&](int ticks, bool timed) {
+    for (int i = 0; i < ticks; ++i) {
+      std::this_thread::sleep_until(next += std::chrono::milliseconds(kTickMs));
+      const auto start = Wall::now();
+      driver.follow(20);  // (the gate holds while the arm is faulted)
+      if (timed) longest = std::max(longest, std::chrono::duration<double>(Wall::now() - start).count());
+    }
+  };
+  run(250, false);
+  ASSERT_EQ(driver.state(), msg::ARM_OK) << driver.reason();
+  emulator.protective_stop("test: a collision");
+  run(50, false);
+  ASSERT_EQ(driver.state(), msg::ARM_FAULT);
+  emulator.silence_dashboard();
+  driver.clear("test: the collision is gone");
+  run(500, true);  // 1 s: the 0.5 s the recovery waits, and after
+  EXPECT_EQ(driver.h.rejected("request"), 1u) << "the recovery should have given up after its 0.5 s";
+  EXPECT_LT(longest, 0.25) << "a tick waited for the dashboard";
+  EXPECT_EQ(driver.state(), msg::ARM_FAULT) << driver.reason();
+  EXPECT_EQ(emulator.safety_mode(), robot::rtde::SafetyMode::kProtectiveStop);
+  std::printf("[measured] the longest tick while the silent dashboard was waited for: %.2f ms\n", longest * 1e3);
 }
 
 TEST(UrDriver, TheTcpForceIsTheWristReadingOfTheToolInTheSensorFrame) {

@@ -15,13 +15,15 @@
 // or another stop of the controller's safety system, the arm not running, the follow program not
 // running. The driver reconnects by itself (measurements come back), but only the supervisor's
 // ArmRequest CLEAR_INPUT_FAULT lets the arm move again: then the dashboard unlocks a protective
-// stop, the program is sent again, and once it runs the gate restarts from the measured joints.
+// stop, the program is sent again (real time: on a thread of its own, the tick goes on holding),
+// and once it runs the gate restarts from the measured joints.
 // With `lockstep` (the simulated clock, against apps/ur-emulator --lockstep) each tick waits for
 // the answer to its input package, so the pipeline sees exactly what arm_sim would show.
 #include <fstream>
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <stdexcept>
 
 #include "arm_interface/arm_params.hpp"
@@ -31,7 +33,7 @@
 #include "safety_gate/safety_gate.hpp"
 #include "setpoint_following/setpoint_follower.hpp"
 #include "tcp_wrench.hpp"
-#include "program_start.hpp"
+#include "program_restart.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
 #include "wysiwyf/msg_eigen.hpp"
@@ -178,7 +180,8 @@ class UrDriver final : public Component {
     // ---- 2. what holds the arm, then the measurements
     if (!fresh)
       hold_for(stream_problem());
-    else if (const std::string problem = controller_problem(s); !problem.empty() && !restarting_)
+    else if (const std::string problem = controller_problem(s);
+             !problem.empty() && !restarting_ && !restart_.in_flight())
       hold_for("controller: " + problem);
     if (fresh) {
       gate_->check_measured(q, qd);
@@ -190,9 +193,10 @@ class UrDriver final : public Component {
                             msgs::to_eigen(wrench_msg_.wrench().torque()));
 
     // ---- 3. requests (the controller's hold is cleared here), setpoints, the reference
-    if (controller_hold_)
-      take_recovery_requests(now, fresh);
-    else
+    if (controller_hold_) {
+      take_recovery_requests(fresh);
+      take_restart_outcome(now);
+    } else
       ports_.take_requests(*gate_, now.ns);
     if (restarting_) finish_recovery(now, fresh, q);
     ports_.take_setpoints(arm_, *follower_, now.ns);
@@ -275,8 +279,8 @@ class UrDriver final : public Component {
 
   // The controller (or the link to it) holds the arm: the gate faults, the program holds.
   void hold_for(const std::string& why) {
-    if (restarting_) {
-      restarting_ = false;
+    if (restarting_ || (restart_.in_flight() && !restart_abandoned_)) {
+      restarting_ = false, restart_abandoned_ = restart_.in_flight();
       log("recovery abandoned: " + why);
     }
     if (controller_hold_) return;  // the first reason stands
@@ -287,14 +291,14 @@ class UrDriver final : public Component {
     log("holding: " + hold_reason_);
   }
 
-  // The supervisor's clear: unlock a protective stop, send the program again.
-  void take_recovery_requests(Time now, bool fresh) {
+  // The supervisor's clear: unlock a protective stop, send the program again (off the tick).
+  void take_recovery_requests(bool fresh) {
     while (ports_.request.take(request_msg_)) {
       if (request_msg_.request() != msg::ARM_CLEAR_INPUT_FAULT) {
         reject(ports_.request, "unknown request " + std::to_string(static_cast<int>(request_msg_.request())));
         continue;
       }
-      if (restarting_) continue;  // (a request in flight)
+      if (restarting_ || restart_.in_flight()) continue;  // (a request in flight)
       if (!prior_arm_fault_.empty()) {
         reject(ports_.request, "the arm's own fault came first, only a restart clears it: " + prior_arm_fault_);
         continue;
@@ -303,17 +307,21 @@ class UrDriver final : public Component {
         reject(ports_.request, "cannot recover while " + stream_problem() + "; ask again once the stream is back");
         continue;
       }
-      try {
-        const std::string done = restart_program(controller_, program_, connect_timeout_,
-                                                 link_->state().safety_mode == rtde::SafetyMode::kProtectiveStop);
-        restarting_ = true;
-        restart_deadline_ns_ = now.ns + ns(program_timeout_);
-        log("recovering as asked (" + std::string(request_msg_.reason().c_str()) + "): " + done +
-            "; holding until it runs");
-      } catch (const std::exception& e) {
-        reject(ports_.request, std::string("cannot recover: ") + e.what());
-      }
+      restart_.start(controller_, program_, connect_timeout_,
+                     link_->state().safety_mode == rtde::SafetyMode::kProtectiveStop);
+      restart_asked_ = request_msg_.reason().c_str();
+      if (lockstep_) restart_.wait();
     }
+  }
+
+  // The restart's outcome, when it has one: then the program's start is awaited on the stream.
+  void take_restart_outcome(Time now) {
+    const auto outcome = restart_.poll();
+    if (!outcome || std::exchange(restart_abandoned_, false)) return;
+    if (!outcome->done) return reject(ports_.request, "cannot recover: " + outcome->what);
+    restarting_ = true;
+    restart_deadline_ns_ = now.ns + ns(program_timeout_);
+    log("recovering as asked (" + restart_asked_ + "): " + outcome->what + "; holding until it runs");
   }
 
   void finish_recovery(Time now, bool fresh, const JointVector& q) {
@@ -354,8 +362,9 @@ class UrDriver final : public Component {
   std::unique_ptr<RtdeLink> link_;
   std::unique_ptr<SafetyGate> gate_;
   std::unique_ptr<SetpointFollower> follower_;
-  bool started_ = false, controller_hold_ = false, restarting_ = false;
-  std::string hold_reason_, prior_arm_fault_;
+  bool started_ = false, controller_hold_ = false, restarting_ = false, restart_abandoned_ = false;
+  ProgramRestart restart_;
+  std::string hold_reason_, prior_arm_fault_, restart_asked_;
   int missed_ = 0;
   std::int32_t counter_ = 0;
   std::uint64_t seq_ = 0, refused_seen_ = 0;

@@ -43,7 +43,7 @@ struct UrEmulator::Impl {
   mutable std::mutex mutex;  // guards the controller, the clients and the counters
   Counters counters;
   int delay_periods = 0;
-  bool malformed_next = false;
+  bool malformed_next = false, dashboard_silent = false;
   std::atomic<bool> stop{false};
   std::thread thread;
 
@@ -61,7 +61,8 @@ struct UrEmulator::Impl {
       script_clients.push_back({std::move(s), {}});
     for (rtde::TcpStream s = dashboard_listener.accept(0); s.open(); s = dashboard_listener.accept(0)) {
       dashboard_clients.push_back({std::move(s), {}});
-      dashboard_clients.back().stream.send(text_bytes("Connected: Universal Robots Dashboard Server\n"));
+      if (!dashboard_silent)
+        dashboard_clients.back().stream.send(text_bytes("Connected: Universal Robots Dashboard Server\n"));
     }
   }
 
@@ -135,6 +136,7 @@ struct UrEmulator::Impl {
   }
 
   void serve_dashboard(TextClient& c) {
+    if (dashboard_silent) return;
     std::vector<std::uint8_t> in;
     c.stream.receive(in, 4096);
     c.text.append(in.begin(), in.end());
@@ -224,6 +226,11 @@ void UrEmulator::drop_connections() {
   impl_->rtde_clients.clear();
   impl_->script_clients.clear();
   impl_->dashboard_clients.clear();
+}
+
+void UrEmulator::silence_dashboard() {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->dashboard_silent = true;
 }
 
 void UrEmulator::delay_outputs(int periods) {

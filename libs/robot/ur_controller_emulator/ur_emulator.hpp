@@ -47,6 +47,8 @@ class UrEmulator {
   void protective_stop(const std::string& why);
   // Closes every connection, as a pulled cable would (the clients may connect again).
   void drop_connections();
+  // The dashboard server hangs: it takes connections and answers nothing from now on.
+  void silence_dashboard();
   // The next output packages go out this many periods late (each held back, then sent at once).
   void delay_outputs(int periods);
   // The next output package to each client is cut short (its header claims the whole package).
