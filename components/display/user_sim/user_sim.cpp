@@ -70,7 +70,10 @@ class UserSim final : public Component {
                                    " m): a finger that meets no plate stops at touch_press behind the surface");
     stop_when_done_ = ctx.param<bool>("stop_when_done", false, "end the run when the script is done");
     objects_in_ =
-        ctx.input<msg::ObjectState>("objects", "where the virtual objects are (admittance_sim)", Qos::reliable(64));
+        ctx.input<msg::ObjectState>("objects",
+                                    "optional: where the virtual objects are (admittance_sim); without it, where "
+                                    "the scene puts them",
+                                    Qos::reliable(64).optional_input());
     hand_in_ = ctx.input<msg::PoseStamped>("hand_pose", "where the fingertip really is (arm_sim)", Qos::sensor(4));
     target_out_ = ctx.output<msg::PoseStamped>(
         "hand_target", "where the user moves the fingertip, base frame; the hand's orientation: x along the finger");
