@@ -26,6 +26,6 @@ function(wysiwyf_idl_library)
   # Generated code is not ours to warn about.
   target_compile_options(${ARG_NAME} PRIVATE -w)
   install(TARGETS ${ARG_NAME} EXPORT wysiwyfTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/wysiwyf/idl)
+  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/wysiwyf/idl COMPONENT dev)
   install(FILES ${ARG_IDL} DESTINATION ${CMAKE_INSTALL_DATADIR}/wysiwyf/idl)
 endfunction()

@@ -108,7 +108,8 @@ ${registrations}  return \"${name}\";
   if(NOT ARG_OUTPUT_DIR)
     set(ARG_OUTPUT_DIR ${CMAKE_BINARY_DIR}/lib/wysiwyf/messages)
     install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/wysiwyf/messages)
-    install(FILES ${headers} ${out}/messages.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${name}/${name})
+    install(FILES ${headers} ${out}/messages.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${name}/${name}
+            COMPONENT dev)  # (what builds against the type; the library and IDL are what runs)
     install(FILES ${ARG_IDL} DESTINATION ${CMAKE_INSTALL_LIBDIR}/wysiwyf/messages/idl)
   endif()
   # The IDL beside the library (messages/idl/): the recorder and the bridge give it as the
