@@ -47,7 +47,8 @@ ldconfig -r "$root"
 [ ! -e "$root/usr/include/wysiwyf" ] || { echo "headers in the runtime package"; exit 1; }
 
 run() { unshare -m sh -c "mount -t proc proc '$root/proc' && mount --bind /dev '$root/dev' && chroot '$root' $*"; }
-run /usr/bin/wysiwyf --help | head -3
+help=$(run /usr/bin/wysiwyf --help)
+head -3 <<<"$help"
 out=$(cd "$root/tmp" && run "sh -c 'cd /tmp && /usr/bin/wysiwyf run admittance-push.yaml --set clock.pace=0 \
   --set domain=$domain --set dds.transport=loopback'" 2>&1) || { echo "$out"; echo "the hello-world failed"; exit 1; }
 echo "$out"
