@@ -78,6 +78,7 @@ int cmd_run(Args args) {
   options.start_after_s = start_after;
   options.one_writer_topics = loaded->validation.one_writer_topics;
   options.one_writer_participants = loaded->validation.one_writer_participants;
+  options.unconnected_topics = loaded->validation.unconnected_topics;
   options.progress = progress || (!no_progress && isatty(STDERR_FILENO));
   Runtime runtime(loaded->spec, loader, options);
   const RunResult result = runtime.run();

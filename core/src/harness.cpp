@@ -24,8 +24,11 @@ Harness::Harness(const std::string& type, const std::string& params_yaml, double
   // A missing or broken library is reported as such (LoadError: where it looked, what it found),
   // not as an error in the harness's own pipeline text.
   loader->load(type);
-  const std::string yaml = "wysiwyf: 1\nname: harness\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
-                           "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml + "\n";
+  // (insecure: the test writes the component's one-writer inputs itself, in this process; the
+  // harness has no DDS)
+  const std::string yaml =
+      "wysiwyf: 1\nname: harness\ninsecure: true\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
+      "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml + "\n";
   spec = load_pipeline_from_string(yaml, "<harness " + type + ">");
   ValidationResult v = validate_pipeline(spec, *loader);
   if (!v.ok()) throw ConfigError(v.errors);

@@ -78,22 +78,33 @@ void check_across_processes(const std::string& topic, const std::vector<PortUse>
   }
 }
 
-// A one-writer input (the arm's setpoint) that takes its writer from another process group
-// without DDS-Security trusts a name any participant on the domain can claim: refused unless the
-// pipeline says `insecure: true`. (An input that no component writes, a driver's pipeline fed by
-// a program of the lab's, is left to the warning that nobody publishes it.)
+// A one-writer input (the arm's setpoint) that takes its writer from another process group, or
+// from a program outside the pipeline (no component of it writes the topic), without
+// DDS-Security trusts a name or a stream that any participant on the domain can claim: refused
+// unless the pipeline says `insecure: true`, and then every start says so for the outside one
+// (the process groups' warning says it for the other).
 // `writer`: the topic's first writer in the pipeline, null when none.
-template <class Error>
+template <class Error, class Warn>
 void check_remote_one_writer(const PipelineSpec& spec, const std::string& topic, const PortUse* writer,
-                             const PortUse& input, Error& error) {
-  if (spec.security.enabled() || spec.accepts_insecure()) return;
-  if (!writer || writer->process == input.process) return;
+                             const PortUse& input, Error& error, Warn& warn) {
+  if (spec.security.enabled() || (writer && writer->process == input.process)) return;
+  if (spec.accepts_insecure()) {
+    if (!writer)
+      warn(input.where, "INSECURE (insecure: true): topic '" + topic + "': " + input.label +
+                            " takes its one writer from a program outside this pipeline, unauthenticated: any "
+                            "participant on domain " +
+                            std::to_string(spec.domain_id()) + " can be that writer");
+    return;
+  }
+  const std::string from = writer
+                               ? writer->label + " in process group '" + writer->process + "'"
+                               : std::string("a program outside this pipeline (no component of it writes the topic)");
   error(input.where, "topic '" + topic + "': " + input.label + " (process group '" + input.process +
-                         "') takes its one writer from " + writer->label + " in process group '" + writer->process +
-                         "'" +
-                         ", over DDS without security, where any participant on the domain can claim that name; "
-                         "expected `security:` (docs/deployment.md), or `insecure: true` at the top of the pipeline "
-                         "to accept it knowingly");
+                         "') takes its one writer from " + from +
+                         ", over DDS without security, where any participant on the domain can " +
+                         (writer ? "claim that name" : "be that writer") +
+                         "; expected `security:` (docs/deployment.md), or `insecure: true` at the top of the "
+                         "pipeline to accept it knowingly");
 }
 
 }  // namespace
@@ -217,9 +228,12 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
         std::find_if(uses.begin(), uses.end(), [](const PortUse& u) { return u.direction == PortDirection::kOutput; });
     // The kernel itself publishes every component's diagnostics.
     const bool produced = topic == kDiagnosticsTopic || writer != uses.end();
+    const bool unconnected =
+        !produced && std::all_of(uses.begin(), uses.end(), [](const PortUse& u) { return u.unmapped_optional; });
+    if (unconnected) result.unconnected_topics.insert(topic);
     if (!produced)
       for (const auto& use : uses)
-        if (!use.unmapped_optional)
+        if (!use.unmapped_optional && !use.single_writer)  // (a one-writer input: check_remote_one_writer)
           result.warnings.push_back({use.where, "no component of this pipeline publishes topic '" + topic +
                                                     "' (read by " + use.label +
                                                     "); it must come from another program"});
@@ -233,8 +247,9 @@ ValidationResult validate_pipeline(const PipelineSpec& spec, Loader& loader, con
     const auto one_writer = std::find_if(uses.begin(), uses.end(), [](const PortUse& u) {
       return u.single_writer && u.direction == PortDirection::kInput;
     });
-    if (one_writer == uses.end()) continue;
-    check_remote_one_writer(spec, topic, writer == uses.end() ? nullptr : &*writer, *one_writer, error);
+    if (one_writer == uses.end() || unconnected) continue;
+    auto warn = [&](const Location& where, std::string msg) { result.warnings.push_back({where, std::move(msg)}); };
+    check_remote_one_writer(spec, topic, writer == uses.end() ? nullptr : &*writer, *one_writer, error, warn);
     // Between processes the topic has DDS exclusive ownership, which a writer must declare too.
     for (const auto& use : uses)
       if (use.direction == PortDirection::kOutput && !use.single_writer && use.process != one_writer->process)

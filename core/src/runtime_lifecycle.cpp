@@ -86,6 +86,7 @@ bool Runtime::Impl::setup(RunResult& result) {
   diagnostics = Output<kernel_msgs::Diagnostics>(diag_channel);
   try {
     for (const auto& [name, channel] : bus.channels()) {
+      if (options.unconnected_topics.count(name)) continue;
       if (options.one_writer_topics.count(name)) channel->set_one_writer();
       bridge->connect(*channel);
     }

@@ -45,7 +45,10 @@ class TestProbe final : public wysiwyf::Component {
     const bool one_writer =
         ctx.param<bool>("one_writer", false, "in takes one writer, out declares itself it (ownership tests)");
     name_writers_ = ctx.param<bool>("name_writers", false, "log each new process its input's samples come from");
-    const wysiwyf::Qos in_qos = wysiwyf::Qos::reliable(100), out_qos;
+    const bool optional_in = ctx.param<bool>("optional_in", false, "in is optional (unconnected-input tests)");
+    const wysiwyf::Qos in_qos =
+                           optional_in ? wysiwyf::Qos::reliable(100).optional_input() : wysiwyf::Qos::reliable(100),
+                       out_qos;
     in_ = ctx.input<wysiwyf::msg::JointState>("in", "samples to record", one_writer ? in_qos.one_writer() : in_qos);
     out_ = ctx.output<wysiwyf::msg::JointState>("out", "t + gain * sum of inputs, in position[0]",
                                                 one_writer ? out_qos.one_writer() : out_qos);

@@ -95,7 +95,7 @@ TEST(Triggers, OnTheRealClockEverySampleTicksTheChainOnce) {
 TEST(Triggers, ATriggerLoopIsAFaultNotAHang) {
   std::string log;
   const RunResult r = run_pipeline(
-      "wysiwyf: 1\ndomain: 65\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 20ms}\n"
+      "wysiwyf: 1\ndomain: 94\ndds: {transport: local}\nclock: {mode: sim, step: 1ms, duration: 20ms}\n"
       "components:\n"
       "  kick: {type: test_probe, rate: 100, topics: {out: x}}\n"
       "  loop: {type: test_probe, rate: 100, trigger: in, topics: {in: x, out: x}}\n",

@@ -101,6 +101,8 @@ struct RunOptions {
   // samples only from that participant (a foreign writer never drives the arm, before or after
   // the display's process is lost).
   std::map<std::string, std::string> one_writer_participants{};
+  // ValidationResult::unconnected_topics: no DDS endpoint for them in this process.
+  std::set<std::string> unconnected_topics{};
   // Each tick's cost to its thread as well as its wall time (ComponentReport::cpu_p50_us ...): two
   // clock reads and two counter reads more a tick, so off unless asked for (benchmarks).
   bool measure_tick_cost = false;

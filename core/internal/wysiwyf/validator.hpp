@@ -27,6 +27,9 @@ struct ValidationResult {
   // One-writer topics that a component of this pipeline writes: the participant that alone may
   // write them ("<pipeline>/<process group>", as the kernel names its DDS participants).
   std::map<std::string, std::string> one_writer_participants;
+  // Topics that only optional inputs the pipeline left unmapped read and no component writes:
+  // left unconnected on purpose, so not on DDS either (nothing outside can write into them).
+  std::set<std::string> unconnected_topics;
   bool ok() const { return errors.empty(); }
 };
 
