@@ -25,10 +25,10 @@ Harness::Harness(const std::string& type, const std::string& params_yaml, double
   // not as an error in the harness's own pipeline text.
   loader->load(type);
   // (insecure: the test writes the component's one-writer inputs itself, in this process; the
-  // harness has no DDS)
-  const std::string yaml =
-      "wysiwyf: 1\nname: harness\ninsecure: true\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
-      "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml + "\n";
+  // harness has no DDS. Last, so that the parameters' line numbers are what they always were.)
+  const std::string yaml = "wysiwyf: 1\nname: harness\nclock: {mode: real}\ncomponents:\n  dut:\n    type: " + type +
+                           "\n    rate: " + std::to_string(rate_hz) + "\n    params: " + params_yaml +
+                           "\ninsecure: true\n";
   spec = load_pipeline_from_string(yaml, "<harness " + type + ">");
   ValidationResult v = validate_pipeline(spec, *loader);
   if (!v.ok()) throw ConfigError(v.errors);
