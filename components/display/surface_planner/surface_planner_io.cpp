@@ -4,12 +4,19 @@
 #include "wysiwyf/msg_checks.hpp"
 
 #include <cmath>
+#include <string>
+#include <string_view>
 
 namespace wysiwyf::display {
 
 void SurfacePlanner::read_inputs(std::int64_t now_ns) {
   while (take_checked(hand_in_, hand_msg_)) {
     if (hand_msg_.status() == msg::TRACKING_LOST) continue;
+    if (std::string_view(hand_msg_.header().frame_id().c_str()) != "base") {
+      reject(hand_in_, "in frame '" + std::string(hand_msg_.header().frame_id().c_str()) +
+                           "'; expected base (a tracker that does not know the camera's pose yet?)");
+      continue;
+    }
     const std::int64_t stamp = hand_msg_.header().stamp_ns() ? hand_msg_.header().stamp_ns() : now_ns;
     // A hand stamped ahead of now would stay "known" until long after it is gone.
     if (elapsed_ns(stamp, now_ns) > hand_max_lead_ns_) {
