@@ -179,7 +179,8 @@ void BM_StereoDepth_640x480(benchmark::State& state, const std::string& params) 
   keyer.tick(Time{0});
   key_out.take_latest(keyed);
 
-  Harness stereo("stereo_depth", params, 25);
+  // (no camera pose here: the hand in the camera's frame)
+  Harness stereo("stereo_depth", params.substr(0, params.size() - 1) + ", hand_frame: eye}", 25);
   auto left_in = stereo.feed<msg::Image>("left");
   auto right_in = stereo.feed<msg::Image>("right");
   auto info_in = stereo.feed<msg::CameraInfo>("camera_info");

@@ -210,7 +210,7 @@ void dump_depth_error(const std::string& dir, int shot, StereoRig& rig) {
 }  // namespace
 
 TEST(StereoDepth, HandPositionWithinACentimetreAtSixtyCentimetres) {
-  StereoRig rig("{baseline: " + std::to_string(kBaseline) + "}");
+  StereoRig rig("{baseline: " + std::to_string(kBaseline) + ", hand_frame: eye}");
   double worst = 0;
   DepthErrors worst_hand;
   worst_hand.coverage = 1;
@@ -268,7 +268,8 @@ TEST(StereoDepth, GivesTheHandInTheBaseFrameOnceEyeTBaseArrives) {
 }
 
 TEST(StereoDepth, NearestPointIsTheHandsPartNearestTheCamera) {
-  StereoRig rig("{baseline: " + std::to_string(kBaseline) + ", hand_point: nearest, nearest_fraction: 0.1}");
+  StereoRig rig("{baseline: " + std::to_string(kBaseline) +
+                ", hand_frame: eye, hand_point: nearest, nearest_fraction: 0.1}");
   rig.shoot(hand_in_view(0.6, 0, 0, 0.3, 0.7));  // tilted: its top is nearer than its bottom
   if (::testing::Test::HasFatalFailure()) return;
   const Eigen::Vector3d nearest = true_hand_point(rig.true_mask, rig.true_depth, 0.1);
@@ -334,7 +335,7 @@ TEST(StereoDepth, LeavesTheKeyedPlateOutOfTheHandGivenEyeTDev) {
   base_T_hand.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
   double error[2] = {0, 0};
   for (bool with_dev : {false, true}) {
-    StereoRig rig("{baseline: " + std::to_string(kBaseline) + "}", camera.str());
+    StereoRig rig("{baseline: " + std::to_string(kBaseline) + ", hand_frame: eye}", camera.str());
     rig.show_arm(joints);
     rig.shoot(base_T_hand, false, with_dev);
     if (::testing::Test::HasFatalFailure()) return;
@@ -347,7 +348,7 @@ TEST(StereoDepth, LeavesTheKeyedPlateOutOfTheHandGivenEyeTDev) {
   EXPECT_LE(error[1], 0.015);
   EXPECT_GT(error[0], 0.03) << "without eye_T_dev the keyed plate pulls the hand's point toward it";
   // The hand gone: what the keyer keeps is device, so there is no hand position at all.
-  StereoRig rig("{baseline: " + std::to_string(kBaseline) + "}", camera.str());
+  StereoRig rig("{baseline: " + std::to_string(kBaseline) + ", hand_frame: eye}", camera.str());
   rig.show_arm(joints);
   Eigen::Isometry3d away = Eigen::Isometry3d::Identity();
   away.translation() = Eigen::Vector3d(5, 5, 5);

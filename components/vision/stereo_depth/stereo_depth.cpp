@@ -77,8 +77,12 @@ class StereoDepth final : public Component {
                                     Qos::sensor(4).optional_input());
     depth_out_ =
         ctx.output<msg::Image>("depth", "metric depth of the left image, 32FC1, 0 where unknown", Qos::sensor(2));
-    hand_out_ = ctx.output<msg::HandPosition>(
-        "hand_position", "the hand's 3D point (base frame, or eye before eye_T_base) with covariance", Qos::sensor(4));
+    hand_out_ = ctx.output<msg::HandPosition>("hand_position", "the hand's 3D point (in hand_frame) with covariance",
+                                              Qos::sensor(4));
+    hand_in_eye_ = ctx.param_choice("hand_frame", "base",
+                                    "the hand position's frame: base (none until eye_T_base has come: what the "
+                                    "display's readers take) or eye (the camera's, always)",
+                                    {"base", "eye"}) == "eye";
     hand_sigma_ = ctx.param<double>(
         "hand_sigma", 0.05,
         "m: the hand point's standard deviation as the fingertip's (the visible surface's centre is on the palm, "
@@ -145,10 +149,11 @@ class StereoDepth final : public Component {
     const msgs::CameraIntrinsics& K = pair_.intrinsics();
     const auto hand = estimate_hand_point(depth_, alpha_, Intrinsics{K.fx, K.fy, K.cx, K.cy}, hand_,
                                           have_dev_ ? &dev_T_eye_ : nullptr, points_);
-    if (!hand) return;  // no hand in view (or too little of it with depth)
+    if (!hand) return;                         // no hand in view (or too little of it with depth)
+    if (!hand_in_eye_ && !have_pose_) return;  // (base: not before the camera's pose is known)
     fill_header(hand_msg_.header(), depth_stamp_ ? depth_stamp_ : now.ns, keyed_.header().seq(),
-                have_pose_ ? "base" : "eye");
-    const Eigen::Vector3d p = have_pose_ ? Eigen::Vector3d(base_T_eye_ * hand->eye_p_hand) : hand->eye_p_hand;
+                hand_in_eye_ ? "eye" : "base");
+    const Eigen::Vector3d p = hand_in_eye_ ? hand->eye_p_hand : Eigen::Vector3d(base_T_eye_ * hand->eye_p_hand);
     msgs::to_msg(p, hand_msg_.position());
     for (std::size_t i = 0; i < 9; ++i) hand_msg_.covariance()[i] = i % 4 == 0 ? hand_sigma_ * hand_sigma_ : 0.0;
     hand_msg_.status(msg::TRACKING_OK);
@@ -166,7 +171,7 @@ class StereoDepth final : public Component {
   double hand_sigma_ = 0.04;
   std::int64_t depth_stamp_ = -1;
   Eigen::Isometry3d base_T_eye_ = Eigen::Isometry3d::Identity(), dev_T_eye_ = Eigen::Isometry3d::Identity();
-  bool have_pose_ = false, have_dev_ = false, keyed_pending_ = false;
+  bool have_pose_ = false, have_dev_ = false, keyed_pending_ = false, hand_in_eye_ = false;
   cv::Mat left_grey_, right_grey_, depth_, alpha_;
   std::vector<Eigen::Vector3f> points_;
   msg::Image keyed_, depth_msg_;
