@@ -20,7 +20,7 @@
 #include "netft_rdt/rdt_emulator.hpp"
 #include "puma_controller_emulator/controller_emulator.hpp"
 #include "scene/scene.hpp"
-#include "stereo_recording.hpp"
+#include "real_pipeline.hpp"
 #include "puma_model/puma_model.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"
@@ -146,54 +146,28 @@ TEST(DemoPipelines, TheRealOneRunsAgainstTheEmulators) {
   robot::rdt::Emulator sensor(ft);
   sensor.set_wrench({weight.x(), weight.y(), weight.z(), torque.x(), torque.y(), torque.z()});
   // The real pipeline, pointed at them, with the loop recorder beside it.
-  const std::string yaml = "wysiwyf: 1\ninclude: [" + kPipelines +
-                           "demo-real.yaml]\ncomponents:\n"
-                           "  rec: {type: test_display_recorder, rate: 1000, params: {samples: " +
-                           (dir / "samples.csv").string() + ", events: " + (dir / "events.csv").string() +
-                           "},\n    topics: {joint_state: robot/joint_state, device_pose: robot/device_pose, "
-                           "setpoint: robot/setpoint, mode: display/mode, planner: display/planner, "
-                           "wrench: robot/wrench, tracked_hand: hand/position}}\n";
-  const PipelineSpec spec = load_pipeline_from_string(
-      yaml, (dir / "real-with-recorder.yaml").string(),
-      {"domain=79", "dds.transport=local", "clock.mode=sim", "clock.step=1ms", "clock.pace=1", "clock.duration=2s",
-       "arm.params.host=127.0.0.1", "arm.params.port=" + std::to_string(controller.port()), "arm.params.lockstep=true",
+  const RealRun run = run_real_pipeline(
+      "demo-real.yaml", dir, 79,
+      {"arm.params.host=127.0.0.1", "arm.params.port=" + std::to_string(controller.port()), "arm.params.lockstep=true",
        "arm.params.reply_timeout=5", "wrench.params.host=127.0.0.1",
-       "wrench.params.port=" + std::to_string(sensor.port()), "camera.params.source=" + (dir / "left_%d.png").string(),
-       "camera.params.backend=any", "camera_right.params.source=" + (dir / "right_%d.png").string(),
-       "camera_right.params.backend=any", "record.params.path=" + (dir / "real.mp4").string(),
+       "wrench.params.port=" + std::to_string(sensor.port()),
        // The emulated sensor streams on the wall clock, the pipeline ticks on its paced sim clock:
        // on a loaded machine a 30 ms gap between readings in sim time is the machine's, not the wiring's.
        "supervisor.params.wrench_timeout=0.5"});
-  Loader loader({WYSIWYF_TEST_COMPONENT_DIR, WYSIWYF_COMPONENT_DIR});
-  std::ostringstream log;
-  RunResult result;
-  {
-    Runtime runtime(spec, loader, RunOptions{"", false, &log});
-    result = runtime.run();
-  }
-  ASSERT_TRUE(result.ok) << result.error << log.str();
-  const std::string text = log.str();
-  EXPECT_NE(text.find("[supervisor] idle -> surface"), std::string::npos) << text;
-  EXPECT_EQ(text.find("-> fault"), std::string::npos) << text;
+  ASSERT_TRUE(run.ok) << run.log;
+  EXPECT_NE(run.log.find("[supervisor] idle -> surface"), std::string::npos) << run.log;
+  EXPECT_EQ(run.log.find("-> fault"), std::string::npos) << run.log;
   // Every tick reached the controller, none refused.
   const auto counters = controller.counters();
   EXPECT_GE(counters.commands_applied, 1900u);
   EXPECT_EQ(counters.rejected, 0u);
   // The hand was tracked from the video, and the planner went for the knob.
-  std::ifstream samples(dir / "samples.csv");
-  int tracked = 0, planned = 0;
-  for (std::string row; std::getline(samples, row);) {
-    const auto f = split(row);
-    if (f.size() < 45) continue;
-    tracked += std::stoi(f[44]) == msg::TRACKING_OK;
-    planned += f[40] == "cube +x knob";
-  }
   std::printf(
       "[measured] real pipeline, 2 s: %llu commands applied by the emulated controller, %d ms with a tracked "
       "hand, %d ms with the +x knob as the target\n",
-      static_cast<unsigned long long>(counters.commands_applied), tracked, planned);
-  EXPECT_GT(tracked, 1000);
-  EXPECT_GT(planned, 500);
+      static_cast<unsigned long long>(counters.commands_applied), run.tracked, run.planned);
+  EXPECT_GT(run.tracked, 1000);
+  EXPECT_GT(run.planned, 500);
 }
 
 }  // namespace wysiwyf::test
