@@ -1,14 +1,19 @@
 #pragma once
 // The `wysiwyf` command line as a child process of a test: started with its output to a log,
-// waited for with a hang guard (not a timing check).
+// waited for with a hang guard (not a timing check); `topic list` asked until it shows something.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -43,6 +48,25 @@ inline int wait_exit(pid_t pid, std::chrono::seconds limit) {
   kill(pid, SIGKILL);
   waitpid(pid, &status, 0);
   return -1;
+}
+
+// `topic list` on a domain of the local transport, asked again (a bounded number of times:
+// discovery may take a few announcement periods on a loaded machine) until `done` holds for its
+// listing; the last listing.
+inline std::string list_topics_until(int domain, const std::filesystem::path& log,
+                                     const std::function<bool(const std::string&)>& done) {
+  std::string listing;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const pid_t lister =
+        spawn_cli({"topic", "list", "--domain", std::to_string(domain), "--transport", "local", "--wait", "2"}, log);
+    EXPECT_EQ(wait_exit(lister, std::chrono::seconds(30)), 0);
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    listing = text.str();
+    if (done(listing)) break;
+  }
+  return listing;
 }
 
 }  // namespace wysiwyf::test

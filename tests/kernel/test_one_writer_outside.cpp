@@ -48,13 +48,8 @@ TEST(OneWriterOutside, AnOptionalOneLeftUnmappedIsNotConnectedNotEvenToDds) {
   // Running, the process has no DDS endpoint on it: nothing outside can write into it.
   std::ofstream(dir / "unmapped.yaml") << yaml;
   const pid_t run = spawn_cli({"run", (dir / "unmapped.yaml").string(), "--no-progress"}, dir / "run.log");
-  std::string list;
-  for (int attempt = 0; attempt < 8 && list.find("wysiwyf/diagnostics") == std::string::npos; ++attempt) {
-    const pid_t lister =
-        spawn_cli({"topic", "list", "--domain", "82", "--transport", "local", "--wait", "2"}, dir / "list.log");
-    EXPECT_EQ(wait_exit(lister, std::chrono::seconds(30)), 0);
-    list = read_file(dir / "list.log");
-  }
+  const std::string list = list_topics_until(
+      82, dir / "list.log", [](const std::string& l) { return l.find("wysiwyf/diagnostics") != std::string::npos; });
   EXPECT_NE(list.find("wysiwyf/diagnostics"), std::string::npos) << list;
   EXPECT_EQ(list.find("sink/in"), std::string::npos) << list;
   kill(run, SIGTERM);

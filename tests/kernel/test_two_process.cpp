@@ -33,15 +33,8 @@ TEST(TwoProcesses, ProcessGroupsExchangeDataOverDds) {
       << read_file(dir / "consumer.log");
 
   // The command line tools see the running producer.
-  // (Discovery may take a few announcement periods on a loaded machine: ask again, a bounded
-  // number of times, until the topics are listed.)
-  std::string topics;
-  for (int attempt = 0; attempt < 8 && topics.find("wysiwyf/diagnostics") == std::string::npos; ++attempt) {
-    const pid_t list =
-        spawn_cli({"topic", "list", "--domain", "50", "--transport", "local", "--wait", "2"}, dir / "list.log");
-    EXPECT_EQ(wait_exit(list, std::chrono::seconds(30)), 0);
-    topics = read_file(dir / "list.log");
-  }
+  const std::string topics = list_topics_until(
+      50, dir / "list.log", [](const std::string& l) { return l.find("wysiwyf/diagnostics") != std::string::npos; });
   EXPECT_NE(topics.find("crossing"), std::string::npos) << topics;
   EXPECT_NE(topics.find("wysiwyf::msg::JointState"), std::string::npos) << topics;
   EXPECT_NE(topics.find("wysiwyf/diagnostics"), std::string::npos) << topics;
