@@ -1,6 +1,7 @@
 #include "wysiwyf/msg_checks.hpp"
 
 #include <cmath>
+#include <string_view>
 
 #include "wysiwyf/msg_eigen.hpp"
 
@@ -14,6 +15,11 @@ std::string pose_problem(const geometry_msgs::Pose& p) {
   if (std::abs(length - 1.0) > 0.01)
     return "an orientation quaternion of length " + std::to_string(length) + " (expected 1)";
   return {};
+}
+
+std::string frame_problem(const std_msgs::Header& h, const char* expected) {
+  if (std::string_view(h.frame_id().c_str()) == expected) return {};
+  return "in frame '" + std::string(h.frame_id().c_str()) + "'; expected " + expected;
 }
 
 }  // namespace wysiwyf::msgs

@@ -32,8 +32,8 @@ void Supervisor::read_inputs(std::int64_t now_ns) {
   }
   while (take_checked(hand_in_, hand_msg_)) {
     if (hand_msg_.status() == msg::TRACKING_LOST) continue;
-    if (std::string_view(hand_msg_.header().frame_id().c_str()) != "base") {
-      reject(hand_in_, "in frame '" + std::string(hand_msg_.header().frame_id().c_str()) + "'; expected base");
+    if (std::string why = msgs::frame_problem(hand_msg_.header(), "base"); !why.empty()) {
+      reject(hand_in_, why);
       continue;
     }
     const Vec3 p = msgs::to_eigen(hand_msg_.position());

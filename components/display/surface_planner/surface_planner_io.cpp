@@ -5,16 +5,14 @@
 
 #include <cmath>
 #include <string>
-#include <string_view>
 
 namespace wysiwyf::display {
 
 void SurfacePlanner::read_inputs(std::int64_t now_ns) {
   while (take_checked(hand_in_, hand_msg_)) {
     if (hand_msg_.status() == msg::TRACKING_LOST) continue;
-    if (std::string_view(hand_msg_.header().frame_id().c_str()) != "base") {
-      reject(hand_in_, "in frame '" + std::string(hand_msg_.header().frame_id().c_str()) +
-                           "'; expected base (a tracker that does not know the camera's pose yet?)");
+    if (std::string why = msgs::frame_problem(hand_msg_.header(), "base"); !why.empty()) {
+      reject(hand_in_, why + " (a tracker that does not know the camera's pose yet?)");
       continue;
     }
     const std::int64_t stamp = hand_msg_.header().stamp_ns() ? hand_msg_.header().stamp_ns() : now_ns;

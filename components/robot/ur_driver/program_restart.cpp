@@ -5,11 +5,9 @@
 
 namespace wysiwyf::robot::ur {
 
-bool ProgramRestart::start(const Endpoints& c, const std::string& program, double timeout_s, bool unlock) {
-  if (pending_.valid()) return false;
+void ProgramRestart::start(const Endpoints& c, const std::string& program, double timeout_s, bool unlock) {
   pending_ = std::async(std::launch::async,
                         [c, program, timeout_s, unlock] { return restart_program(c, program, timeout_s, unlock); });
-  return true;
 }
 
 std::optional<ProgramRestart::Outcome> ProgramRestart::poll() {

@@ -19,8 +19,8 @@ class ProgramRestart {
     std::string what;   // what was done, or why it could not be
   };
 
-  // Starts a restart unless one is in flight (then false).
-  bool start(const Endpoints& c, const std::string& program, double timeout_s, bool unlock);
+  // Starts a restart (none may be in flight: in_flight()).
+  void start(const Endpoints& c, const std::string& program, double timeout_s, bool unlock);
   bool in_flight() const { return pending_.valid(); }
   // Waits for the restart in flight to end (lockstep: the simulated clock does not run meanwhile).
   void wait() const {

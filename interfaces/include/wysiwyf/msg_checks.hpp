@@ -12,6 +12,9 @@ namespace wysiwyf::msgs {
 // Why a pose cannot be used: a non-finite number, or an orientation quaternion far from unit
 // length (a zero quaternion would become a NaN rotation). "" when it can.
 std::string pose_problem(const geometry_msgs::Pose& p);
+// Why a sample stamped in another frame than `expected` cannot be used as one in it (a tracker's
+// hand in the camera's frame before it knows the camera's pose, read as base). "" when it can.
+std::string frame_problem(const std_msgs::Header& h, const char* expected);
 
 }  // namespace wysiwyf::msgs
 
