@@ -15,6 +15,7 @@
 
 #include "dds_session.hpp"
 #include "dynamic_keys.hpp"
+#include "image_replay.hpp"
 #include "mcap/mcap_reader.hpp"
 #include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
@@ -52,12 +53,15 @@ class McapFeed final : public SampleFeed {
   void due(std::int64_t t_ns, const Deliver& deliver) override {
     while (has_ && static_cast<std::int64_t>(next_.publish_time + offset_) <= t_ns) {
       const auto& channel = reader_.channels().at(next_.channel);
-      deliver(channel.topic, next_.data.data(), next_.data.size());
-      ++played_;
+      if (images_.unpack(channel, next_)) {
+        deliver(channel.topic, next_.data.data(), next_.data.size());
+        ++played_;
+      }
       advance();
     }
   }
   std::uint64_t played() const { return played_; }
+  const ImageReplay& images() const { return images_; }
   const io::mcap::Reader& reader() const { return reader_; }
 
  private:
@@ -80,6 +84,7 @@ class McapFeed final : public SampleFeed {
   std::vector<std::string> topics_;
   bool loop_;
   io::mcap::Message next_;
+  ImageReplay images_;
   bool has_ = false;
   std::uint64_t offset_ = 0, last_ = 0, played_ = 0;
 };
@@ -108,6 +113,7 @@ int play_into(const std::string& file, const std::string& pipeline, const std::v
             << spec.name.value << "'; stopped: " << (r.ok ? r.stop_reason : "fault") << " at t=" << r.sim_time_ns * 1e-9
             << " s\n";
   for (const auto& [topic, why] : r.feed_refused) std::cout << "  not played on '" << topic << "': " << why << "\n";
+  feed.images().report(std::cout);
   for (const auto& line : r.dds_problems) std::cout << "  dds: " << line << "\n";
   if (!feed.reader().problem().empty()) std::cout << "  " << file << ": " << feed.reader().problem() << "\n";
   if (!r.ok) {
@@ -127,6 +133,7 @@ int play_onto_domain(Args& args, const std::string& file, const std::vector<std:
   Publisher* publisher = s.participant->create_publisher(PUBLISHER_QOS_DEFAULT);
   std::map<std::uint16_t, DataWriter*> writers;  // by channel; null: not played
   RawCdr sample;
+  ImageReplay images;
   std::uint64_t played = 0;
   const double speed = rate > 0 ? rate : 1.0;
   do {
@@ -175,7 +182,7 @@ int play_onto_domain(Args& args, const std::string& file, const std::vector<std:
         it->second = t ? publisher->create_datawriter(t, wq) : nullptr;
         if (!it->second) throw std::runtime_error("cannot write topic '" + ch.topic + "'");
       }
-      if (!it->second) continue;
+      if (!it->second || !images.unpack(reader.channels().at(m.channel), m)) continue;
       if (!first) first = m.log_time;
       std::this_thread::sleep_until(start +
                                     std::chrono::nanoseconds(static_cast<std::int64_t>((m.log_time - *first) / speed)));
@@ -184,6 +191,7 @@ int play_onto_domain(Args& args, const std::string& file, const std::vector<std:
     }
   } while (loop && !stop_signal_received() && played > 0);
   std::cout << "played " << played << " samples from " << file << " onto domain " << s.domain << "\n";
+  images.report(std::cout);
   if (!reader.problem().empty()) std::cout << "  " << file << ": " << reader.problem() << "\n";
   return played > 0 ? 0 : 1;
 }

@@ -21,6 +21,7 @@
 
 #include "dds_session.hpp"
 #include "idl_schemas.hpp"
+#include "image_topic_writer.hpp"
 #include "mcap/mcap_writer.hpp"
 #include "raw_cdr_type.hpp"
 #include "wysiwyf/dds.hpp"
@@ -47,6 +48,7 @@ struct Recording {
     std::uint32_t sequence;
     std::uint64_t log_ns, publish_ns;
     std::vector<std::uint8_t> bytes;
+    ImageTopicWriter* image;  // an image topic packed on the writer thread (--images lossless), or null
   };
   static constexpr std::size_t kMaxQueuedBytes = std::size_t{1} << 30;
 
@@ -120,7 +122,10 @@ struct Recording {
       {
         std::lock_guard<std::mutex> lock(mutex);
         for (const auto& p : batch) {
-          writer.write(p.channel, p.sequence, p.log_ns, p.publish_ns, p.bytes.data(), p.bytes.size());
+          if (p.image)
+            p.image->write(writer, p.sequence, p.log_ns, p.publish_ns, p.bytes);
+          else
+            writer.write(p.channel, p.sequence, p.log_ns, p.publish_ns, p.bytes.data(), p.bytes.size());
           bytes += p.bytes.size();
         }
       }
@@ -146,8 +151,9 @@ struct Recording {
 // One recorded topic: a reader of raw CDR and its channel in the file.
 class TopicRecorder final : public DataReaderListener {
  public:
-  TopicRecorder(Recording& rec, std::string topic, std::uint16_t channel, bool stamped)
-      : rec_(rec), topic_(std::move(topic)), channel_(channel), stamped_(stamped) {}
+  TopicRecorder(Recording& rec, std::string topic, std::uint16_t channel, bool stamped,
+                ImageTopicWriter* image = nullptr)
+      : rec_(rec), topic_(std::move(topic)), channel_(channel), stamped_(stamped), image_(image) {}
   void on_data_available(DataReader* reader) override {
     SampleInfo info;
     for (;;) {
@@ -161,7 +167,7 @@ class TopicRecorder final : public DataReaderListener {
       std::uint64_t publish = static_cast<std::uint64_t>(info.source_timestamp.to_ns());
       if (const auto stamp = stamped_ ? header_stamp(sample_.bytes) : std::nullopt; stamp && *stamp >= 0)
         publish = static_cast<std::uint64_t>(*stamp);
-      if (rec_.enqueue({channel_, sequence_++, now, publish, std::move(sample_.bytes)})) ++messages;
+      if (rec_.enqueue({channel_, sequence_++, now, publish, std::move(sample_.bytes), image_})) ++messages;
       sample_.bytes = {};
     }
   }
@@ -174,12 +180,14 @@ class TopicRecorder final : public DataReaderListener {
     lost.fetch_add(static_cast<std::uint64_t>(status.total_count_change));
   }
   std::atomic<std::uint64_t> messages{0}, lost{0};
+  const ImageTopicWriter* image() const { return image_; }
 
  private:
   Recording& rec_;
   std::string topic_;
   std::uint16_t channel_;
   bool stamped_;
+  ImageTopicWriter* image_;  // (in cmd_record's image_topics, which outlive the writer thread)
   RawCdr sample_;
   std::uint32_t sequence_ = 0;
 };
@@ -196,12 +204,16 @@ int cmd_record(Args args) {
   const std::string compression_arg = args.value("--compression").value_or("zstd");
   const auto compression = io::mcap::parse_compression(compression_arg);
   if (!compression) throw UsageError("--compression: found '" + compression_arg + "'; expected zstd, lz4 or none");
+  const std::string images = args.value("--images").value_or("lossless");
+  if (images != "lossless" && images != "raw")
+    throw UsageError("--images: found '" + images + "'; expected lossless or raw");
   const bool progress = !args.flag("--no-progress") && isatty(STDERR_FILENO);
   if (!args.unknown_options().empty()) throw UsageError("unknown option " + args.unknown_options().front());
   const std::vector<std::string> wanted = args.positional();
   if (out.empty()) throw UsageError("record: expected -o FILE.mcap");
   if (wanted.empty() && !all) throw UsageError("record: expected topic names, or --all for every topic");
   install_stop_signal_handlers();
+  std::vector<std::unique_ptr<ImageTopicWriter>> image_topics;  // (before rec: its writer thread uses them)
   Recording rec(out, *compression);
   std::cerr << "recording " << (all ? "every topic" : std::to_string(wanted.size()) + " topic(s)") << " of domain "
             << s.domain << " (transport " << s.transport << ") into " << out << "\n";
@@ -217,22 +229,27 @@ int cmd_record(Args args) {
       if (!all && std::find(wanted.begin(), wanted.end(), topic) == wanted.end()) continue;
       std::string searched;
       const auto schema = idl_schema(info.type, searched);
+      const std::map<std::string, std::string> metadata = {
+          {"dds_type", info.type},
+          {"reliability", info.reliability == RELIABLE_RELIABILITY_QOS ? "reliable" : "best_effort"},
+          {"durability", info.durability == VOLATILE_DURABILITY_QOS ? "volatile" : "transient_local"},
+          {"keyed", info.keyed ? "true" : "false"},
+          {"ownership", info.one_writer ? "exclusive" : "shared"}};
       std::uint16_t schema_id = 0, channel = 0;
-      {
+      ImageTopicWriter* image = nullptr;
+      if (images != "raw" && info.type == "wysiwyf::msg::Image") {  // its channels come with its samples
+        image_topics.push_back(
+            std::make_unique<ImageTopicWriter>(topic, schema ? info.type : "", schema ? schema->text : "", metadata));
+        image = image_topics.back().get();
+      } else {
         std::lock_guard<std::mutex> lock(rec.mutex);
         if (schema) schema_id = rec.writer.add_schema(info.type, "omgidl", schema->text);
-        channel = rec.writer.add_channel(
-            schema_id, topic, "cdr",
-            {{"dds_type", info.type},
-             {"reliability", info.reliability == RELIABLE_RELIABILITY_QOS ? "reliable" : "best_effort"},
-             {"durability", info.durability == VOLATILE_DURABILITY_QOS ? "volatile" : "transient_local"},
-             {"keyed", info.keyed ? "true" : "false"},
-             {"ownership", info.one_writer ? "exclusive" : "shared"}});
+        channel = rec.writer.add_channel(schema_id, topic, "cdr", metadata);
       }
       if (!schema)
         std::cerr << "topic '" << topic << "': no IDL defines " << info.type << " (searched " << searched
                   << "); recorded without a schema\n";
-      auto recorder = std::make_unique<TopicRecorder>(rec, topic, channel, schema && schema->stamped);
+      auto recorder = std::make_unique<TopicRecorder>(rec, topic, channel, schema && schema->stamped, image);
       // Deep: a burst waits here instead of being lost.
       if (!open_raw_reader(s, subscriber, topic, info, 100, recorder.get(),
                            StatusMask::data_available()
@@ -278,7 +295,8 @@ int cmd_record(Args args) {
               << " %)\n";
   for (const auto& [topic, r] : recorders)
     std::cout << "  " << topic << ": " << r->messages.load()
-              << (r->lost ? ", lost " + std::to_string(r->lost.load()) : "") << "\n";
+              << (r->lost ? ", lost " + std::to_string(r->lost.load()) : "")
+              << (r->image() ? " (" + r->image()->summary() + ")" : "") << "\n";
   if (!all)
     for (const auto& w : wanted)
       if (!recorders.count(w)) std::cerr << "topic '" << w << "' had no writer on domain " << s.domain << "\n";

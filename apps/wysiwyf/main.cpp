@@ -127,12 +127,15 @@ const CommandHelp kCommands[] = {
 )"},
     {"record", "Record topics of a running pipeline into an MCAP file", true,
      R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
-         [--compression zstd|lz4|none]
+         [--compression zstd|lz4|none] [--images lossless|raw]
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
         --compression: of each chunk, lossless; zstd (default, level 1: the smallest files that
         keep up with the demo's images), lz4 (faster, larger), none. play reads all three.
+        --images: Image topics; lossless (default): as Foxglove CompressedImage where that is
+        smaller than the chunks make them (camera images as lossless WebP, float depth as PNG),
+        decoded by play bit for bit; raw: as DDS carried them.
 )"},
     {"play", "Replay an MCAP file into a pipeline (bit for bit) or onto a domain", true,
      R"(  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]

@@ -6,7 +6,9 @@
 //                                        the schema, the count, and every message decoded; the
 //                                        chunks per compression ("" for none)
 //   node read_mcap.mjs stream FILE       front-to-back read of a file that may be cut short;
-//                                        the chunks per compression
+//                                        the chunks per compression; the foxglove::CompressedImage
+//                                        messages per format, and those whose data is not what
+//                                        the format says (the file's magic number)
 //   node read_mcap.mjs compare A B TOPIC the TOPIC messages of A and B with equal stamps: equal bytes?
 import { readFileSync } from "node:fs";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
@@ -60,12 +62,22 @@ async function summary(file) {
   };
 }
 
+// Whether `data` starts as a file of `format` does (what a browser's decoder looks for).
+function hasMagic(format, data) {
+  const text = (from, to) => new TextDecoder().decode(data.subarray(from, to));
+  if (format === "webp") return text(0, 4) === "RIFF" && text(8, 12) === "WEBP";
+  if (format === "png") return data[0] === 0x89 && text(1, 4) === "PNG";
+  if (format === "jpeg") return data[0] === 0xff && data[1] === 0xd8;
+  return false;
+}
+
 function stream(file) {
   const reader = new McapStreamReader({ validateCrcs: true, includeChunks: true, decompressHandlers });
   reader.append(readFileSync(file));
   const schemas = new Map(), channels = new Map(), decoders = new Map();
   const compressions = [];
-  let messages = 0, decoded = 0;
+  let messages = 0, decoded = 0, misformatted = 0;
+  const images = [];
   for (let r; (r = reader.nextRecord()) !== undefined; ) {
     if (r.type === "Chunk") compressions.push(r.compression);
     else if (r.type === "Schema") schemas.set(r.id, r);
@@ -74,10 +86,17 @@ function stream(file) {
       messages++;
       const schema = schemas.get(channels.get(r.channelId).schemaId);
       if (schema && !decoders.has(schema.id)) decoders.set(schema.id, decoderFor(schema));
-      if (schema) decoders.get(schema.id).readMessage(r.data), decoded++;
+      if (!schema) continue;
+      const message = decoders.get(schema.id).readMessage(r.data);
+      decoded++;
+      if (schema.name === "foxglove::CompressedImage") {
+        images.push(message.format);
+        if (!hasMagic(message.format, message.data)) misformatted++;
+      }
     }
   }
-  return { messages, decoded, chunks: compressions.length, compression: countBy(compressions), done: reader.done() };
+  return { messages, decoded, chunks: compressions.length, compression: countBy(compressions), done: reader.done(),
+           images: countBy(images), misformatted_images: misformatted };
 }
 
 async function compare(a, b, topic) {

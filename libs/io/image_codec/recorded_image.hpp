@@ -1,0 +1,35 @@
+#pragma once
+// An Image sample as a recording keeps it on a packed channel: a foxglove CompressedImage whose
+// channel metadata holds what the CompressedImage lacks (the encoding, size and row step, and the
+// packing), and whose MCAP message sequence is the image header's seq. Together they give the
+// original sample back byte for byte.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "image_codec/lossless.hpp"
+
+namespace wysiwyf::io::image_codec {
+
+using Metadata = std::map<std::string, std::string>;
+
+// The metadata keys of a packed channel: image_packing (packing_name()), image_encoding,
+// image_width, image_height, image_step, image_is_bigendian.
+Metadata packed_metadata(const Shape& shape, Packing packing);
+// Whether a channel with this metadata holds packed images (it has image_packing).
+bool is_packed(const Metadata& metadata);
+
+// Why `image` cannot go on a packed channel of `packing` and `shape` ("" if it can): another shape,
+// a stamp outside foxglove.Time (0 to 2^32 s), a seq over 2^32 - 1 (the MCAP sequence's size).
+std::string unpackable(const ImageSample& image, const Shape& shape, Packing packing);
+// The CompressedImage CDR of `image` (checked by unpackable() first). "" on success, else why not.
+std::string pack(const ImageSample& image, Packing packing, std::vector<std::uint8_t>& cdr);
+
+// The Image CDR of a packed message, from its channel's metadata, its MCAP sequence and its
+// bytes. "" on success, else what was wrong (metadata missing or out of range, the
+// CompressedImage's CDR, the compressed image itself).
+std::string unpack(const Metadata& metadata, std::uint32_t sequence, const std::uint8_t* p, std::size_t n,
+                   std::vector<std::uint8_t>& out);
+
+}  // namespace wysiwyf::io::image_codec

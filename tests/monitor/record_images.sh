@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# `wysiwyf record --images` on the simulated demo's images, as a user runs it, checked with the
+# official MCAP reader (@mcap/core) and Foxglove's OMG IDL decoder (tests/monitor/js):
+#  1. the first second of the demo recorded twice at once: `--images raw` and `--images lossless`
+#     (the default); the lossless file is smaller, every message of it decodes, the noisy camera
+#     images are WebP and the rendered depth PNG foxglove::CompressedImage messages whose bytes
+#     are what their format says;
+#  2. `play` of the lossless file onto another domain, recorded raw there: each image equals the
+#     live one of the same stamp byte for byte (the Image samples `play` decodes are the ones
+#     `record` packed). The recorder there may miss a topic's first images: play's writer of a
+#     topic appears with its first sample, and the recorder reads a topic once it has seen a writer.
+# Usage: record_images.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN and DOMAIN+1)
+set -euo pipefail
+build=$1 src=$2 d1=$3 d2=$(($3 + 1))
+cli=$build/bin/wysiwyf
+js=$build/npm/monitor
+if [[ ! -d $js/node_modules/@mcap/core ]]; then
+  echo "FAIL: $js/node_modules has no @mcap/core: scripts/test installs tests/monitor/js/package.json there (npm ci)"
+  exit 1
+fi
+cp "$src/tests/monitor/js/read_mcap.mjs" "$js/"
+work=$(mktemp -d)
+pids=()
+trap 'for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$work"' EXIT
+pipeline=$src/config/pipelines/demo-sim.yaml
+fail() { echo "FAIL: $*"; for f in raw lossless run play replay; do echo "--- $f"; tail -30 "$work/$f.log" 2>/dev/null; done; exit 1; }
+json() { python3 -c "import json,sys; d=json.load(open('$1')); print($2)"; }
+images=(camera/image render/depth)  # a noisy camera's WebP, a float depth's PNG
+
+echo "== 1. the demo's first second, recorded raw and lossless"
+"$cli" record --all --images raw -o "$work/raw.mcap" --domain "$d1" --transport local --no-progress >"$work/raw.log" 2>&1 &
+raw=$!; pids+=("$raw")
+"$cli" record --all -o "$work/lossless.mcap" --domain "$d1" --transport local --no-progress >"$work/lossless.log" 2>&1 &
+lossless=$!; pids+=("$lossless")
+"$cli" run "$pipeline" --set domain="$d1" --set dds.transport=local --set clock.duration=1s --set clock.pace=0 \
+  --set record.params.path="$work/demo.mp4" --start-after 2 --no-progress >"$work/run.log" 2>&1 || fail "the demo did not run"
+kill -INT "$raw" "$lossless"
+wait "$raw" || fail "the raw recorder exited non-zero"
+wait "$lossless" || fail "the lossless recorder exited non-zero"
+grep -q "^  camera/image: 25 (webp, " "$work/lossless.log" || fail "camera/image: not 25 images packed as WebP"
+grep -q "^  render/depth: 25 (float32-delta-planes-png, " "$work/lossless.log" || fail "render/depth: not 25 depth images packed as PNG"
+grep -q "^  render/color: 25 (raw)" "$work/lossless.log" || fail "render/color (a rendered image) did not stay raw"
+grep -q "lost 0 before the recorder, 0 in it" "$work/lossless.log" || fail "the lossless recorder lost samples"
+size_raw=$(stat -c %s "$work/raw.mcap") size_lossless=$(stat -c %s "$work/lossless.mcap")
+(( size_lossless * 10 < size_raw * 8 )) || fail "lossless file $size_lossless bytes; raw $size_raw: expected at least 20 % smaller"
+node "$js/read_mcap.mjs" stream "$work/lossless.mcap" >"$work/stream.json" || fail "@mcap/core cannot read the lossless file"
+cat "$work/stream.json"
+[[ $(json "$work/stream.json" "d['decoded'] == d['messages'] and d['done']") == True ]] ||
+  fail "not every message decodes: $(json "$work/stream.json" "(d['decoded'], d['messages'])")"
+[[ $(json "$work/stream.json" "d['misformatted_images']") == 0 ]] || fail "CompressedImage data that is not its format"
+[[ $(json "$work/stream.json" "d['images'].get('webp', 0) >= 50 and d['images'].get('png', 0) >= 25") == True ]] ||
+  fail "images per format: $(json "$work/stream.json" "d['images']")"
+node "$js/read_mcap.mjs" summary "$work/lossless.mcap" >"$work/summary.json" || fail "@mcap/core cannot index the file"
+[[ $(json "$work/summary.json" "d['topics']['camera/image']['schema']") == foxglove::CompressedImage ]] || fail "camera/image's schema"
+echo "ok: lossless $size_lossless bytes, raw $size_raw; every message decodes"
+
+echo "== 2. play the lossless file; the images come back as recorded live"
+"$cli" record "${images[@]}" --images raw -o "$work/replay.mcap" --domain "$d2" --transport local --no-progress \
+  >"$work/replay.log" 2>&1 &
+rec=$!; pids+=("$rec")
+sleep 2  # (the recorder's readers up before the first sample: play does not wait for readers)
+"$cli" play "$work/lossless.mcap" --topics "$(IFS=,; echo "${images[*]}")" --domain "$d2" --transport local \
+  >"$work/play.log" 2>&1 || fail "play failed"
+cat "$work/play.log"
+sleep 1
+kill -INT "$rec"; wait "$rec" || fail "the replay's recorder exited non-zero"
+grep -q "not played" "$work/play.log" && fail "play skipped images"
+for topic in "${images[@]}"; do
+  node "$js/read_mcap.mjs" compare "$work/raw.mcap" "$work/replay.mcap" "$topic" >"$work/cmp.json"
+  cat "$work/cmp.json"
+  [[ $(json "$work/cmp.json" "d['a'] == 25 and d['common'] >= 20 and d['differ'] == 0") == True ]] ||
+    fail "$topic: the replayed images differ from the live ones (or too few were replayed to tell)"
+done
+echo "ok: the camera's and the depth's images replayed byte for byte"
