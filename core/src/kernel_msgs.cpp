@@ -2,5 +2,6 @@
 #include "wysiwyf/kernel_msgs.hpp"
 
 #include "wysiwyf/idl/diagnosticsPubSubTypes.h"
+#include "wysiwyf/message_type_support.hpp"
 
 WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::kernel_msgs, Diagnostics)

@@ -1,5 +1,7 @@
 #include "wysiwyf/msgs.hpp"
 
+#include "wysiwyf/message_type_support.hpp"
+
 #include "wysiwyf/idl/geometry_msgsPubSubTypes.h"
 #include "wysiwyf/idl/sensor_msgsPubSubTypes.h"
 #include "wysiwyf/idl/display_msgsPubSubTypes.h"

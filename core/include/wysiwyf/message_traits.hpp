@@ -24,9 +24,4 @@ struct MessageTraits;
     static eprosima::fastdds::dds::TopicDataType* make_type(); \
   };
 
-/// WYSIWYF_MESSAGE_TYPE_SUPPORT(wysiwyf::msg, JointState) in the message library's one .cpp that
-/// includes the generated *PubSubTypes.h: the DDS type support behind the port binding.
-#define WYSIWYF_MESSAGE_TYPE_SUPPORT(NS, NAME)                                           \
-  eprosima::fastdds::dds::TopicDataType* wysiwyf::MessageTraits<NS::NAME>::make_type() { \
-    return new NS::NAME##PubSubType();                                                   \
-  }
+/// The type support itself: WYSIWYF_MESSAGE_TYPE_SUPPORT in wysiwyf/message_type_support.hpp.
