@@ -1,6 +1,7 @@
 // The checks beside the message types (wysiwyf/msg_checks.hpp) and Component::take_checked: a
 // sample with a NaN, or an orientation that is no rotation, is refused with why; a good one is
-// taken; a LOST hand or a release carries nothing to check.
+// taken; a LOST hand or a release carries nothing to check; a number beyond any lab's magnitude
+// is refused as a NaN is.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,6 +76,34 @@ TEST(MessageChecks, EachTypeChecksWhatItCarries) {
   EXPECT_EQ(msg::problem(a), "") << "a release carries no pose";
   a.attached(true);
   EXPECT_NE(msg::problem(a).find("(obj_T_dev)"), std::string::npos);
+}
+
+// A finite 1e308 overflows at its first square (a distance, a spring's force): every number a
+// sample carries is refused beyond msgs::kMaxMagnitude, as a NaN is.
+TEST(MessageChecks, NumbersBeyondAnyLabsMagnitudeAreRefusedLikeANan) {
+  msg::PoseStamped p = pose(1);
+  p.pose().position().x(1e308);
+  EXPECT_EQ(msg::problem(p), "a position beyond 1e4 m (expected finite, within 1e4)");
+  p.pose().position().x(-9999);
+  EXPECT_EQ(msg::problem(p), "") << "within 1e4 m";
+  msg::WrenchStamped w;
+  w.wrench().torque().z(-2e4);
+  EXPECT_NE(msg::problem(w).find("beyond 1e4"), std::string::npos);
+  msg::JointState j;
+  j.position() = {0, 0, 0, 0, 0, 0};
+  j.velocity() = {0, 0, 1e300, 0, 0, 0};
+  EXPECT_NE(msg::problem(j).find("beyond 1e4"), std::string::npos);
+  j.velocity() = {};
+  j.effort() = {0, 0, 0, 0, 0, -1e5};
+  EXPECT_NE(msg::problem(j).find("beyond 1e4"), std::string::npos);
+  msg::HandPosition h;
+  h.status(msg::TRACKING_OK);
+  h.position().z(1e308);
+  EXPECT_EQ(msg::problem(h), "a position beyond 1e4 m (expected finite, within 1e4)");
+  msg::CartesianSetpoint s;
+  s.pose().orientation().w(1);
+  s.twist().angular().y(1e5);
+  EXPECT_EQ(msg::problem(s), "a twist beyond 1e4 m/s or rad/s (expected finite, within 1e4)");
 }
 
 }  // namespace

@@ -36,6 +36,7 @@
 #include "tool_geometry.hpp"
 #include "wysiwyf/component.hpp"
 #include "wysiwyf/config_files.hpp"
+#include "wysiwyf/msg_checks.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
 
@@ -217,10 +218,11 @@ class ArmSim final : public Component {
       const Eigen::Vector3d x = msgs::to_eigen(hand_msg_.pose().position());
       Eigen::Quaterniond q = msgs::to_eigen(hand_msg_.pose().orientation());
       q = q.norm() > 1e-6 ? q.normalized() : Eigen::Quaterniond::Identity();  // (a position only: unturned)
-      if (x.allFinite() && q.coeffs().allFinite())
+      // (a finite 1e308 would overflow the hand's spring force to infinity)
+      if (x.allFinite() && q.coeffs().allFinite() && x.cwiseAbs().maxCoeff() <= msgs::kMaxMagnitude)
         hand_target_ = x, hand_q_ = q;  // the hand turns as the user turns it; only the fingertip touches
       else
-        reject(hand_in_, "a non-finite pose");
+        reject(hand_in_, "a non-finite pose or a position beyond 1e4 m");
     }
     follower_->update(now.ns);
 

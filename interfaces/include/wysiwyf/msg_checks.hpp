@@ -9,9 +9,17 @@
 
 namespace wysiwyf::msgs {
 
-// Why a pose cannot be used: a non-finite number, or an orientation quaternion far from unit
-// length (a zero quaternion would become a NaN rotation). "" when it can.
+// The largest magnitude any number of a sample may have in SI units (m, rad, m/s, N): nothing a
+// lab measures or commands comes near it, and a finite 1e308 overflows to infinity at its first
+// square (a distance, a spring's force), so a larger one is refused like a NaN.
+constexpr double kMaxMagnitude = 1e4;
+
+// Why a pose cannot be used: a non-finite number, a position beyond kMaxMagnitude, or an
+// orientation quaternion far from unit length (a zero quaternion would become a NaN rotation).
+// "" when it can.
 std::string pose_problem(const geometry_msgs::Pose& p);
+// Why a twist cannot be used: a non-finite number or one beyond kMaxMagnitude. "" when it can.
+std::string twist_problem(const geometry_msgs::Twist& t);
 // Why a sample stamped in another frame than `expected` cannot be used as one in it (a tracker's
 // hand in the camera's frame before it knows the camera's pose, read as base). "" when it can.
 std::string frame_problem(const std_msgs::Header& h, const char* expected);
