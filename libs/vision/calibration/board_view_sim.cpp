@@ -5,6 +5,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "calibration/board_placement.hpp"
+
 namespace wysiwyf::vision::calibration {
 
 namespace {
@@ -67,33 +69,14 @@ cv::Mat BoardViewSim::render(const Eigen::Isometry3d& eye_T_board, const ViewCon
 
 std::vector<Eigen::Isometry3d> board_view_poses(const CharucoTarget& target, const CameraIntrinsics& camera, int count,
                                                 std::mt19937& rng) {
-  std::uniform_real_distribution<double> u01(0, 1);
-  const Eigen::Vector3d centre(target.width() / 2, target.height() / 2, 0);
-  const cv::Matx33d& K = camera.camera_matrix;
+  PlacementRanges ranges;
+  ranges.near = 0.28, ranges.far = 0.55, ranges.min_tilt = 15, ranges.max_tilt = 45;
+  const auto w = static_cast<float>(target.width()), h = static_cast<float>(target.height());
+  const std::vector<cv::Point3f> outline{{0, 0, 0}, {w, 0, 0}, {0, h, 0}, {w, h, 0}};
   std::vector<Eigen::Isometry3d> out;
-  std::vector<cv::Point3f> outline{{0, 0, 0},
-                                   {static_cast<float>(target.width()), 0, 0},
-                                   {0, static_cast<float>(target.height()), 0},
-                                   {static_cast<float>(target.width()), static_cast<float>(target.height()), 0}};
   for (int tries = 0; static_cast<int>(out.size()) < count && tries < 1000 * count; ++tries) {
-    const double z = 0.28 + 0.27 * u01(rng);
-    const double px = camera.size.width * (0.15 + 0.7 * u01(rng)), py = camera.size.height * (0.15 + 0.7 * u01(rng));
-    const Eigen::Vector3d at(z * (px - K(0, 2)) / K(0, 0), z * (py - K(1, 2)) / K(1, 1), z);
-    // Facing the camera so that the texture reads as printed (a y-up board turned over about x),
-    // tilted about a random in-plane axis, spun about the view axis.
-    const double axis = 2 * M_PI * u01(rng), tilt = (15 + 30 * u01(rng)) * M_PI / 180;
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(tilt, Eigen::Vector3d(std::cos(axis), std::sin(axis), 0)).toRotationMatrix() *
-        Eigen::AngleAxisd((u01(rng) - 0.5) * M_PI / 3, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-        (target.texture_y_flipped() ? Eigen::Matrix3d(Eigen::Vector3d(1, -1, -1).asDiagonal())
-                                    : Eigen::Matrix3d::Identity());
-    Eigen::Isometry3d eye_T_board = Eigen::Isometry3d::Identity();
-    eye_T_board.linear() = R;
-    eye_T_board.translation() = at - R * centre;
-    bool inside = true;
-    for (const cv::Point2f& p : project(camera, eye_T_board, outline))
-      inside = inside && p.x > 8 && p.y > 8 && p.x < camera.size.width - 8 && p.y < camera.size.height - 8;
-    if (inside) out.push_back(eye_T_board);
+    const Eigen::Isometry3d pose = eye_T_board(target, camera, random_placement(camera, ranges, rng));
+    if (inside_image(camera, pose, outline, 8)) out.push_back(pose);
   }
   return out;
 }

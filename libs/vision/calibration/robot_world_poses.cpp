@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "calibration/board_placement.hpp"
+
 namespace wysiwyf::vision::calibration {
 
 Eigen::Isometry3d dev_T_board(const CharucoTarget& target) {
@@ -20,29 +22,14 @@ std::vector<robot::JointVector> robot_world_poses(const robot::ArmModel& arm, co
                                                   robot::FrameId flange, const Eigen::Isometry3d& flange_T_board,
                                                   const Eigen::Isometry3d& base_T_eye, const CameraIntrinsics& camera,
                                                   const CharucoTarget& target, int count, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u01(0, 1);
-  const cv::Matx33d& K = camera.camera_matrix;
-  const Eigen::Vector3d centre(target.width() / 2, target.height() / 2, 0);
-  // The board facing the camera, read the right way up (see dev_T_board).
-  const Eigen::Matrix3d facing = target.texture_y_flipped() ? Eigen::Matrix3d(Eigen::Vector3d(1, -1, -1).asDiagonal())
-                                                            : Eigen::Matrix3d::Identity();
+  PlacementRanges ranges;
+  ranges.image_margin = 0.25, ranges.near = 0.75, ranges.far = 1.05, ranges.min_tilt = 15, ranges.max_tilt = 35;
   std::vector<robot::JointVector> out;
   robot::JointVector q = q_home;
   for (int tries = 0; static_cast<int>(out.size()) < count && tries < 200 * count; ++tries) {
-    const double z = 0.75 + 0.3 * u01(rng);
-    const double px = camera.size.width * (0.25 + 0.5 * u01(rng)), py = camera.size.height * (0.25 + 0.5 * u01(rng));
-    const Eigen::Vector3d at(z * (px - K(0, 2)) / K(0, 0), z * (py - K(1, 2)) / K(1, 1), z);
-    const double axis = 2 * M_PI * u01(rng), tilt = (15 + 20 * u01(rng)) * M_PI / 180;
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(tilt, Eigen::Vector3d(std::cos(axis), std::sin(axis), 0)).toRotationMatrix() *
-        Eigen::AngleAxisd((u01(rng) - 0.5) * M_PI / 3, Eigen::Vector3d::UnitZ()).toRotationMatrix() * facing;
-    Eigen::Isometry3d eye_T_board = Eigen::Isometry3d::Identity();
-    eye_T_board.linear() = R;
-    eye_T_board.translation() = at - R * centre;
-    bool inside = true;
-    for (const cv::Point2f& p : project(camera, eye_T_board, target.corners()))
-      inside = inside && p.x > 10 && p.y > 10 && p.x < camera.size.width - 10 && p.y < camera.size.height - 10;
-    if (!inside) continue;
+    const Eigen::Isometry3d eye_T_board =
+        calibration::eye_T_board(target, camera, random_placement(camera, ranges, rng));
+    if (!inside_image(camera, eye_T_board, target.corners(), 10)) continue;
     const Eigen::Isometry3d base_T_flange = base_T_eye * eye_T_board * flange_T_board.inverse();
     const robot::ArmIkResult ik = arm.ik_nearest(base_T_flange, q, flange);
     if (!ik.ok()) continue;
