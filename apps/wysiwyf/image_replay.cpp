@@ -8,7 +8,8 @@ namespace wysiwyf::cli {
 
 bool ImageReplay::unpack(const io::mcap::Channel& ch, io::mcap::Message& m) {
   if (!io::image_codec::is_packed(ch.metadata)) return true;
-  const std::string why = io::image_codec::unpack(ch.metadata, m.sequence, m.data.data(), m.data.size(), image_);
+  const std::string why =
+      io::image_codec::unpack(ch.metadata, m.sequence, m.data.data(), m.data.size(), image_, video_[ch.id]);
   if (why.empty()) {
     m.data.swap(image_);
     return true;

@@ -1,14 +1,16 @@
 #pragma once
 // `wysiwyf play`'s side of `record --images`: the messages of a packed image channel turned back
 // into the Image samples that were recorded (libs/io/image_codec), before they are published or
-// fed. A message that does not decode (corrupt, truncated, another size than its channel says)
+// fed: bit for bit from a lossless packing, the same samples with approximate pixels from a video. A message that does not decode (corrupt, truncated, another size than its channel says)
 // is skipped with a reason; replay goes on with the next.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "image_codec/video.hpp"
 #include "mcap/mcap_reader.hpp"
 
 namespace wysiwyf::cli {
@@ -29,7 +31,8 @@ class ImageReplay {
     std::string first;
   };
   std::map<std::string, Skipped> skipped_;
-  std::vector<std::uint8_t> image_;  // (reused)
+  std::map<std::uint16_t, std::unique_ptr<io::image_codec::VideoDecoder>> video_;  // by channel
+  std::vector<std::uint8_t> image_;                                                // (reused)
 };
 
 }  // namespace wysiwyf::cli

@@ -127,7 +127,7 @@ const CommandHelp kCommands[] = {
 )"},
     {"record", "Record topics of a running pipeline into an MCAP file", true,
      R"(  record [TOPIC...] [--all] -o FILE.mcap [--domain N | --pipeline FILE] [--transport T] [--duration SECONDS]
-         [--compression zstd|lz4|none] [--images lossless|raw]
+         [--compression zstd|lz4|none] [--images lossless|video|raw]
         Record topics (or every topic) of a running pipeline into an MCAP file: each sample as
         DDS carried it (CDR), each type's IDL as its schema (omgidl), chunks at least every
         half second (a killed recorder leaves a file readable up to its last chunk).
@@ -135,7 +135,8 @@ const CommandHelp kCommands[] = {
         keep up with the demo's images), lz4 (faster, larger), none. play reads all three.
         --images: Image topics; lossless (default): as Foxglove CompressedImage where that is
         smaller than the chunks make them (camera images as lossless WebP, float depth as PNG),
-        decoded by play bit for bit; raw: as DDS carried them.
+        decoded by play bit for bit; video: as Foxglove CompressedVideo (H.264, lossy, a
+        twentieth of the size); raw: as DDS carried them.
 )"},
     {"play", "Replay an MCAP file into a pipeline (bit for bit) or onto a domain", true,
      R"(  play FILE.mcap --into PIPELINE [--set PATH=VALUE]... [--topics A,B] [--rate R] [--loop] [--start-after S]

@@ -1,17 +1,20 @@
 #!/usr/bin/env bash
 # `wysiwyf record --images` on the simulated demo's images, as a user runs it, checked with the
 # official MCAP reader (@mcap/core) and Foxglove's OMG IDL decoder (tests/monitor/js):
-#  1. the first second of the demo recorded twice at once: `--images raw` and `--images lossless`
-#     (the default); the lossless file is smaller, every message of it decodes, the noisy camera
-#     images are WebP and the rendered depth PNG foxglove::CompressedImage messages whose bytes
-#     are what their format says;
+#  1. the first second of the demo recorded three times at once: `--images raw`, `lossless` (the
+#     default) and `video`; the lossless file is smaller than the raw one, the video file smaller
+#     still; every message of both decodes; the noisy camera images are WebP and the rendered depth
+#     PNG foxglove::CompressedImage messages (lossless), H.264 CompressedVideo ones (video), whose
+#     bytes are what their format says;
 #  2. `play` of the lossless file onto another domain, recorded raw there: each image equals the
 #     live one of the same stamp byte for byte (the Image samples `play` decodes are the ones
 #     `record` packed). The recorder there may miss a topic's first images: play's writer of a
 #     topic appears with its first sample, and the recorder reads a topic once it has seen a writer.
-# Usage: record_images.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN and DOMAIN+1)
+#  3. `play` of the video file, the same way: each image comes back with its stamp, seq, frame,
+#     size and encoding, its pixels within a PSNR bound.
+# Usage: record_images.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN to DOMAIN+2)
 set -euo pipefail
-build=$1 src=$2 d1=$3 d2=$(($3 + 1))
+build=$1 src=$2 d1=$3 d2=$(($3 + 1)) d3=$(($3 + 2))
 cli=$build/bin/wysiwyf
 js=$build/npm/monitor
 if [[ ! -d $js/node_modules/@mcap/core ]]; then
@@ -23,26 +26,34 @@ work=$(mktemp -d)
 pids=()
 trap 'for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$work"' EXIT
 pipeline=$src/config/pipelines/demo-sim.yaml
-fail() { echo "FAIL: $*"; for f in raw lossless run play replay; do echo "--- $f"; tail -30 "$work/$f.log" 2>/dev/null; done; exit 1; }
+fail() { echo "FAIL: $*"; for f in raw lossless video run play replay play-video replay-video; do echo "--- $f"; tail -30 "$work/$f.log" 2>/dev/null; done; exit 1; }
 json() { python3 -c "import json,sys; d=json.load(open('$1')); print($2)"; }
 images=(camera/image render/depth)  # a noisy camera's WebP, a float depth's PNG
 
-echo "== 1. the demo's first second, recorded raw and lossless"
+echo "== 1. the demo's first second, recorded raw, lossless and as video"
 "$cli" record --all --images raw -o "$work/raw.mcap" --domain "$d1" --transport local --no-progress >"$work/raw.log" 2>&1 &
 raw=$!; pids+=("$raw")
 "$cli" record --all -o "$work/lossless.mcap" --domain "$d1" --transport local --no-progress >"$work/lossless.log" 2>&1 &
 lossless=$!; pids+=("$lossless")
+"$cli" record --all --images video -o "$work/video.mcap" --domain "$d1" --transport local --no-progress >"$work/video.log" 2>&1 &
+video=$!; pids+=("$video")
 "$cli" run "$pipeline" --set domain="$d1" --set dds.transport=local --set clock.duration=1s --set clock.pace=0 \
   --set record.params.path="$work/demo.mp4" --start-after 2 --no-progress >"$work/run.log" 2>&1 || fail "the demo did not run"
-kill -INT "$raw" "$lossless"
+kill -INT "$raw" "$lossless" "$video"
 wait "$raw" || fail "the raw recorder exited non-zero"
 wait "$lossless" || fail "the lossless recorder exited non-zero"
+wait "$video" || fail "the video recorder exited non-zero"
 grep -q "^  camera/image: 25 (webp, " "$work/lossless.log" || fail "camera/image: not 25 images packed as WebP"
 grep -q "^  render/depth: 25 (float32-delta-planes-png, " "$work/lossless.log" || fail "render/depth: not 25 depth images packed as PNG"
 grep -q "^  render/color: 25 (raw)" "$work/lossless.log" || fail "render/color (a rendered image) did not stay raw"
-grep -q "lost 0 before the recorder, 0 in it" "$work/lossless.log" || fail "the lossless recorder lost samples"
-size_raw=$(stat -c %s "$work/raw.mcap") size_lossless=$(stat -c %s "$work/lossless.mcap")
+grep -q "^  camera/image: 25 (h264, " "$work/video.log" || fail "camera/image: not 25 images in an H.264 stream"
+grep -q "^  render/depth: 25 (h264, " "$work/video.log" || fail "render/depth: not 25 depth images in an H.264 stream"
+for f in lossless video; do
+  grep -q "lost 0 before the recorder, 0 in it" "$work/$f.log" || fail "the $f recorder lost samples"
+done
+size_raw=$(stat -c %s "$work/raw.mcap") size_lossless=$(stat -c %s "$work/lossless.mcap") size_video=$(stat -c %s "$work/video.mcap")
 (( size_lossless * 10 < size_raw * 8 )) || fail "lossless file $size_lossless bytes; raw $size_raw: expected at least 20 % smaller"
+(( size_video * 2 < size_lossless )) || fail "video file $size_video bytes; lossless $size_lossless: expected under half"
 node "$js/read_mcap.mjs" stream "$work/lossless.mcap" >"$work/stream.json" || fail "@mcap/core cannot read the lossless file"
 cat "$work/stream.json"
 [[ $(json "$work/stream.json" "d['decoded'] == d['messages'] and d['done']") == True ]] ||
@@ -52,7 +63,13 @@ cat "$work/stream.json"
   fail "images per format: $(json "$work/stream.json" "d['images']")"
 node "$js/read_mcap.mjs" summary "$work/lossless.mcap" >"$work/summary.json" || fail "@mcap/core cannot index the file"
 [[ $(json "$work/summary.json" "d['topics']['camera/image']['schema']") == foxglove::CompressedImage ]] || fail "camera/image's schema"
-echo "ok: lossless $size_lossless bytes, raw $size_raw; every message decodes"
+node "$js/read_mcap.mjs" stream "$work/video.mcap" >"$work/stream-video.json" || fail "@mcap/core cannot read the video file"
+cat "$work/stream-video.json"
+[[ $(json "$work/stream-video.json" "d['decoded'] == d['messages'] and d['done'] and d['misformatted_images'] == 0") == True ]] ||
+  fail "the video file: not every message decodes, or H.264 data that is not Annex B"
+[[ $(json "$work/stream-video.json" "d['images'].get('h264', 0) >= 75") == True ]] ||
+  fail "video messages per format: $(json "$work/stream-video.json" "d['images']")"
+echo "ok: raw $size_raw bytes, lossless $size_lossless, video $size_video; every message decodes"
 
 echo "== 2. play the lossless file; the images come back as recorded live"
 "$cli" record "${images[@]}" --images raw -o "$work/replay.mcap" --domain "$d2" --transport local --no-progress \
@@ -72,3 +89,20 @@ for topic in "${images[@]}"; do
     fail "$topic: the replayed images differ from the live ones (or too few were replayed to tell)"
 done
 echo "ok: the camera's and the depth's images replayed byte for byte"
+
+echo "== 3. play the video file; the images come back with their headers, pixels within a PSNR bound"
+"$cli" record camera/image --images raw -o "$work/replay-video.mcap" --domain "$d3" --transport local --no-progress \
+  >"$work/replay-video.log" 2>&1 &
+rec=$!; pids+=("$rec")
+sleep 2
+"$cli" play "$work/video.mcap" --topics camera/image --domain "$d3" --transport local >"$work/play-video.log" 2>&1 ||
+  fail "play of the video failed"
+cat "$work/play-video.log"
+sleep 1
+kill -INT "$rec"; wait "$rec" || fail "the video replay's recorder exited non-zero"
+grep -q "not played" "$work/play-video.log" && fail "play skipped video images"
+node "$js/read_mcap.mjs" psnr "$work/raw.mcap" "$work/replay-video.mcap" camera/image >"$work/psnr.json"
+cat "$work/psnr.json"
+[[ $(json "$work/psnr.json" "d['a'] == 25 and d['common'] >= 20 and d['same_header'] == d['common'] and d['lowest_psnr_db'] > 30") == True ]] ||
+  fail "camera/image from the video: headers or pixels not as recorded (PSNR bound 30 dB)"
+echo "ok: camera/image from the video: $(json "$work/psnr.json" "d['common']") images, lowest PSNR $(json "$work/psnr.json" "round(d['lowest_psnr_db'], 1)") dB"

@@ -21,6 +21,8 @@
 namespace wysiwyf::io::image_codec {
 namespace {
 
+std::unique_ptr<VideoDecoder> no_video;  // (the lossless packings use no decoder state)
+
 // A 64x48 image of `encoding` (sizes odd on purpose elsewhere): deterministic pixels, with noise.
 ImageSample image(const std::string& encoding, std::uint32_t width = 64, std::uint32_t height = 48) {
   ImageSample im;
@@ -81,7 +83,7 @@ TEST_P(EveryPackedEncoding, ComesBackByteForByte) {
     EXPECT_EQ(frame.frame_id, im.frame_id);
     EXPECT_EQ(frame.format, std::string(GetParam()) == "32FC1" ? "png" : "webp");
     std::vector<std::uint8_t> back;
-    ASSERT_EQ(unpack(metadata, static_cast<std::uint32_t>(im.seq), packed.data(), packed.size(), back), "");
+    ASSERT_EQ(unpack(metadata, static_cast<std::uint32_t>(im.seq), packed.data(), packed.size(), back, no_video), "");
     EXPECT_EQ(back, original) << GetParam() << " " << w << "x" << h;
   }
 }
@@ -119,7 +121,7 @@ TEST(ImagePacking, TheSimulatedCamerasNoisyImagePacksUnderHalfItsPixels) {
   const auto packed = packed_message(im, metadata);
   EXPECT_LT(static_cast<double>(packed.size()) / static_cast<double>(im.data.size()), 0.45);
   std::vector<std::uint8_t> back;
-  ASSERT_EQ(unpack(metadata, static_cast<std::uint32_t>(im.seq), packed.data(), packed.size(), back), "");
+  ASSERT_EQ(unpack(metadata, static_cast<std::uint32_t>(im.seq), packed.data(), packed.size(), back, no_video), "");
   EXPECT_EQ(back, image_cdr(im));
 }
 
@@ -171,7 +173,7 @@ TEST(ImageUnpacking, RefusesCorruptTruncatedEmptyAndOversizedImages) {
     std::vector<std::uint8_t> out;
     const auto refused = [&](const CompressedFrame& f, const Metadata& m) {
       const auto cdr = compressed_cdr(f);
-      return unpack(m, 1, cdr.data(), cdr.size(), out);
+      return unpack(m, 1, cdr.data(), cdr.size(), out, no_video);
     };
     CompressedFrame f = frame;
     f.data.clear();  // zero-size
@@ -199,7 +201,7 @@ TEST(ImageUnpacking, RefusesCorruptTruncatedEmptyAndOversizedImages) {
     m = metadata, m["image_packing"] = "jpeg";
     EXPECT_NE(refused(frame, m).find("image_packing"), std::string::npos);
     for (std::size_t n = 0; n < packed.size(); n += 7)  // the CompressedImage's CDR cut anywhere
-      EXPECT_NE(unpack(metadata, 1, packed.data(), n, out), "") << n;
+      EXPECT_NE(unpack(metadata, 1, packed.data(), n, out, no_video), "") << n;
   }
 }
 
@@ -213,7 +215,7 @@ TEST(ImageUnpacking, RefusesAPngThatClaimsAHugeImageBeforeDecodingIt) {
   frame.data[16] = 0x7f;  // IHDR width: 2 billion
   const auto cdr = compressed_cdr(frame);
   std::vector<std::uint8_t> out;
-  EXPECT_NE(unpack(metadata, 1, cdr.data(), cdr.size(), out).find("a PNG of"), std::string::npos);
+  EXPECT_NE(unpack(metadata, 1, cdr.data(), cdr.size(), out, no_video).find("a PNG of"), std::string::npos);
 }
 
 }  // namespace

@@ -126,15 +126,16 @@ std::vector<std::uint8_t> image_cdr(const ImageSample& image) {
 }
 
 std::string parse_compressed(const std::uint8_t* p, std::size_t n, CompressedFrame& out) {
-  if (auto why = header_problem(p, n); !why.empty()) return "CompressedImage: " + why;
+  if (auto why = header_problem(p, n); !why.empty()) return "CompressedImage/Video: " + why;
   In in(p + 4, n - 4);
   std::uint32_t sec = 0, nsec = 0;
   const bool ok = in.number(sec, "timestamp.sec") && in.number(nsec, "timestamp.nsec") &&
                   in.string(out.frame_id, 63, "frame_id") &&
                   in.bytes(out.data, std::numeric_limits<std::uint32_t>::max(), "data") &&
                   in.string(out.format, 31, "format") && in.end();
-  if (!ok) return "CompressedImage: " + in.problem();
-  if (nsec >= 1'000'000'000u) return "CompressedImage: timestamp.nsec " + std::to_string(nsec) + "; expected < 10^9";
+  if (!ok) return "CompressedImage/Video: " + in.problem();
+  if (nsec >= 1'000'000'000u)
+    return "CompressedImage/Video: timestamp.nsec " + std::to_string(nsec) + "; expected < 10^9";
   out.stamp_ns = std::int64_t{sec} * 1'000'000'000 + nsec;
   return "";
 }

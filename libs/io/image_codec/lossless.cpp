@@ -175,13 +175,14 @@ std::string packing_name(Packing p) {
   switch (p) {
     case Packing::kWebp: return "webp";
     case Packing::kFloatDeltaPng: return "float32-delta-planes-png";
+    case Packing::kH264: return "h264";
     case Packing::kRaw: break;
   }
   return "raw";
 }
 
 bool parse_packing(const std::string& name, Packing& out) {
-  for (Packing p : {Packing::kRaw, Packing::kWebp, Packing::kFloatDeltaPng})
+  for (Packing p : {Packing::kRaw, Packing::kWebp, Packing::kFloatDeltaPng, Packing::kH264})
     if (packing_name(p) == name) return out = p, true;
   return false;
 }
@@ -205,6 +206,8 @@ double zstd_share(const ImageSample& image) {
 }
 
 std::string encode_lossless(const ImageSample& image, Packing packing, CompressedFrame& out) {
+  if (packing == Packing::kRaw || packing == Packing::kH264)
+    return "packing '" + packing_name(packing) + "' is not a lossless image codec's";
   if (auto why = shape_problem(shape_of(image), packing); !why.empty()) return why;
   if (image.data.size() != std::size_t{image.step} * image.height)
     return std::to_string(image.data.size()) +
@@ -215,7 +218,8 @@ std::string encode_lossless(const ImageSample& image, Packing packing, Compresse
 
 std::string decode_lossless(const std::uint8_t* data, std::size_t n, Packing packing, const Shape& shape,
                             std::vector<std::uint8_t>& pixels) {
-  if (packing == Packing::kRaw) return "packing 'raw' has nothing to decode";
+  if (packing == Packing::kRaw || packing == Packing::kH264)
+    return "packing '" + packing_name(packing) + "' is not a lossless image codec's";
   if (auto why = shape_problem(shape, packing); !why.empty()) return why;
   return packing == Packing::kWebp ? decode_webp(data, n, shape, pixels) : decode_float_planes(data, n, shape, pixels);
 }

@@ -18,9 +18,10 @@
 
 namespace wysiwyf::io::image_codec {
 
-// How an image's pixels are kept. Names as recorded in a channel's metadata.
-enum class Packing { kRaw, kWebp, kFloatDeltaPng };
-std::string packing_name(Packing p);  // "raw", "webp", "float32-delta-planes-png"
+// How an image's pixels are kept. Names as recorded in a channel's metadata. kH264 is lossy
+// (video.hpp); the others give the pixels back bit for bit.
+enum class Packing { kRaw, kWebp, kFloatDeltaPng, kH264 };
+std::string packing_name(Packing p);  // "raw", "webp", "float32-delta-planes-png", "h264"
 bool parse_packing(const std::string& name, Packing& out);
 
 // What a decoder needs besides the compressed bytes (the Image fields a CompressedImage lacks).

@@ -1,5 +1,10 @@
 #include "image_codec/recorded_image.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 
 namespace wysiwyf::io::image_codec {
@@ -23,10 +28,17 @@ bool number(const Metadata& m, const char* key, std::uint64_t max, std::uint64_t
 
 }  // namespace
 
-Metadata packed_metadata(const Shape& shape, Packing packing) {
-  return {{"image_packing", packing_name(packing)},     {"image_encoding", shape.encoding},
-          {"image_width", std::to_string(shape.width)}, {"image_height", std::to_string(shape.height)},
-          {"image_step", std::to_string(shape.step)},   {"image_is_bigendian", std::to_string(shape.is_bigendian)}};
+Metadata packed_metadata(const Shape& shape, Packing packing, float depth_max) {
+  Metadata m = {
+      {"image_packing", packing_name(packing)},     {"image_encoding", shape.encoding},
+      {"image_width", std::to_string(shape.width)}, {"image_height", std::to_string(shape.height)},
+      {"image_step", std::to_string(shape.step)},   {"image_is_bigendian", std::to_string(shape.is_bigendian)}};
+  if (packing == Packing::kH264 && shape.encoding == "32FC1") {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.9g", static_cast<double>(depth_max));
+    m["image_depth_max"] = text;
+  }
+  return m;
 }
 
 bool is_packed(const Metadata& metadata) { return metadata.count("image_packing") > 0; }
@@ -37,7 +49,10 @@ std::string unpackable(const ImageSample& image, const Shape& shape, Packing pac
       s.is_bigendian != shape.is_bigendian)
     return "the image's shape changed (now " + s.encoding + " " + std::to_string(s.width) + "x" +
            std::to_string(s.height) + ")";
-  if (lossless_packing(image) != packing) return "the image cannot be packed as " + packing_name(packing);
+  if (packing == Packing::kH264 ? !video_problem(s).empty() : lossless_packing(image) != packing)
+    return "the image cannot be packed as " + packing_name(packing);
+  if (image.data.size() != std::size_t{s.step} * s.height)
+    return std::to_string(image.data.size()) + " bytes of pixels; expected step x height";
   if (image.stamp_ns < 0 || image.stamp_ns > kMaxStampNs)
     return "stamp " + std::to_string(image.stamp_ns) + " ns is outside foxglove.Time (0 to 2^32 s)";
   if (image.seq > std::numeric_limits<std::uint32_t>::max())
@@ -54,13 +69,34 @@ std::string pack(const ImageSample& image, Packing packing, std::vector<std::uin
   return "";
 }
 
+std::string pack_video(const ImageSample& image, VideoEncoder& encoder, std::vector<std::uint8_t>& cdr) {
+  CompressedFrame frame;
+  frame.stamp_ns = image.stamp_ns;
+  frame.frame_id = image.frame_id;
+  frame.format = "h264";
+  bool keyframe = false;
+  if (auto why = encoder.encode(image, frame.data, keyframe); !why.empty()) return why;
+  cdr = compressed_cdr(frame);
+  return "";
+}
+
+float depth_max_for(const ImageSample& image) {
+  float farthest = 0;
+  for (std::size_t i = 0; i + 4 <= image.data.size(); i += 4) {
+    float d;
+    std::memcpy(&d, image.data.data() + i, 4);
+    if (std::isfinite(d)) farthest = std::max(farthest, d);
+  }
+  return std::max(0.01f, 1.25f * farthest);
+}
+
 std::string unpack(const Metadata& metadata, std::uint32_t sequence, const std::uint8_t* p, std::size_t n,
-                   std::vector<std::uint8_t>& out) {
+                   std::vector<std::uint8_t>& out, std::unique_ptr<VideoDecoder>& video) {
   Packing packing = Packing::kRaw;
   const auto packing_it = metadata.find("image_packing");
   if (packing_it == metadata.end() || !parse_packing(packing_it->second, packing) || packing == Packing::kRaw)
     return "channel metadata image_packing = '" + (packing_it == metadata.end() ? "" : packing_it->second) +
-           "'; expected webp or float32-delta-planes-png";
+           "'; expected webp, float32-delta-planes-png or h264";
   std::string why;
   std::uint64_t width = 0, height = 0, step = 0, bigendian = 0;
   if (!number(metadata, "image_width", 16384, width, why) || !number(metadata, "image_height", 16384, height, why) ||
@@ -80,11 +116,30 @@ std::string unpack(const Metadata& metadata, std::uint32_t sequence, const std::
   image.step = static_cast<std::uint32_t>(step);
   image.encoding = encoding->second;
   image.is_bigendian = static_cast<std::uint8_t>(bigendian);
-  const std::string expected = packing == Packing::kWebp ? "webp" : "png";
+  const std::string expected = packing == Packing::kWebp ? "webp" : packing == Packing::kH264 ? "h264" : "png";
   if (frame.format != expected)
     return "format '" + frame.format + "'; the channel's packing " + packing_name(packing) + " is " + expected;
-  if (auto problem = decode_lossless(frame.data.data(), frame.data.size(), packing, shape_of(image), image.data);
-      !problem.empty())
+  if (packing == Packing::kH264) {
+    if (!video) {
+      if (auto why = video_problem(shape_of(image)); !why.empty()) return why;
+      float depth_max = 0;
+      if (image.encoding == "32FC1") {
+        const auto it = metadata.find("image_depth_max");
+        if (it == metadata.end() || !(std::strtof(it->second.c_str(), nullptr) > 0))
+          return "channel metadata image_depth_max = '" + (it == metadata.end() ? "" : it->second) +
+                 "'; expected a depth in metres > 0";
+        depth_max = std::strtof(it->second.c_str(), nullptr);
+      }
+      try {
+        video = std::make_unique<VideoDecoder>(shape_of(image), depth_max);
+      } catch (const std::exception& e) {
+        return e.what();
+      }
+    }
+    if (auto problem = video->decode(frame.data.data(), frame.data.size(), image.data); !problem.empty())
+      return problem;
+  } else if (auto problem = decode_lossless(frame.data.data(), frame.data.size(), packing, shape_of(image), image.data);
+             !problem.empty())
     return problem;
   out = image_cdr(image);
   return "";

@@ -7,9 +7,11 @@
 //                                        chunks per compression ("" for none)
 //   node read_mcap.mjs stream FILE       front-to-back read of a file that may be cut short;
 //                                        the chunks per compression; the foxglove::CompressedImage
-//                                        messages per format, and those whose data is not what
-//                                        the format says (the file's magic number)
+//                                        and CompressedVideo messages per format, and those whose
+//                                        data is not what the format says (its magic number)
 //   node read_mcap.mjs compare A B TOPIC the TOPIC messages of A and B with equal stamps: equal bytes?
+//   node read_mcap.mjs psnr A B TOPIC    the TOPIC Image messages of A and B with equal stamps:
+//                                        the lowest PSNR of B's pixels against A's (dB)
 import { readFileSync } from "node:fs";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import { parseIDL } from "@foxglove/omgidl-parser";
@@ -68,6 +70,7 @@ function hasMagic(format, data) {
   if (format === "webp") return text(0, 4) === "RIFF" && text(8, 12) === "WEBP";
   if (format === "png") return data[0] === 0x89 && text(1, 4) === "PNG";
   if (format === "jpeg") return data[0] === 0xff && data[1] === 0xd8;
+  if (format === "h264") return data[0] === 0 && data[1] === 0 && (data[2] === 1 || (data[2] === 0 && data[3] === 1));
   return false;
 }
 
@@ -89,7 +92,7 @@ function stream(file) {
       if (!schema) continue;
       const message = decoders.get(schema.id).readMessage(r.data);
       decoded++;
-      if (schema.name === "foxglove::CompressedImage") {
+      if (schema.name === "foxglove::CompressedImage" || schema.name === "foxglove::CompressedVideo") {
         images.push(message.format);
         if (!hasMagic(message.format, message.data)) misformatted++;
       }
@@ -117,8 +120,37 @@ async function compare(a, b, topic) {
   return { a: ma.size, b: mb.size, common, differ, first_difference_ns: first };
 }
 
+async function psnr(a, b, topic) {
+  const byStamp = async (file) => {
+    const reader = await indexed(file);
+    const out = new Map();
+    for (const [id, ch] of reader.channelsById) {
+      if (ch.topic !== topic) continue;
+      const decoder = decoderFor(reader.schemasById.get(ch.schemaId));
+      for await (const m of reader.readMessages({ topics: [topic] }))
+        if (m.channelId === id) out.set(m.publishTime, decoder.readMessage(m.data));
+    }
+    return out;
+  };
+  const [ma, mb] = [await byStamp(a), await byStamp(b)];
+  let common = 0, lowest = Infinity, same_header = 0;
+  for (const [stamp, image] of ma) {
+    const other = mb.get(stamp);
+    if (!other) continue;
+    common++;
+    if (other.header.seq === image.header.seq && other.header.frame_id === image.header.frame_id &&
+        other.width === image.width && other.height === image.height && other.encoding === image.encoding) same_header++;
+    let se = 0;
+    for (let i = 0; i < image.data.length; i++) se += (image.data[i] - other.data[i]) ** 2;
+    const mse = se / image.data.length;
+    lowest = Math.min(lowest, mse === 0 ? 99 : 10 * Math.log10((255 * 255) / mse));
+  }
+  return { a: ma.size, b: mb.size, common, same_header, lowest_psnr_db: common ? lowest : null };
+}
+
 const [mode, ...args] = process.argv.slice(2);
 if (mode === "summary") console.log(json(await summary(args[0])));
 else if (mode === "stream") console.log(json(stream(args[0])));
 else if (mode === "compare") console.log(json(await compare(args[0], args[1], args[2])));
-else { console.error("usage: read_mcap.mjs summary|stream FILE | compare A B TOPIC"); process.exit(2); }
+else if (mode === "psnr") console.log(json(await psnr(args[0], args[1], args[2])));
+else { console.error("usage: read_mcap.mjs summary|stream FILE | compare|psnr A B TOPIC"); process.exit(2); }
