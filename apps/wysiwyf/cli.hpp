@@ -47,5 +47,6 @@ int cmd_play(Args args);
 int cmd_monitor(Args args);
 int cmd_bridge(Args args);
 int cmd_discovery_server(Args args);
+int cmd_calibrate(Args args);
 
 }  // namespace wysiwyf::cli

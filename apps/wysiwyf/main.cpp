@@ -156,6 +156,21 @@ const CommandHelp kCommands[] = {
         Write an out-of-tree component folder (source, CMakeLists.txt with find_package(wysiwyf),
         a Harness test) that builds and passes as written.
 )"},
+    {"calibrate", "Calibrate the wrist sensor, a camera, the camera to the robot; each file checked", false,
+     R"(  calibrate wrist-poses --home Q [--count N] [--urdf U] [--sensor-frame F] [--out FILE]
+  calibrate wrist --readings FILE [--scene SCENE --out FILE] [--urdf U] [--sensor-frame F]
+  calibrate board --out FILE.png [--pixels-per-square N]
+  calibrate intrinsics --images DIR --out FILE.yaml
+  calibrate camera-base-poses --camera FILE.yaml --home Q --out VIEWS.yaml [--count N] [--seed S] [--urdf U]
+  calibrate camera-base --camera FILE.yaml --views VIEWS.yaml --out FILE.yaml [--urdf U]
+        Each step prints its residual report (every pose's or view's error) and writes its file
+        only when the result passes the limits: wrist: the scene with the device's tool_mass and
+        tool_com (and the sensor's bias in the report); intrinsics: camera_matrix and
+        distortion_coefficients; camera-base: the same file with base_T_eye (camera_fixed).
+        Q: the arm's joints, comma-separated (rad). Board: --squares-x 10 --squares-y 7
+        --square 0.028 --marker 0.021 (m; an A4 sheet). Exit 1 when refused, with the reason.
+        The procedure for a lab: docs/calibration.md.
+)"},
 };
 
 const char* kDomainOptions = R"(
@@ -228,6 +243,7 @@ int main(int argc, char** argv) {
     if (command == "monitor") return wysiwyf::cli::cmd_monitor(std::move(rest));
     if (command == "bridge") return wysiwyf::cli::cmd_bridge(std::move(rest));
     if (command == "discovery-server") return wysiwyf::cli::cmd_discovery_server(std::move(rest));
+    if (command == "calibrate") return wysiwyf::cli::cmd_calibrate(std::move(rest));
     std::vector<std::string> names;
     for (const auto& c : kCommands) names.emplace_back(c.name);
     const std::string near = wysiwyf::closest_name(command, names);

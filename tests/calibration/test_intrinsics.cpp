@@ -31,7 +31,7 @@ std::vector<cal::BoardDetection> views(const cal::CharucoTarget& target, const c
 
 // 32 views of the A4 board (10 x 7 squares of 28 mm) through a distorting lens: focal lengths
 // within 0.3 %, the principal point within 0.5 px; every view's error reported. The principal point
-// is what needs the views (its sigma is ~0.45 px at 16 views, ~0.33 px at 32: bench_calibration).
+// is what needs the views (its sigma is 0.43 to 0.57 px at 16 views, 0.31 to 0.36 px at 32).
 TEST(Intrinsics, RecoveredFromThirtyTwoViewsWithinThresholds) {
   const cal::CharucoTarget target(cal::CharucoSpec{});
   for (unsigned seed : {11u, 12u}) {

@@ -141,6 +141,7 @@ TEST_F(RobotWorld, ACameraMovedMidWayIsRefusedNamingWhere) {
   const cal::RobotWorldFit fit = cal::fit_robot_world(seen, target, camera);
   EXPECT_FALSE(fit.accepted);
   EXPECT_NE(fit.refusal.find("moved between pose 10 and pose 11"), std::string::npos) << cal::describe(fit, {});
+  std::printf("%s\n", fit.refusal.c_str());
 }
 
 TEST_F(RobotWorld, HostileViewsAreLeftOutNamed) {

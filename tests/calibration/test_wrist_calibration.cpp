@@ -126,13 +126,17 @@ TEST_F(WristCalibration, RefusesTooFewPosesPoorDirectionsAndAPushedPose) {
   EXPECT_NE(wr::describe(fit, {}).find("over the limit"), std::string::npos);
 }
 
-// Non-finite readings and a zero gravity come back refused, never thrown.
+// A template never filled in (every reading zero), non-finite readings and a zero gravity come
+// back refused, never thrown.
 TEST_F(WristCalibration, NonFiniteReadingsAreRefused) {
   std::vector<wr::WristReading> r(8);
   for (std::size_t i = 0; i < r.size(); ++i) {
     r[i].label = "pose " + std::to_string(i + 1);
     r[i].gravity_sensor = Eigen::Vector3d(0, 0, -9.81);
   }
+  wr::ToolLoadFit zero = wr::fit_tool_load(r);
+  EXPECT_NE(zero.refusal.find("every reading is exactly zero"), std::string::npos) << zero.refusal;
+  for (auto& x : r) x.force.z() = -11.3;
   r[2].force.x() = NAN;
   wr::ToolLoadFit fit = wr::fit_tool_load(r);
   EXPECT_FALSE(fit.accepted);

@@ -38,6 +38,12 @@ ToolLoadFit fit_tool_load(const std::vector<WristReading>& readings, const ToolL
                   " static poses with the sensor turned so that gravity points along different sensor axes";
     return fit;
   }
+  bool all_zero = true;  // a readings template never filled in
+  for (const WristReading& r : readings) all_zero = all_zero && r.force.isZero(0) && r.torque.isZero(0);
+  if (all_zero) {
+    fit.refusal = "every reading is exactly zero; expected the sensor's mean reading at each pose";
+    return fit;
+  }
   for (const WristReading& r : readings) {
     if (!r.gravity_sensor.allFinite() || !r.force.allFinite() || !r.torque.allFinite()) {
       fit.refusal = r.label + ": a non-finite gravity, force or torque; expected finite numbers";
@@ -104,6 +110,7 @@ ToolLoadFit fit_tool_load(const std::vector<WristReading>& readings, const ToolL
 }
 
 std::string describe(const ToolLoadFit& fit, const ToolLoadLimits& limits) {
+  if (fit.residuals.empty()) return "refused: " + fit.refusal + "\n";  // refused before fitting
   std::string s;
   s += "force bias   [" + fixed(fit.force_bias.x(), 4) + ", " + fixed(fit.force_bias.y(), 4) + ", " +
        fixed(fit.force_bias.z(), 4) + "] N\n";

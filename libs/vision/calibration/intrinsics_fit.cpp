@@ -123,13 +123,17 @@ IntrinsicsFit fit_intrinsics(const std::vector<BoardDetection>& views, const Cha
 std::string describe(const IntrinsicsFit& fit, const IntrinsicsLimits& limits) {
   const cv::Matx33d& K = fit.camera.camera_matrix;
   const cv::Vec<double, 5>& D = fit.camera.distortion;
+  const bool fitted = fit.rms > 0;  // refused before the fit: no estimate to show
   std::string s;
-  s += "fx fy        " + fixed(K(0, 0), 2) + " " + fixed(K(1, 1), 2) + " px (sigma " + fixed(fit.sigma[0], 2) + " " +
-       fixed(fit.sigma[1], 2) + ")\n";
-  s += "cx cy        " + fixed(K(0, 2), 2) + " " + fixed(K(1, 2), 2) + " px (sigma " + fixed(fit.sigma[2], 2) + " " +
-       fixed(fit.sigma[3], 2) + ")\n";
-  s += "distortion   " + fixed(D[0], 5) + " " + fixed(D[1], 5) + " " + fixed(D[2], 6) + " " + fixed(D[3], 6) + " " +
-       fixed(D[4], 5) + " (k1 k2 p1 p2 k3)\n";
+  if (fitted)
+    s += "fx fy        " + fixed(K(0, 0), 2) + " " + fixed(K(1, 1), 2) + " px (sigma " + fixed(fit.sigma[0], 2) + " " +
+         fixed(fit.sigma[1], 2) + ")\n";
+  if (fitted)
+    s += "cx cy        " + fixed(K(0, 2), 2) + " " + fixed(K(1, 2), 2) + " px (sigma " + fixed(fit.sigma[2], 2) + " " +
+         fixed(fit.sigma[3], 2) + ")\n";
+  if (fitted)
+    s += "distortion   " + fixed(D[0], 5) + " " + fixed(D[1], 5) + " " + fixed(D[2], 6) + " " + fixed(D[3], 6) + " " +
+         fixed(D[4], 5) + " (k1 k2 p1 p2 k3)\n";
   s += "coverage     " + fixed(100 * fit.coverage, 0) + " % of the image's 4 x 4 cells (limit " +
        fixed(100 * limits.min_coverage, 0) + " %)\n";
   s += "view                              corners  area %  edge px  error px\n";
@@ -139,8 +143,9 @@ std::string describe(const IntrinsicsFit& fit, const IntrinsicsLimits& limits) {
                   v.edge_width, v.rms < 0 ? "-" : fixed(v.rms, 3).c_str(), v.note.c_str());
     s += line;
   }
-  s += "rms          " + fixed(fit.rms, 3) + " px (limits " + fixed(limits.max_rms, 2) + " px overall, " +
-       fixed(limits.max_view_error, 2) + " px per view)\n";
+  if (fitted)
+    s += "rms          " + fixed(fit.rms, 3) + " px (limits " + fixed(limits.max_rms, 2) + " px overall, " +
+         fixed(limits.max_view_error, 2) + " px per view)\n";
   s += fit.accepted ? "accepted\n" : "refused: " + fit.refusal + "\n";
   return s;
 }

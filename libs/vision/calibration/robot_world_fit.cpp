@@ -188,10 +188,12 @@ std::string describe(const RobotWorldFit& fit, const RobotWorldLimits& limits) {
   const Eigen::Vector3d rpy = fit.base_T_eye.linear().eulerAngles(2, 1, 0).reverse() * kDeg;
   const Eigen::Vector3d b = fit.flange_T_board.translation();
   std::string s;
-  s += "base_T_eye      position [" + fixed(p.x(), 4) + ", " + fixed(p.y(), 4) + ", " + fixed(p.z(), 4) +
-       "] m, roll pitch yaw (about x, y, z of base) [" + fixed(rpy.x(), 3) + ", " + fixed(rpy.y(), 3) + ", " +
-       fixed(rpy.z(), 3) + "] deg\n";
-  s += "flange_T_board  position [" + fixed(b.x(), 4) + ", " + fixed(b.y(), 4) + ", " + fixed(b.z(), 4) + "] m\n";
+  if (fit.rms > 0)
+    s += "base_T_eye      position [" + fixed(p.x(), 4) + ", " + fixed(p.y(), 4) + ", " + fixed(p.z(), 4) +
+         "] m, roll pitch yaw (about x, y, z of base) [" + fixed(rpy.x(), 3) + ", " + fixed(rpy.y(), 3) + ", " +
+         fixed(rpy.z(), 3) + "] deg\n";
+  if (fit.rms > 0)
+    s += "flange_T_board  position [" + fixed(b.x(), 4) + ", " + fixed(b.y(), 4) + ", " + fixed(b.z(), 4) + "] m\n";
   s += "rotation spread " + fixed(fit.rotation_spread, 1) + " deg (limit " + fixed(limits.min_rotation_spread, 1) +
        ")\n";
   s += "pose                              corners  error px\n";
@@ -201,7 +203,8 @@ std::string describe(const RobotWorldFit& fit, const RobotWorldLimits& limits) {
                   r.rms < 0 ? "-" : fixed(r.rms, 3).c_str(), r.note.c_str());
     s += line;
   }
-  s += "rms             " + fixed(fit.rms, 3) + " px (limit " + fixed(limits.max_pose_error, 2) + " px per pose)\n";
+  if (fit.rms > 0)
+    s += "rms             " + fixed(fit.rms, 3) + " px (limit " + fixed(limits.max_pose_error, 2) + " px per pose)\n";
   s += fit.accepted ? "accepted\n" : "refused: " + fit.refusal + "\n";
   return s;
 }
