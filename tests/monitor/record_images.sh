@@ -11,10 +11,12 @@
 #     `record` packed). The recorder there may miss a topic's first images: play's writer of a
 #     topic appears with its first sample, and the recorder reads a topic once it has seen a writer.
 #  3. `play` of the video file, the same way: each image comes back with its stamp, seq, frame,
-#     size and encoding, its pixels within a PSNR bound.
-# Usage: record_images.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN to DOMAIN+2)
+#     size and encoding, its pixels within a PSNR bound;
+#  4. `play --into` a pipeline of the demo's keyer alone, fed the lossless file's camera images:
+#     the matte it makes equals the live demo's, image for image.
+# Usage: record_images.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN to DOMAIN+3)
 set -euo pipefail
-build=$1 src=$2 d1=$3 d2=$(($3 + 1)) d3=$(($3 + 2))
+build=$1 src=$2 d1=$3 d2=$(($3 + 1)) d3=$(($3 + 2)) d4=$(($3 + 3))
 cli=$build/bin/wysiwyf
 js=$build/npm/monitor
 if [[ ! -d $js/node_modules/@mcap/core ]]; then
@@ -26,7 +28,7 @@ work=$(mktemp -d)
 pids=()
 trap 'for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$work"' EXIT
 pipeline=$src/config/pipelines/demo-sim.yaml
-fail() { echo "FAIL: $*"; for f in raw lossless video run play replay play-video replay-video; do echo "--- $f"; tail -30 "$work/$f.log" 2>/dev/null; done; exit 1; }
+fail() { echo "FAIL: $*"; for f in raw lossless video run play replay play-video replay-video play-into replay-matte; do echo "--- $f"; tail -30 "$work/$f.log" 2>/dev/null; done; exit 1; }
 json() { python3 -c "import json,sys; d=json.load(open('$1')); print($2)"; }
 images=(camera/image render/depth)  # a noisy camera's WebP, a float depth's PNG
 
@@ -106,3 +108,32 @@ cat "$work/psnr.json"
 [[ $(json "$work/psnr.json" "d['a'] == 25 and d['common'] >= 20 and d['same_header'] == d['common'] and d['lowest_psnr_db'] > 30") == True ]] ||
   fail "camera/image from the video: headers or pixels not as recorded (PSNR bound 30 dB)"
 echo "ok: camera/image from the video: $(json "$work/psnr.json" "d['common']") images, lowest PSNR $(json "$work/psnr.json" "round(d['lowest_psnr_db'], 1)") dB"
+
+echo "== 4. play the lossless file's camera into the demo's keyer: the same matte as live"
+cat >"$work/keyer.yaml" <<EOF
+wysiwyf: 1
+name: keyer-replay
+domain: $d4
+clock: {mode: sim, step: 1ms, duration: 1s, pace: 0}
+components:
+  keyer:  # as in config/pipelines/display/loop.yaml
+    type: chroma_keyer
+    rate: 25
+    trigger: image
+    params: {min_luma: 45}
+    topics: {image: camera/image, hand: vision/hand, matte: vision/matte}
+EOF
+"$cli" record vision/matte --images raw -o "$work/replay-matte.mcap" --domain "$d4" --transport local --no-progress \
+  >"$work/replay-matte.log" 2>&1 &
+rec=$!; pids+=("$rec")
+"$cli" play "$work/lossless.mcap" --into "$work/keyer.yaml" --topics camera/image --set dds.transport=local \
+  --start-after 2 >"$work/play-into.log" 2>&1 || fail "play --into the keyer failed"
+cat "$work/play-into.log"
+sleep 1
+kill -INT "$rec"; wait "$rec" || fail "the matte's recorder exited non-zero"
+grep -q "^played 25 of 25 samples" "$work/play-into.log" || fail "play --into did not feed the 25 camera images"
+node "$js/read_mcap.mjs" compare "$work/raw.mcap" "$work/replay-matte.mcap" vision/matte >"$work/cmp.json"
+cat "$work/cmp.json"
+[[ $(json "$work/cmp.json" "d['common'] >= 20 and d['differ'] == 0") == True ]] ||
+  fail "vision/matte from the replayed images differs from the live one"
+echo "ok: the keyer's matte from the replayed images equals the live one"
