@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "../kernel/cli_process.hpp"
+#include "intruder_participant.hpp"
 #include "wysiwyf/dds.hpp"
 #include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/message_traits.hpp"
@@ -74,50 +75,6 @@ std::int64_t wall_ns() {
 int run_cli(const std::vector<std::string>& args, const fs::path& log, std::chrono::seconds limit) {
   return wait_exit(spawn_cli(args, log), limit);
 }
-
-// A DDS participant of the test's own: plain (an intruder) or with one of the policy's identities.
-class Participant {
- public:
-  Participant(int domain, const std::optional<dds::SecurityIdentity>& identity, const std::string& name = "intruder") {
-    DomainParticipantQos qos = dds::participant_qos("loopback", name);
-    if (identity) dds::enable_security(qos, *identity);
-    participant_ = DomainParticipantFactory::get_instance()->create_participant(domain, qos);
-    if (!participant_) return;
-    publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
-  }
-  ~Participant() {
-    if (!participant_) return;
-    participant_->delete_contained_entities();
-    DomainParticipantFactory::get_instance()->delete_participant(participant_);
-  }
-  bool ok() const { return participant_ != nullptr; }
-
-  // `strength` >= 0: a writer that declares itself the one writer of a topic (exclusive ownership,
-  // its liveliness lease) with that strength, stronger than the pipeline's; otherwise DDS's
-  // default, shared ownership.
-  template <class T>
-  DataWriter* writer(const std::string& topic, int strength = -1) {
-    Qos declared = Qos::reliable(8);
-    declared.single_writer = strength >= 0;
-    DataWriterQos qos = dds::writer_qos(declared);
-    qos.data_sharing().off();  // over the network path, as the pipeline's loopback transport
-    if (strength >= 0) qos.ownership_strength().value = static_cast<std::uint32_t>(strength);
-    return publisher_->create_datawriter(this->topic<T>(topic), qos);
-  }
-
- private:
-  template <class T>
-  Topic* topic(const std::string& name) {
-    TypeSupport type(MessageTraits<T>::make_type());
-    type->auto_fill_type_object(false);
-    type->auto_fill_type_information(false);
-    if (!participant_->find_type(type.get_type_name())) type.register_type(participant_);
-    if (auto* t = participant_->find_topic(name, eprosima::fastrtps::Duration_t(0, 0))) return t;
-    return participant_->create_topic(name, type.get_type_name(), TOPIC_QOS_DEFAULT);
-  }
-  DomainParticipant* participant_ = nullptr;
-  Publisher* publisher_ = nullptr;
-};
 
 // Every frame on the loopback interface while it runs (needs CAP_NET_RAW).
 class LoopbackCapture {
