@@ -67,6 +67,19 @@ cv::Mat BoardViewSim::render(const Eigen::Isometry3d& eye_T_board, const ViewCon
   return image;
 }
 
+CameraIntrinsics perturbed_camera(const CameraIntrinsics& nominal, unsigned seed) {
+  CameraIntrinsics cam = nominal;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  cam.camera_matrix(0, 0) *= 1 + 0.03 * u(rng);
+  cam.camera_matrix(1, 1) = cam.camera_matrix(0, 0) * (1 + 0.003 * u(rng));
+  cam.camera_matrix(0, 2) += 8 * u(rng);
+  cam.camera_matrix(1, 2) += 8 * u(rng);
+  const double k1 = -0.08 + 0.1 * u(rng), k2 = 0.05 * u(rng), p1 = 0.001 * u(rng), p2 = 0.001 * u(rng);
+  cam.distortion = {k1, k2, p1, p2, 0};
+  return cam;
+}
+
 std::vector<Eigen::Isometry3d> board_view_poses(const CharucoTarget& target, const CameraIntrinsics& camera, int count,
                                                 std::mt19937& rng) {
   PlacementRanges ranges;

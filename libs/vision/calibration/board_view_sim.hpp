@@ -37,6 +37,11 @@ class BoardViewSim {
   std::vector<cv::Point2f> rays_;  // undistorted normalised image coordinates of every sample
 };
 
+// A camera of the nominal one's model as one might really be (seeded): focal lengths off by up to
+// 3 % (their ratio by 0.3 %), the principal point by up to 8 px, k1 in [-0.18, 0.02], k2 within
+// 0.05, p1 and p2 within 0.001, k3 0.
+CameraIntrinsics perturbed_camera(const CameraIntrinsics& nominal, unsigned seed);
+
 // `count` board poses (seeded) that a calibration wants: the board 0.28 to 0.55 m away, turned 15
 // to 45 degrees about varied axes, its centre spread over the image, every corner inside it.
 std::vector<Eigen::Isometry3d> board_view_poses(const CharucoTarget& target, const CameraIntrinsics& camera, int count,
