@@ -98,6 +98,15 @@ int intrinsics(Args& args) {
   return 0;
 }
 
+// The arm's frame `name`; UsageError naming the file when its URDF has none.
+robot::FrameId frame_of(const robot::ArmModel& arm, const std::string& name) {
+  try {
+    return arm.frame(name);
+  } catch (const std::out_of_range&) {
+    throw UsageError("--urdf: " + arm.urdf_path() + " has no link '" + name + "'; expected the arm's flange");
+  }
+}
+
 Eigen::Isometry3d nominal_flange_T_board(const robot::ArmModel& arm, robot::FrameId flange,
                                          const cal::CharucoTarget& target) {
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(arm.dof());
@@ -119,7 +128,7 @@ int camera_base_poses(Args& args) {
   if (!arm->limits().within(home)) throw UsageError("--home: outside the arm's joint limits");
   const cal::CharucoTarget target(spec);
   std::mt19937 rng(seed);
-  const robot::FrameId flange = arm->frame("flange");
+  const robot::FrameId flange = frame_of(*arm, "flange");
   const auto poses = cal::robot_world_poses(*arm, home, flange, nominal_flange_T_board(*arm, flange, target),
                                             *camera.base_T_eye, camera.intrinsics, target, count, rng);
   std::ofstream o(out);
@@ -159,12 +168,17 @@ int camera_base(Args& args) {
     throw UsageError(e.what());
   }
   const cal::CharucoTarget target(spec);
-  const robot::FrameId flange = arm->frame("flange");
+  const robot::FrameId flange = frame_of(*arm, "flange");
   std::vector<cal::FlangeView> views;
   for (const cal::FlangeViewEntry& e : entries) {
     if (!arm->limits().within(e.joints, 1e-6))
       throw UsageError(views_file + ": " + e.label + ": joints outside the limits");
-    const cal::BoardDetection d = cal::detect_board(read_grey(e.image), target, e.label);
+    const cv::Mat image = read_grey(e.image);
+    if (image.size() != camera.intrinsics.size)
+      throw UsageError(e.image + ": " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                       " px; expected the calibrated camera's " + std::to_string(camera.intrinsics.size.width) + "x" +
+                       std::to_string(camera.intrinsics.size.height));
+    const cal::BoardDetection d = cal::detect_board(image, target, e.label);
     views.push_back({e.label, arm->fk(e.joints, flange), d.corners, d.ids});
   }
   const cal::RobotWorldFit fit = cal::fit_robot_world(views, target, camera.intrinsics, limits);

@@ -143,6 +143,16 @@ TEST(CalibrateCli, IntrinsicsThenCameraBaseFromImages) {
   EXPECT_LE(deg, 0.1) << fitted.output;
   EXPECT_EQ(result.intrinsics.camera_matrix, camera.intrinsics.camera_matrix);
 
+  // An image of another camera (another size) among the views: said, nothing written.
+  const auto views = cal::load_flange_views((dir / "views.yaml").string(), 6);
+  cv::imwrite(views.front().image, cv::Mat(240, 320, CV_8UC1, cv::Scalar(128)));
+  const CliRun other = calibrate("camera-base --camera " + (dir / "camera.yaml").string() + " --views " +
+                                 (dir / "views.yaml").string() + " --out " + (dir / "other.yaml").string());
+  EXPECT_EQ(other.status, 2) << other.output;
+  EXPECT_NE(other.output.find("320x240 px; expected the calibrated camera's 640x480"), std::string::npos)
+      << other.output;
+  EXPECT_FALSE(fs::exists(dir / "other.yaml"));
+
   const CliRun missing = calibrate("camera-base --camera " + (dir / "camera.yaml").string() + " --views " +
                                    (dir / "nowhere.yaml").string() + " --out " + (dir / "x.yaml").string());
   EXPECT_EQ(missing.status, 2) << missing.output;
