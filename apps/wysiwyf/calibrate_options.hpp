@@ -2,8 +2,10 @@
 // `wysiwyf calibrate`: what its steps share: the board's options, a joint list option, the arm.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 
 #include "arm_model/arm_model.hpp"
 #include "calibration/charuco_target.hpp"
@@ -23,7 +25,20 @@ std::unique_ptr<robot::ArmModel> arm_option(Args& args, const std::string& tip);
 // Refuses options nobody read (UsageError).
 void no_unknown_options(const Args& args);
 
-// The camera steps: intrinsics, camera-base, camera-base-poses, board (cmd_calibrate_camera.cpp).
+// The option's value; UsageError "NAME: expected EXPECTED" when it is missing or empty.
+std::string required(Args& args, const std::string& name, const std::string& expected);
+
+// An image file as 8-bit grey; UsageError naming it when it cannot be read.
+cv::Mat read_grey(const std::string& path);
+
+// The images (png, jpg, bmp, tif) in `dir`, sorted by name, at most 1000; UsageError naming
+// `option` otherwise.
+std::vector<std::string> image_files(const std::string& option, const std::string& dir);
+
+// The camera steps: intrinsics, stereo, camera-base, camera-base-poses, board (cmd_calibrate_camera.cpp).
 int calibrate_camera_step(const std::string& step, Args& args);
+
+// stereo: the pair's extrinsics and rectification (cmd_calibrate_stereo.cpp).
+int calibrate_stereo(Args& args);
 
 }  // namespace wysiwyf::cli

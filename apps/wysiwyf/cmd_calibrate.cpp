@@ -154,7 +154,8 @@ int wrist_poses(Args& args) {
 
 int cmd_calibrate(Args args) {
   const auto step = args.take_front();
-  if (!step) throw UsageError("expected a step: wrist-poses, wrist, board, intrinsics, camera-base-poses, camera-base");
+  if (!step)
+    throw UsageError("expected a step: wrist-poses, wrist, board, intrinsics, stereo, camera-base-poses, camera-base");
   if (*step == "wrist") return wrist(args);
   if (*step == "wrist-poses") return wrist_poses(args);
   return calibrate_camera_step(*step, args);

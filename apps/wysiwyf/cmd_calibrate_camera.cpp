@@ -20,10 +20,6 @@
 
 namespace wysiwyf::cli {
 
-namespace {
-
-namespace cal = vision::calibration;
-
 std::string required(Args& args, const std::string& name, const std::string& expected) {
   const auto v = args.value(name);
   if (!v || v->empty()) throw UsageError(name + ": expected " + expected);
@@ -35,6 +31,26 @@ cv::Mat read_grey(const std::string& path) {
   if (image.empty()) throw UsageError("cannot read the image '" + path + "'");
   return image;
 }
+
+std::vector<std::string> image_files(const std::string& option, const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    std::string ext = e.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif"))
+      files.push_back(e.path().string());
+  }
+  if (ec) throw UsageError(option + ": cannot list '" + dir + "': " + ec.message());
+  if (files.size() > 1000)
+    throw UsageError(option + ": " + std::to_string(files.size()) + " images; expected 1000 at most");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+namespace {
+
+namespace cal = vision::calibration;
 
 cal::CameraFile camera_option(Args& args) {
   const std::string path = required(args, "--camera", "the camera's calibration file (wysiwyf calibrate intrinsics)");
@@ -72,18 +88,7 @@ int intrinsics(Args& args) {
   limits.max_rms = number_option(args, "--max-rms", limits.max_rms, 0, 100, "px");
   limits.min_coverage = number_option(args, "--min-coverage", limits.min_coverage, 0, 1, "a share, 0 to 1");
   no_unknown_options(args);
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
-    std::string ext = e.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif"))
-      files.push_back(e.path().string());
-  }
-  if (ec) throw UsageError("--images: cannot list '" + dir + "': " + ec.message());
-  if (files.size() > 1000)
-    throw UsageError("--images: " + std::to_string(files.size()) + " images; expected 1000 at most");
-  std::sort(files.begin(), files.end());
+  const std::vector<std::string> files = image_files("--images", dir);
   const cal::CharucoTarget target(spec);
   std::vector<cal::BoardDetection> views;
   for (const std::string& f : files)
@@ -200,8 +205,9 @@ int calibrate_camera_step(const std::string& step, Args& args) {
   if (step == "intrinsics") return intrinsics(args);
   if (step == "camera-base-poses") return camera_base_poses(args);
   if (step == "camera-base") return camera_base(args);
+  if (step == "stereo") return calibrate_stereo(args);
   throw UsageError("unknown step '" + step +
-                   "'; expected one of wrist-poses, wrist, board, intrinsics, camera-base-poses, camera-base");
+                   "'; expected one of wrist-poses, wrist, board, intrinsics, stereo, camera-base-poses, camera-base");
 }
 
 }  // namespace wysiwyf::cli

@@ -161,12 +161,16 @@ const CommandHelp kCommands[] = {
   calibrate wrist --readings FILE [--scene SCENE --out FILE] [--urdf U] [--sensor-frame F]
   calibrate board --out FILE.png [--pixels-per-square N]
   calibrate intrinsics --images DIR --out FILE.yaml
+  calibrate stereo --left FILE.yaml --right FILE.yaml --left-images DIR --right-images DIR
+                   --out-left FILE.yaml --out-right FILE.yaml [--max-epipolar PX]
   calibrate camera-base-poses --camera FILE.yaml --home Q --out VIEWS.yaml [--count N] [--seed S] [--urdf U]
   calibrate camera-base --camera FILE.yaml --views VIEWS.yaml --out FILE.yaml [--urdf U]
         Each step prints its residual report (every pose's or view's error) and writes its file
         only when the result passes the limits: wrist: the scene with the device's tool_mass and
         tool_com (and the sensor's bias in the report); intrinsics: camera_matrix and
-        distortion_coefficients; camera-base: the same file with base_T_eye (camera_fixed).
+        distortion_coefficients; stereo: each camera's file with rectification_matrix and
+        projection_matrix (images of one board position: the same name in both folders);
+        camera-base: the same file with base_T_eye (camera_fixed).
         Q: the arm's joints, comma-separated (rad). Board: --squares-x 10 --squares-y 7
         --square 0.028 --marker 0.021 (m; an A4 sheet). Exit 1 when refused, with the reason.
         The procedure for a lab: docs/calibration.md.

@@ -1,6 +1,7 @@
 // `wysiwyf calibrate` as a lab runs it, on recorded data made from simulated truth: the wrist's
 // poses, filled-in readings and the rewritten scene; a folder of board images to a camera file;
-// the robot-world poses, an image at each and the camera's pose in that file (camera_fixed's).
+// the robot-world poses, an image at each and the camera's pose in that file (camera_fixed's); a
+// stereo pair's two folders to its two rectified files.
 // Refusals exit 1 with the reason, usage mistakes 2.
 #include <gtest/gtest.h>
 
@@ -16,6 +17,7 @@
 #include "calibration/flange_views_file.hpp"
 #include "calibration/robot_world_poses.hpp"
 #include "calibration_truth.hpp"
+#include "camera_component.hpp"
 #include "scene/scene.hpp"
 #include "wrist_calibration/wrist_poses.hpp"
 #include "wrist_calibration/wrist_readings_file.hpp"
@@ -156,6 +158,61 @@ TEST(CalibrateCli, IntrinsicsThenCameraBaseFromImages) {
   const CliRun missing = calibrate("camera-base --camera " + (dir / "camera.yaml").string() + " --views " +
                                    (dir / "nowhere.yaml").string() + " --out " + (dir / "x.yaml").string());
   EXPECT_EQ(missing.status, 2) << missing.output;
+}
+
+// calibrate stereo from two folders of images of the same board positions (names pair them), each
+// camera's file from `calibrate intrinsics` (here the truth): both files written with their
+// rectification, the right one's projection holding the baseline, and read back as the camera
+// component reads them; a folder whose right camera was knocked half-way is refused, exit 1.
+TEST(CalibrateCli, StereoFromTwoFoldersWritesBothRectifiedFiles) {
+  const fs::path dir = scratch("cli_stereo");
+  const cal::CharucoTarget target(cal::CharucoSpec{});
+  const cal::CameraIntrinsics left = perturbed_sim_camera(51), right = perturbed_sim_camera(151);
+  cal::save_camera_file((dir / "left_in.yaml").string(), {left, std::nullopt, std::nullopt, std::nullopt}, "truth");
+  cal::save_camera_file((dir / "right_in.yaml").string(), {right, std::nullopt, std::nullopt, std::nullopt}, "truth");
+  Eigen::Isometry3d right_T_left(Eigen::AngleAxisd(0.006, Eigen::Vector3d::UnitY()));
+  right_T_left.translation() = Eigen::Vector3d(-0.06, 0.0003, 0.0005);
+  const cal::BoardViewSim sim_left(target, left), sim_right(target, right);
+  const auto render = [&](const std::string& folder, double knock_after_half) {
+    std::mt19937 rng(51);
+    fs::create_directories(dir / folder / "left");
+    fs::create_directories(dir / folder / "right");
+    int i = 0;
+    for (const auto& left_T_board : cal::board_view_poses(target, left, 20, rng)) {
+      char name[32];
+      std::snprintf(name, sizeof name, "pair_%02d.png", ++i);
+      const Eigen::Isometry3d knock(Eigen::AngleAxisd(i > 10 ? knock_after_half : 0.0, Eigen::Vector3d::UnitX()));
+      cv::imwrite((dir / folder / "left" / name).string(), sim_left.render(left_T_board, {}, rng));
+      cv::imwrite((dir / folder / "right" / name).string(),
+                  sim_right.render(knock * right_T_left * left_T_board, {}, rng));
+    }
+  };
+  const auto stereo = [&](const std::string& folder) {
+    return calibrate("stereo --left " + (dir / "left_in.yaml").string() + " --right " +
+                     (dir / "right_in.yaml").string() + " --left-images " + (dir / folder / "left").string() +
+                     " --right-images " + (dir / folder / "right").string() + " --out-left " +
+                     (dir / folder / "left.yaml").string() + " --out-right " + (dir / folder / "right.yaml").string());
+  };
+  render("good", 0);
+  const CliRun good = stereo("good");
+  ASSERT_EQ(good.status, 0) << good.output;
+  EXPECT_NE(good.output.find("pair_20.png: epipolar"), std::string::npos) << good.output;
+  const cal::CameraFile l = cal::load_camera_file((dir / "good" / "left.yaml").string());
+  const cal::CameraFile r = cal::load_camera_file((dir / "good" / "right.yaml").string());
+  ASSERT_TRUE(l.rectification && l.projection && r.rectification && r.projection);
+  EXPECT_NEAR(-(*r.projection)(0, 3) / (*r.projection)(0, 0), 0.06, 0.0005) << "the baseline";
+  EXPECT_NEAR(r.intrinsics.camera_matrix(0, 0), right.camera_matrix(0, 0), 1e-9) << "the intrinsics kept";
+  // The camera component (hardware/real.yaml's stereo cameras) publishes the right one's R and P.
+  msg::CameraInfo ci;
+  ASSERT_TRUE(camera_info_of(dir / "good" / "right.yaml", dir, ci));
+  for (int i = 0; i < 12; ++i) EXPECT_NEAR(ci.p()[static_cast<std::size_t>(i)], (*r.projection)(i / 4, i % 4), 1e-9);
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(ci.r()[static_cast<std::size_t>(i)], (*r.rectification)(i / 3, i % 3), 1e-9);
+
+  render("knocked", 0.3 * M_PI / 180);
+  const CliRun knocked = stereo("knocked");
+  EXPECT_EQ(knocked.status, 1) << knocked.output;
+  EXPECT_NE(knocked.output.find("refused: epipolar error"), std::string::npos) << knocked.output;
+  EXPECT_FALSE(fs::exists(dir / "knocked" / "right.yaml"));
 }
 
 }  // namespace wysiwyf::test

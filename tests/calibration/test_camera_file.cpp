@@ -10,6 +10,7 @@
 
 #include "calibration/camera_file.hpp"
 #include "calibration_truth.hpp"
+#include "camera_component.hpp"
 #include "wysiwyf/harness.hpp"
 #include "wysiwyf/msg_eigen.hpp"
 #include "wysiwyf/msgs.hpp"
@@ -54,16 +55,8 @@ TEST(CameraFile, TheCameraComponentReadsWhatIsWritten) {
   const auto dir = scratch("camera_file_camera");
   const cal::CameraFile f = calibrated();
   cal::save_camera_file((dir / "camera.yaml").string(), f, "written by a test");
-  cv::imwrite((dir / "frame_0.png").string(), cv::Mat(480, 640, CV_8UC3, cv::Scalar(0, 0, 0)));
-  Harness cam("camera",
-              "{source: " + (dir / "frame_%d.png").string() + ", calibration: " + (dir / "camera.yaml").string() +
-                  ", undistort: false}",
-              25);
-  auto info = cam.watch<msg::CameraInfo>("camera_info");
-  cam.activate();
-  cam.tick(Time{0});
   msg::CameraInfo ci;
-  ASSERT_TRUE(info.take_latest(ci));
+  ASSERT_TRUE(camera_info_of(dir / "camera.yaml", dir, ci));
   EXPECT_EQ(ci.width(), 640u);
   for (int i = 0; i < 9; ++i)
     EXPECT_DOUBLE_EQ(ci.k()[static_cast<std::size_t>(i)], f.intrinsics.camera_matrix(i / 3, i % 3));
@@ -120,6 +113,21 @@ TEST(CameraFile, HostileFilesAreRefusedNamingTheKey) {
                      "   cols: 4\n   dt: d\n   data: [ 2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 ]\n")
                 .find("base_T_eye: expected a rigid transform"),
             std::string::npos);
+  // A stereo camera's rectification: both matrices or neither, a rotation, a 3x4 projection.
+  const std::string good_k = head + k + "600, 0, 319.5, 0, 600, 239.5, 0, 0, 1 ]\n";
+  const std::string r = "rectification_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n   data: [ ";
+  const std::string p = "projection_matrix: !!opencv-matrix\n   rows: 3\n   cols: 4\n   dt: d\n   data: [ ";
+  EXPECT_NE(error_of(good_k + r + "1, 0, 0, 0, 1, 0, 0, 0, 1 ]\n").find("together, or neither"), std::string::npos);
+  EXPECT_NE(
+      error_of(good_k + r + "2, 0, 0, 0, 1, 0, 0, 0, 1 ]\n" + p + "600, 0, 320, 0, 0, 600, 240, 0, 0, 0, 1, 0 ]\n")
+          .find("rectification_matrix: expected a 3x3 rotation"),
+      std::string::npos);
+  EXPECT_NE(error_of(good_k + r + "1, 0, 0, 0, 1, 0, 0, 0, 1 ]\n" + p + "0, 0, 320, 0, 0, 600, 240, 0, 0, 0, 1, 0 ]\n")
+                .find("projection_matrix: expected 3x4"),
+            std::string::npos);
+  EXPECT_EQ(
+      error_of(good_k + r + "1, 0, 0, 0, 1, 0, 0, 0, 1 ]\n" + p + "600, 0, 320, -36, 0, 600, 240, 0, 0, 0, 1, 0 ]\n"),
+      "accepted");
   EXPECT_THROW(cal::load_camera_file((dir / "missing.yaml").string()), std::runtime_error);
 }
 

@@ -78,6 +78,18 @@ CameraFile load_camera_file(const std::string& path) {
     iso.linear() = R, iso.translation() = m.topRightCorner<3, 1>();
     f.base_T_eye = iso;
   }
+  const cv::Mat R = matrix(fs, "rectification_matrix", where, false), P = matrix(fs, "projection_matrix", where, false);
+  if (R.empty() != P.empty())
+    throw std::runtime_error(where + ": expected rectification_matrix and projection_matrix together, or neither");
+  if (!R.empty()) {
+    const cv::Matx33d r = R.rows == 3 && R.cols == 3 ? cv::Matx33d(R) : cv::Matx33d::zeros();
+    if (cv::norm(cv::Mat(r.t() * r - cv::Matx33d::eye())) > 1e-6 || cv::determinant(r) < 0)
+      throw std::runtime_error(where + ": rectification_matrix: expected a 3x3 rotation");
+    if (P.rows != 3 || P.cols != 4 || !(P.at<double>(0, 0) > 0) || !(P.at<double>(1, 1) > 0))
+      throw std::runtime_error(where + ": projection_matrix: expected 3x4 [f 0 cx Tx; 0 f cy 0; 0 0 1 0], f > 0");
+    f.rectification = r;
+    f.projection = cv::Matx34d(P);
+  }
   return f;
 }
 
@@ -101,6 +113,8 @@ void save_camera_file(const std::string& path, const CameraFile& f, const std::s
       for (int c = 0; c < 4; ++c) T.at<double>(r, c) = m(r, c);
     fs << "base_T_eye" << T;
   }
+  if (f.rectification && f.projection)
+    fs << "rectification_matrix" << cv::Mat(*f.rectification) << "projection_matrix" << cv::Mat(*f.projection);
   fs.release();
 }
 

@@ -2,7 +2,8 @@
 // A camera's calibration file as the pipelines read it (config/calibration/*.yaml, OpenCV
 // FileStorage): image_width, image_height, camera_matrix, distortion_coefficients (the camera
 // component, stereo_depth, camera_sim) and, for camera-fixed mode, base_T_eye (camera_fixed: where
-// the camera stands in the robot's base frame).
+// the camera stands in the robot's base frame); for a camera of a rectified stereo pair also
+// rectification_matrix and projection_matrix.
 #include <optional>
 #include <string>
 
@@ -15,6 +16,10 @@ namespace wysiwyf::vision::calibration {
 struct CameraFile {
   CameraIntrinsics intrinsics;
   std::optional<Eigen::Isometry3d> base_T_eye;
+  // A camera of a rectified stereo pair (wysiwyf calibrate stereo): its rectifying rotation and
+  // rectified projection (the camera component's rectification_matrix, projection_matrix).
+  std::optional<cv::Matx33d> rectification;
+  std::optional<cv::Matx34d> projection;
 };
 
 // Reads and checks the file: a 3x3 camera_matrix with positive focal lengths and its principal
