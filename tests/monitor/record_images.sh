@@ -17,19 +17,9 @@
 # Usage: record_images.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN to DOMAIN+3)
 set -euo pipefail
 build=$1 src=$2 d1=$3 d2=$(($3 + 1)) d3=$(($3 + 2)) d4=$(($3 + 3))
-cli=$build/bin/wysiwyf
-js=$build/npm/monitor
-if [[ ! -d $js/node_modules/@mcap/core ]]; then
-  echo "FAIL: $js/node_modules has no @mcap/core: scripts/test installs tests/monitor/js/package.json there (npm ci)"
-  exit 1
-fi
-cp "$src/tests/monitor/js/read_mcap.mjs" "$js/"
-work=$(mktemp -d)
-pids=()
-trap 'for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$work"' EXIT
+source "$src/tests/monitor/mcap_test_setup.sh"
 pipeline=$src/config/pipelines/demo-sim.yaml
 fail() { echo "FAIL: $*"; for f in raw lossless video run play replay play-video replay-video play-into replay-matte; do echo "--- $f"; tail -30 "$work/$f.log" 2>/dev/null; done; exit 1; }
-json() { python3 -c "import json,sys; d=json.load(open('$1')); print($2)"; }
 images=(camera/image render/depth)  # a noisy camera's WebP, a float depth's PNG
 
 echo "== 1. the demo's first second, recorded raw, lossless and as video"

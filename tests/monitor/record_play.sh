@@ -11,20 +11,10 @@
 # Usage: record_play.sh BUILD_DIR SOURCE_DIR DOMAIN (uses DOMAIN and DOMAIN+1)
 set -euo pipefail
 build=$1 src=$2 d1=$3 d2=$(($3 + 1))
-cli=$build/bin/wysiwyf
-js=$build/npm/monitor
-if [[ ! -d $js/node_modules/@mcap/core ]]; then
-  echo "FAIL: $js/node_modules has no @mcap/core: scripts/test installs tests/monitor/js/package.json there (npm ci)"
-  exit 1
-fi
-cp "$src/tests/monitor/js/read_mcap.mjs" "$js/"
-work=$(mktemp -d)
-pids=()
-trap 'for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$work"' EXIT
+source "$src/tests/monitor/mcap_test_setup.sh"
 pipeline=$src/config/pipelines/admittance-push.yaml
 run_opts=(--set dds.transport=local --set clock.duration=3s --no-progress --start-after 2)
 fail() { echo "FAIL: $*"; exit 1; }
-json() { python3 -c "import json,sys; d=json.load(open('$1')); print($2)"; }
 
 echo "== 1. record the push"
 "$cli" record --all -o "$work/run.mcap" --domain "$d1" --transport local --no-progress >"$work/record.log" 2>&1 &
