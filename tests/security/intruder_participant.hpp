@@ -6,12 +6,10 @@
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
-#include <cstring>
-#include <functional>
 #include <optional>
 #include <string>
-#include <vector>
 
+#include "raw_cdr_type.hpp"  // apps/wysiwyf
 #include "wysiwyf/dds.hpp"
 #include "wysiwyf/dds_security.hpp"
 #include "wysiwyf/message_traits.hpp"
@@ -21,37 +19,6 @@ namespace wysiwyf::test {
 // A DDS participant of the test's own: plain (an intruder) or with one of the policy's identities.
 namespace intruder {
 using namespace eprosima::fastdds::dds;
-
-// A sample as the bytes on the wire (CDR with its encapsulation): what a participant with its own
-// idea of a type, or none, may send under the type's name.
-struct RawBytes {
-  std::vector<std::uint8_t> cdr;
-};
-
-class RawBytesType final : public TopicDataType {
- public:
-  RawBytesType(const std::string& name, std::uint32_t max_size) {
-    setName(name.c_str());
-    m_typeSize = max_size;
-    m_isGetKeyDefined = false;
-    auto_fill_type_object(false);
-    auto_fill_type_information(false);
-  }
-  bool serialize(void* data, eprosima::fastrtps::rtps::SerializedPayload_t* payload) override {
-    const auto& b = static_cast<RawBytes*>(data)->cdr;
-    if (payload->max_size < b.size()) payload->reserve(static_cast<std::uint32_t>(b.size()));
-    std::memcpy(payload->data, b.data(), b.size());
-    payload->length = static_cast<std::uint32_t>(b.size());
-    return true;
-  }
-  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t*, void*) override { return false; }
-  std::function<std::uint32_t()> getSerializedSizeProvider(void* data) override {
-    return [data] { return static_cast<std::uint32_t>(static_cast<RawBytes*>(data)->cdr.size()); };
-  }
-  void* createData() override { return new RawBytes(); }
-  void deleteData(void* data) override { delete static_cast<RawBytes*>(data); }
-  bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t*, bool) override { return false; }
-};
 
 class Participant {
  public:
@@ -84,11 +51,11 @@ class Participant {
     return publisher_->create_datawriter(this->topic<T>(topic), qos);
   }
 
-  // A writer of RawBytes under `type_name`, of samples up to `max_size` bytes (beyond the type's
-  // own bound if the test says so), with the same QoS choices as writer().
-  DataWriter* raw_writer(const std::string& topic, const std::string& type_name, std::uint32_t max_size,
-                         std::int64_t deadline_ns = 0) {
-    TypeSupport type(new RawBytesType(type_name, max_size));
+  // A writer of raw CDR bytes (cli::RawCdr, the recorder's and player's type) under `type_name`,
+  // of samples of any size (beyond the type's own bound if the test says so), with the same QoS
+  // choices as writer(): what a participant with its own idea of the type, or none, may send.
+  DataWriter* raw_writer(const std::string& topic, const std::string& type_name, std::int64_t deadline_ns = 0) {
+    TypeSupport type(new cli::RawCdrType(type_name, false));
     if (!participant_->find_type(type_name)) type.register_type(participant_);
     Topic* t = participant_->create_topic(topic, type_name, TOPIC_QOS_DEFAULT);
     Qos declared = Qos::reliable(8);

@@ -52,7 +52,7 @@ TEST(OversizedSamples, EightMegabyteSamplesFromOutsideAreDroppedAndTheRobotsStre
     msg::JointState big;
     big.header().frame_id("base");
     big.position().assign(1'000'000, 12345.0);
-    auto* writer = intruder.raw_writer("crossing", "wysiwyf::msg::JointState", 9'000'000, 20'000'000);
+    auto* writer = intruder.raw_writer("crossing", "wysiwyf::msg::JointState", 20'000'000);
     ASSERT_NE(writer, nullptr);
     const auto cdr_of = [&big] {
       std::vector<std::uint8_t> bytes(9'000'000);
@@ -73,7 +73,7 @@ TEST(OversizedSamples, EightMegabyteSamplesFromOutsideAreDroppedAndTheRobotsStre
     int written = 0;
     for (std::uint32_t i = 0; i < 20; ++i) {  // 160 MB over 4 s
       big.header().seq(kIntruderSeq + i);
-      intruder::RawBytes sample{cdr_of()};
+      cli::RawCdr sample{cdr_of()};
       written += writer->write(&sample);
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
