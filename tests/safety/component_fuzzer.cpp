@@ -55,10 +55,23 @@ struct TypedFeed final : PortFeed {
   std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support;
 };
 
-// One output port: every sample the component wrote, as CDR bytes.
+// What a sample of its type must also hold beyond finite numbers: "" for most types.
+template <class T>
+std::string typed_problem(const T&) {
+  return "";
+}
+// A setpoint's orientation is a unit quaternion.
+std::string typed_problem(const msg::CartesianSetpoint& s) {
+  const auto& q = s.pose().orientation();
+  const double norm = std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z() + q.w() * q.w());
+  return std::abs(norm - 1) > 1e-6 ? "a setpoint's quaternion of length " + std::to_string(norm) : "";
+}
+
+// One output port: every sample the component wrote, as CDR bytes, and what its type's own
+// check (typed_problem) found in it.
 struct PortWatch {
   virtual ~PortWatch() = default;
-  virtual bool next(Bytes& cdr) = 0;
+  virtual bool next(Bytes& cdr, std::string& problem) = 0;
   types::DynamicType_ptr type;
   std::string port;
 };
@@ -66,12 +79,13 @@ struct PortWatch {
 template <class T>
 struct TypedWatch final : PortWatch {
   TypedWatch(Harness& h, const std::string& p) : in(h.watch<T>(p)), support(MessageTraits<T>::make_type()) {}
-  bool next(Bytes& cdr) override {
+  bool next(Bytes& cdr, std::string& problem) override {
     T sample;
     if (!in.take(sample)) return false;
     SerializedPayload_t payload(support->getSerializedSizeProvider(&sample)());
     if (!support->serialize(&sample, &payload)) throw std::runtime_error("an output sample does not serialise");
     cdr.assign(payload.data, payload.data + payload.length);
+    problem = typed_problem(sample);
     return true;
   }
   Input<T> in;
@@ -99,20 +113,6 @@ using AllMessages =
              msg::WrenchStamped, msg::CartesianSetpoint, msg::ObjectState, msg::DisplayMode, msg::RobotStatus,
              msg::ArmRequest, msg::MarkerObservation, msg::HandPosition, msg::Attachment, msg::PlannerStatus,
              msg::UserEvent, msg::ContactReport, msg::HapticRegistration, kernel_msgs::Diagnostics>;
-
-// A setpoint at a unit quaternion (its bytes read back into the type).
-std::string setpoint_problem(const Bytes& cdr) {
-  SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
-  std::memcpy(payload.data, cdr.data(), cdr.size());
-  payload.length = static_cast<std::uint32_t>(cdr.size());
-  msg::CartesianSetpoint s;
-  std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support(MessageTraits<msg::CartesianSetpoint>::make_type());
-  if (!support->deserialize(&payload, &s)) return "a setpoint that does not read back";
-  const auto& q = s.pose().orientation();
-  const double norm = std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z() + q.w() * q.w());
-  if (std::abs(norm - 1) > 1e-6) return "a setpoint's quaternion of length " + std::to_string(norm);
-  return "";
-}
 
 struct Instance {
   Instance(const FuzzOptions& o, Loader& loader) : h(o.type, o.params, o.rate_hz, &loader) {
@@ -203,12 +203,12 @@ FuzzResult fuzz_component(const FuzzOptions& o, Loader& loader) {
           std::max(r.slowest_tick_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       ++r.ticks;
       Bytes cdr;
+      std::string typed;
       for (const auto& out : c->outputs)
-        while (out->next(cdr)) {
+        while (out->next(cdr, typed)) {
           ++r.outputs;
           std::string problem = FiniteCheck::first_non_finite(cdr, out->type);
-          if (problem.empty() && out->type->get_name() == MessageTraits<msg::CartesianSetpoint>::type_name())
-            problem = setpoint_problem(cdr);
+          if (problem.empty()) problem = typed;
           if (problem.empty() && o.check) problem = o.check(out->port, cdr);
           if (!problem.empty()) find(s, out->port + ": " + problem);
         }

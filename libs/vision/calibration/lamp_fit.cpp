@@ -100,7 +100,8 @@ LampFit fit_lamps(const std::vector<LampView>& views, const CameraIntrinsics& ca
   const double focal = camera.camera_matrix(0, 0);
   Eigen::VectorXd r = residuals(x, obs, views, focal);
   double lambda = 1e-3;
-  for (int iteration = 0; iteration < 100; ++iteration) {
+  bool converged = false;
+  for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
     Eigen::MatrixXd J(r.size(), x.size());
     for (Eigen::Index j = 0; j < x.size(); ++j) {
       Eigen::VectorXd xp = x;
@@ -118,7 +119,7 @@ LampFit fit_lamps(const std::vector<LampView>& views, const CameraIntrinsics& ca
       if (r_try.squaredNorm() < r.squaredNorm()) {
         const double gain = r.squaredNorm() - r_try.squaredNorm();
         x += step, r = r_try, lambda = std::max(lambda / 3, 1e-9), improved = true;
-        if (gain < 1e-12 * std::max(1.0, r.squaredNorm())) iteration = 100;
+        converged = gain < 1e-12 * std::max(1.0, r.squaredNorm());
       } else {
         lambda *= 4;
       }
