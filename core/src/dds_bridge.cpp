@@ -68,7 +68,10 @@ struct DdsBridge::WriterLink final : public DdsWriterLink, public DataWriterList
   std::uint64_t drain() {
     if (!pending.exchange(false, std::memory_order_acq_rel)) return 0;
     std::uint64_t sent = 0;
-    for (; channel.take_outgoing(buffer); ++sent) writer->write(buffer);
+    for (; channel.take_outgoing(buffer); ++sent)
+      if (!writer->write(buffer) && counters.lost.fetch_add(1) == 0)  // (counted in health() as lost)
+        bridge.say("topic '" + channel.topic() +
+                   "': DDS refused to send a sample to other processes; further refusals are counted");
     return sent;
   }
 

@@ -114,8 +114,8 @@ TEST(StaleSharedMemory, AKilledPipelinesFilesGoAndALiveOnesStay) {
                            "  src: {type: test_probe, rate: 100, topics: {out: crossing}}\n";
     return file;
   };
-  const pid_t killed = spawn_cli({"run", pipeline(83).string(), "--no-progress"}, dir / "killed.log");
-  const pid_t live = spawn_cli({"run", pipeline(84).string(), "--no-progress"}, dir / "live.log");
+  const pid_t killed = spawn_cli({"run", pipeline(97).string(), "--no-progress"}, dir / "killed.log");
+  const pid_t live = spawn_cli({"run", pipeline(98).string(), "--no-progress"}, dir / "live.log");
   // Both running, each with its segment mapped (a bounded wait, not a timing check).
   std::set<std::string> killed_files, live_files;
   for (int i = 0; i < 300 && (killed_files.empty() || live_files.empty()); ++i) {

@@ -13,7 +13,7 @@
 set -euo pipefail
 build=$1 src=$2 domain=$3
 source "$src/tests/monitor/bridge_test_setup.sh"
-fail() { echo "FAIL: $*"; for f in bridge record play; do echo "--- $f"; tail -20 "$work/$f.log" 2>/dev/null; done; exit 1; }
+fail() { echo "FAIL: $*"; for f in bridge record run play; do echo "--- $f"; tail -20 "$work/$f.log" 2>/dev/null; done; exit 1; }
 dds=(--domain "$domain" --transport local)
 
 start_bridge
