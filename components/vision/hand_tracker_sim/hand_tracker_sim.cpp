@@ -1,6 +1,8 @@
 // hand_tracker_sim: a hand tracker made from the simulation's truth, with the faults of a real one:
 // Gaussian noise, a latency (each position is published that much after the hand was there,
-// stamped with when it was there), random dropouts and scripted outages (published as LOST). For
+// stamped with when it was there), random dropouts and scripted outages (published as LOST),
+// glitches (the position off by a fixed offset for a while: a tracker locked onto something else)
+// and stale stamps (published as if seen that much earlier). For
 // tests, and for studying how tracking quality limits the display; the stereo hand point and the
 // fingertip marker tracker publish the same HandPosition, so sources swap by one `type:` line.
 #include <deque>
@@ -23,6 +25,12 @@ class HandTrackerSim final : public Component {
     dropout_ = ctx.param<double>("dropout", 0.0, "probability that a sample is lost (published as LOST)", Range{0, 1});
     outages_ = ctx.param<std::vector<double>>("outages", {}, "rows [from s, to s]: the hand is not seen at all",
                                               Range{0, 1e9}, Length::rows_of(2));
+    glitches_ = ctx.param<std::vector<double>>(
+        "glitches", {}, "rows [from s, to s, dx, dy, dz m]: the position published off by (dx, dy, dz)",
+        Range{-1e9, 1e9}, Length::rows_of(5));
+    stale_ = ctx.param<std::vector<double>>(
+        "stale", {}, "rows [from s, to s, age s]: positions stamped age s before the hand was there", Range{0, 1e9},
+        Length::rows_of(3));
     seed_ = ctx.param<int>("seed", 7, "noise and dropout seed (runs are repeatable)", Range{0, 1e9});
     in_ = ctx.input<msg::PoseStamped>("hand_pose", "the fingertip's true position (arm_sim, base frame)",
                                       Qos::sensor(64));
@@ -53,9 +61,17 @@ class HandTrackerSim final : public Component {
     const double t = static_cast<double>(latest.stamp_ns - start_ns_) * 1e-9;
     bool lost = uniform_(rng_) < dropout_;
     for (std::size_t i = 0; i + 1 < outages_.size(); i += 2) lost = lost || (t >= outages_[i] && t < outages_[i + 1]);
-    fill_header(msg_.header(), latest.stamp_ns, seq_++, "base");
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i + 4 < glitches_.size(); i += 5)
+      if (t >= glitches_[i] && t < glitches_[i + 1])
+        offset += Eigen::Vector3d(glitches_[i + 2], glitches_[i + 3], glitches_[i + 4]);
+    std::int64_t stamp_ns = latest.stamp_ns;
+    for (std::size_t i = 0; i + 2 < stale_.size(); i += 3)
+      if (t >= stale_[i] && t < stale_[i + 1]) stamp_ns -= static_cast<std::int64_t>(stale_[i + 2] * 1e9);
+    fill_header(msg_.header(), stamp_ns, seq_++, "base");
     msg_.status(lost ? msg::TRACKING_LOST : msg::TRACKING_OK);
-    const Eigen::Vector3d noisy = latest.p + noise_ * Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_));
+    const Eigen::Vector3d noisy =
+        latest.p + offset + noise_ * Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_));
     msgs::to_msg(lost ? Eigen::Vector3d::Zero() : noisy, msg_.position());
     const double var = noise_ * noise_;
     msg_.covariance() = {var, 0, 0, 0, var, 0, 0, 0, var};
@@ -71,7 +87,7 @@ class HandTrackerSim final : public Component {
 
   double noise_ = 0.002, dropout_ = 0;
   std::int64_t latency_ns_ = 0, start_ns_ = -1;
-  std::vector<double> outages_;
+  std::vector<double> outages_, glitches_, stale_;
   int seed_ = 7;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
