@@ -8,7 +8,9 @@
 #include <opencv2/core.hpp>
 
 #include "arm_model/arm_model.hpp"
+#include "calibration/camera_file.hpp"
 #include "calibration/charuco_target.hpp"
+#include "calibration/flange_views_file.hpp"
 #include "cli.hpp"
 
 namespace wysiwyf::cli {
@@ -35,10 +37,21 @@ cv::Mat read_grey(const std::string& path);
 // `option` otherwise.
 std::vector<std::string> image_files(const std::string& option, const std::string& dir);
 
-// The camera steps: intrinsics, stereo, camera-base, camera-base-poses, board (cmd_calibrate_camera.cpp).
+// The camera steps: intrinsics, stereo, camera-base, camera-base-poses, board, lamps (cmd_calibrate_camera.cpp).
 int calibrate_camera_step(const std::string& step, Args& args);
 
 // stereo: the pair's extrinsics and rectification (cmd_calibrate_stereo.cpp).
 int calibrate_stereo(Args& args);
+
+// lamps: the plate's lamps on the flange, into a copy of the URDF (cmd_calibrate_lamps.cpp).
+int calibrate_lamps(Args& args);
+
+// A view's image, its joints within the arm's limits and its size the camera's; UsageError naming
+// the file and the view otherwise.
+cv::Mat read_view(const vision::calibration::FlangeViewEntry& e, const std::string& views_file,
+                  const robot::ArmModel& arm, const vision::calibration::CameraIntrinsics& camera);
+
+// --camera FILE (found in the config path); UsageError naming it when it cannot be read.
+vision::calibration::CameraFile camera_option(Args& args);
 
 }  // namespace wysiwyf::cli

@@ -155,7 +155,8 @@ int wrist_poses(Args& args) {
 int cmd_calibrate(Args args) {
   const auto step = args.take_front();
   if (!step)
-    throw UsageError("expected a step: wrist-poses, wrist, board, intrinsics, stereo, camera-base-poses, camera-base");
+    throw UsageError(
+        "expected a step: wrist-poses, wrist, board, intrinsics, stereo, camera-base-poses, camera-base, lamps");
   if (*step == "wrist") return wrist(args);
   if (*step == "wrist-poses") return wrist_poses(args);
   return calibrate_camera_step(*step, args);

@@ -48,8 +48,6 @@ std::vector<std::string> image_files(const std::string& option, const std::strin
   return files;
 }
 
-namespace {
-
 namespace cal = vision::calibration;
 
 cal::CameraFile camera_option(Args& args) {
@@ -60,6 +58,20 @@ cal::CameraFile camera_option(Args& args) {
     throw UsageError(std::string("--camera: ") + e.what());
   }
 }
+
+cv::Mat read_view(const cal::FlangeViewEntry& e, const std::string& views_file, const robot::ArmModel& arm,
+                  const cal::CameraIntrinsics& camera) {
+  if (!arm.limits().within(e.joints, 1e-6))
+    throw UsageError(views_file + ": " + e.label + ": joints outside the limits");
+  const cv::Mat image = read_grey(e.image);
+  if (image.size() != camera.size)
+    throw UsageError(e.image + ": " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                     " px; expected the calibrated camera's " + std::to_string(camera.size.width) + "x" +
+                     std::to_string(camera.size.height));
+  return image;
+}
+
+namespace {
 
 // board --out FILE.png [--pixels-per-square N] [board options]
 int board(Args& args) {
@@ -96,7 +108,9 @@ int intrinsics(Args& args) {
   const cal::IntrinsicsFit fit = cal::fit_intrinsics(views, target, limits);
   std::cout << cal::describe(fit, limits);
   if (!fit.accepted) return 1;
-  cal::save_camera_file(out, {fit.camera, std::nullopt},
+  cal::CameraFile file;
+  file.intrinsics = fit.camera;
+  cal::save_camera_file(out, file,
                         "wysiwyf calibrate intrinsics: " + std::to_string(views.size()) + " images of " + dir +
                             ", RMS reprojection error " + std::to_string(fit.rms) + " px");
   std::cout << "wrote " << out << "\n";
@@ -176,13 +190,7 @@ int camera_base(Args& args) {
   const robot::FrameId flange = frame_of(*arm, "flange");
   std::vector<cal::FlangeView> views;
   for (const cal::FlangeViewEntry& e : entries) {
-    if (!arm->limits().within(e.joints, 1e-6))
-      throw UsageError(views_file + ": " + e.label + ": joints outside the limits");
-    const cv::Mat image = read_grey(e.image);
-    if (image.size() != camera.intrinsics.size)
-      throw UsageError(e.image + ": " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                       " px; expected the calibrated camera's " + std::to_string(camera.intrinsics.size.width) + "x" +
-                       std::to_string(camera.intrinsics.size.height));
+    const cv::Mat image = read_view(e, views_file, *arm, camera.intrinsics);
     const cal::BoardDetection d = cal::detect_board(image, target, e.label);
     views.push_back({e.label, arm->fk(e.joints, flange), d.corners, d.ids});
   }
@@ -206,8 +214,10 @@ int calibrate_camera_step(const std::string& step, Args& args) {
   if (step == "camera-base-poses") return camera_base_poses(args);
   if (step == "camera-base") return camera_base(args);
   if (step == "stereo") return calibrate_stereo(args);
+  if (step == "lamps") return calibrate_lamps(args);
   throw UsageError("unknown step '" + step +
-                   "'; expected one of wrist-poses, wrist, board, intrinsics, stereo, camera-base-poses, camera-base");
+                   "'; expected one of wrist-poses, wrist, board, intrinsics, stereo, camera-base-poses, camera-base, "
+                   "lamps");
 }
 
 }  // namespace wysiwyf::cli

@@ -165,12 +165,14 @@ const CommandHelp kCommands[] = {
                    --out-left FILE.yaml --out-right FILE.yaml [--max-epipolar PX]
   calibrate camera-base-poses --camera FILE.yaml --home Q --out VIEWS.yaml [--count N] [--seed S] [--urdf U]
   calibrate camera-base --camera FILE.yaml --views VIEWS.yaml --out FILE.yaml [--urdf U]
+  calibrate lamps --camera FILE.yaml --views VIEWS.yaml --out ARM.urdf [--urdf U] [--gate PX] [--threshold L]
         Each step prints its residual report (every pose's or view's error) and writes its file
         only when the result passes the limits: wrist: the scene with the device's tool_mass and
         tool_com (and the sensor's bias in the report); intrinsics: camera_matrix and
         distortion_coefficients; stereo: each camera's file with rectification_matrix and
         projection_matrix (images of one board position: the same name in both folders);
-        camera-base: the same file with base_T_eye (camera_fixed).
+        camera-base: the same file with base_T_eye (camera_fixed); lamps: a copy of the URDF with
+        the marker_* links where the plate's lamps were seen (marker_tracker, camera_sim).
         Q: the arm's joints, comma-separated (rad). Board: --squares-x 10 --squares-y 7
         --square 0.028 --marker 0.021 (m; an A4 sheet). Exit 1 when refused, with the reason.
         The procedure for a lab: docs/calibration.md.

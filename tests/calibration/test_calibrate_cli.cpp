@@ -16,6 +16,7 @@
 #include "calibration/board_view_sim.hpp"
 #include "calibration/flange_views_file.hpp"
 #include "calibration/robot_world_poses.hpp"
+#include "calibrate_cli.hpp"
 #include "calibration_truth.hpp"
 #include "camera_component.hpp"
 #include "scene/scene.hpp"
@@ -28,29 +29,6 @@ namespace cal = vision::calibration;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct CliRun {
-  int status = -1;
-  std::string output;
-};
-
-CliRun calibrate(const std::string& args) {
-  CliRun r;
-  FILE* p = popen((std::string(WYSIWYF_CLI) + " calibrate " + args + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.output += buf.data();
-  const int s = pclose(p);
-  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  return r;
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 const std::string kConfig = WYSIWYF_CONFIG_DIR;
 
