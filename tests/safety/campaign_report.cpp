@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -23,11 +24,11 @@ struct Distribution {
 
 const std::vector<Distribution>& distributions() {
   static const std::vector<Distribution> d = {
-      {"worst_approach_excess_mm_s", "Worst approach speed over the allowed one (outside admittance)", "mm/s",
+      {"worst_approach_excess_mm_s", "Worst approach speed over the allowed one (idle and surface modes)", "mm/s",
        [](const ScenarioResult& r) { return r.figures.worst_approach_excess * 1e3; }, true},
       {"min_link_separation_mm", "Nearest any link (not the tool) came to the hand", "mm",
        [](const ScenarioResult& r) { return r.figures.min_link_separation * 1e3; }, false},
-      {"min_separation_mm", "Nearest any part came to the hand outside admittance", "mm",
+      {"min_separation_mm", "Nearest any part came to the hand in idle and surface modes", "mm",
        [](const ScenarioResult& r) { return r.figures.min_separation * 1e3; }, false},
       {"max_force_n", "Largest force on the hand", "N", [](const ScenarioResult& r) { return r.figures.max_force; },
        true},
@@ -37,6 +38,13 @@ const std::vector<Distribution>& distributions() {
        [](const ScenarioResult& r) { return r.figures.max_switch_step * 1e3; }, true},
   };
   return d;
+}
+
+// Four significant digits, as a reader takes them in.
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
 }
 
 struct Histogram {
@@ -63,11 +71,12 @@ std::string svg(const Histogram& h, const char* unit) {
   for (int i = 0; i < n; ++i) {
     const double bh = top ? ht * static_cast<double>(h.counts[i]) / top : 0;
     s << "<rect x='" << i * w / n << "' y='" << ht - bh << "' width='" << w / n - 2 << "' height='" << bh
-      << "' fill='#4878a8'><title>" << h.lo + i * h.width << "-" << h.lo + (i + 1) * h.width << " " << unit << ": "
-      << h.counts[i] << "</title></rect>";
+      << "' fill='#4878a8'><title>" << number(h.lo + i * h.width) << " to " << number(h.lo + (i + 1) * h.width) << " "
+      << unit << ": " << h.counts[i] << "</title></rect>";
   }
-  s << "<text x='0' y='" << ht + 15 << "' font-size='11'>" << h.lo << " " << unit << "</text><text x='" << w - 90
-    << "' y='" << ht + 15 << "' font-size='11'>" << h.lo + n * h.width << " " << unit << "</text></svg>";
+  s << "<text x='0' y='" << ht + 15 << "' font-size='11'>" << number(h.lo) << " " << unit << "</text><text x='"
+    << w - 90 << "' y='" << ht + 15 << "' font-size='11'>" << number(h.lo + n * h.width) << " " << unit
+    << "</text></svg>";
   return s.str();
 }
 
@@ -158,8 +167,12 @@ void write_campaign_report(const std::vector<ScenarioResult>& results, const Cam
     const auto& s = summary["distributions"][d.key];
     Histogram h;
     h.lo = s["bin_lo"], h.width = s["bin_width"], h.counts = s["counts"].get<std::vector<int>>();
-    html << "<h2>" << d.title << "</h2><p>min " << s["min"] << ", p50 " << s["p50"] << ", p99 " << s["p99"] << ", max "
-         << s["max"] << " " << d.unit << "; worst seeds: " << escape(s["worst_seeds"].dump()) << "</p>"
+    std::string worst;
+    for (const auto& w : s["worst_seeds"])
+      worst += (worst.empty() ? "" : ", ") + std::to_string(w["seed"].get<std::uint64_t>()) + " (" +
+               number(w["value"].get<double>()) + ")";
+    html << "<h2>" << d.title << "</h2><p>min " << number(s["min"]) << ", p50 " << number(s["p50"]) << ", p99 "
+         << number(s["p99"]) << ", max " << number(s["max"]) << " " << d.unit << "; worst seeds: " << worst << "</p>"
          << svg(h, d.unit);
   }
 }

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -141,6 +142,8 @@ int main(int argc, char** argv) {
     std::ifstream in(o.out / ("results-" + std::to_string(k) + ".jsonl"));
     for (std::string line; std::getline(in, line);) results.push_back(result_from_json(nlohmann::json::parse(line)));
   }
+  std::sort(results.begin(), results.end(),
+            [](const ScenarioResult& a, const ScenarioResult& b) { return a.scenario.seed < b.scenario.seed; });
   CampaignInfo info{command, o.planner, static_cast<int>(o.jobs),
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
   write_campaign_report(results, info, o.out);
