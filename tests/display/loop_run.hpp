@@ -112,6 +112,13 @@ inline std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
+// The user's force at a tick: the wrist reading less the weight of the tool (tool_mass kg; the
+// sensor's axes are the plate's).
+inline double user_force(const Tick& k, double tool_mass) {
+  const Eigen::Vector3d weight = k.plate_q.toRotationMatrix().transpose() * (tool_mass * Eigen::Vector3d(0, 0, -9.81));
+  return (k.force - weight).norm();
+}
+
 // Runs the loop with its files in `dir` (made if missing). The pipeline's validation errors go to
 // `errors` (the run goes ahead; the Runtime refuses what cannot run).
 inline LoopRun run_loop_in(const LoopSetup& setup, const std::filesystem::path& dir,

@@ -61,12 +61,6 @@ SsmCheck check_ssm(const LoopRun& run) {
   return c;
 }
 
-// The user's force (the reading less the tool's weight, sensor = plate orientation) at a tick.
-double user_force(const Tick& k) {
-  const Eigen::Vector3d weight = k.plate_q.toRotationMatrix().transpose() * (kToolMass * Eigen::Vector3d(0, 0, -9.81));
-  return (k.force - weight).norm();
-}
-
 // The plate's largest speed over 100 ms windows within [from, to].
 double plate_speed(const LoopRun& run, double from, double to) {
   double fastest = 0;
@@ -127,7 +121,7 @@ TEST(DisplayLoop, FrontalReachMeetsThePlateAndSwitchesOnTheThresholds) {
   {
     const std::size_t at = switches[0].first;
     std::size_t first_above = at;
-    while (first_above > 0 && user_force(run.ticks[first_above - 1]) > 2.0) --first_above;
+    while (first_above > 0 && user_force(run.ticks[first_above - 1], kToolMass) > 2.0) --first_above;
     const double held = run.ticks[at].t - run.ticks[first_above].t;
     EXPECT_GE(held, 0.020 - 1e-9) << "switched to admittance after " << held << " s above 2 N";
     EXPECT_LE(held, 0.025) << "switched to admittance " << held << " s after the force passed 2 N";
@@ -135,7 +129,7 @@ TEST(DisplayLoop, FrontalReachMeetsThePlateAndSwitchesOnTheThresholds) {
   {
     const std::size_t at = switches[1].first;
     std::size_t first_below = at;
-    while (first_below > 0 && user_force(run.ticks[first_below - 1]) < 1.0) --first_below;
+    while (first_below > 0 && user_force(run.ticks[first_below - 1], kToolMass) < 1.0) --first_below;
     const double held = run.ticks[at].t - run.ticks[first_below].t;
     EXPECT_GE(held, 0.100 - 1e-9) << "released after " << held << " s below 1 N";
   }

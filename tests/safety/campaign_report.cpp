@@ -137,8 +137,8 @@ nlohmann::json campaign_summary(const std::vector<ScenarioResult>& results, cons
   return j;
 }
 
-void write_campaign_report(const std::vector<ScenarioResult>& results, const CampaignInfo& info,
-                           const std::filesystem::path& dir) {
+nlohmann::json write_campaign_report(const std::vector<ScenarioResult>& results, const CampaignInfo& info,
+                                     const std::filesystem::path& dir) {
   const nlohmann::json summary = campaign_summary(results, info);
   std::ofstream(dir / "report.json") << summary.dump(2) << "\n";
   std::ofstream html(dir / "index.html");
@@ -175,6 +175,7 @@ void write_campaign_report(const std::vector<ScenarioResult>& results, const Cam
          << number(s["p99"]) << ", max " << number(s["max"]) << " " << d.unit << "; worst seeds: " << worst << "</p>"
          << svg(h, d.unit);
   }
+  return summary;
 }
 
 }  // namespace wysiwyf::safety

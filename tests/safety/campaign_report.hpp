@@ -21,8 +21,8 @@ struct CampaignInfo {
 // The summary and distributions of `results` as JSON.
 nlohmann::json campaign_summary(const std::vector<ScenarioResult>& results, const CampaignInfo& info);
 
-// Writes report.json and index.html into `dir`.
-void write_campaign_report(const std::vector<ScenarioResult>& results, const CampaignInfo& info,
-                           const std::filesystem::path& dir);
+// Writes report.json and index.html into `dir`; returns the summary they hold.
+nlohmann::json write_campaign_report(const std::vector<ScenarioResult>& results, const CampaignInfo& info,
+                                     const std::filesystem::path& dir);
 
 }  // namespace wysiwyf::safety

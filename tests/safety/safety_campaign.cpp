@@ -146,8 +146,7 @@ int main(int argc, char** argv) {
             [](const ScenarioResult& a, const ScenarioResult& b) { return a.scenario.seed < b.scenario.seed; });
   CampaignInfo info{command, o.planner, static_cast<int>(o.jobs),
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
-  write_campaign_report(results, info, o.out);
-  const nlohmann::json summary = campaign_summary(results, info);
+  const nlohmann::json summary = write_campaign_report(results, info, o.out);
   std::printf("%zu of %ld scenarios ran (%d worker(s) failed); %d with a violation %s; report: %s\n", results.size(),
               o.scenarios, failed, summary["scenarios_with_violations"].get<int>(),
               summary["violations"].dump().c_str(), (o.out / "index.html").c_str());

@@ -20,12 +20,6 @@ bool is_tool(const std::string& part) {
          link.rfind("lamp", 0) == 0;
 }
 
-// The user's force at a tick: the wrist reading less the tool's weight (sensor axes = plate axes).
-double hand_force(const test::Tick& k, double tool_mass) {
-  const Eigen::Vector3d weight = k.plate_q.toRotationMatrix().transpose() * (tool_mass * Eigen::Vector3d(0, 0, -9.81));
-  return (k.force - weight).norm();
-}
-
 void note(RunFigures& f, const std::string& check, double t, double value, double limit, const std::string& detail) {
   for (const auto& v : f.violations)
     if (v.check == check) return;  // the first of each check is the one to replay
@@ -100,7 +94,7 @@ RunFigures check_run(const test::LoopRun& run, const robot::ArmModel& model, con
     if (k.mode == kFault && closing > fault_closing + limits.ssm_tolerance)
       note(f, "fault_braking", k.t, closing, fault_closing + limits.ssm_tolerance,
            "a part closed on the hand faster than when the fault came");
-    const double force = hand_force(k, limits.tool_mass);
+    const double force = test::user_force(k, limits.tool_mass);
     f.max_force = std::max(f.max_force, force);
     if (force > limits.quasi_static_force) {
       if (above_since < 0) above_since = k.t;

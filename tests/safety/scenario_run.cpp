@@ -4,14 +4,10 @@
 
 namespace wysiwyf::safety {
 
-namespace {
-
-const robot::ArmModel& puma() {
+const robot::ArmModel& campaign_arm() {
   static const robot::ArmModel model(std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf", "dev");
   return model;
 }
-
-}  // namespace
 
 ScenarioResult run_scenario(const Scenario& scenario, int domain, const std::filesystem::path& dir,
                             const std::string& planner) {
@@ -28,7 +24,7 @@ ScenarioResult run_scenario(const Scenario& scenario, int domain, const std::fil
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.sim_s = run.ticks.empty() ? 0 : run.ticks.back().t - run.ticks.front().t;
   for (const auto& e : errors) run.result.ok = false, run.result.error += e + "; ";
-  r.figures = check_run(run, puma());
+  r.figures = check_run(run, campaign_arm());
   r.log = std::move(run.log);
   return r;
 }

@@ -19,6 +19,9 @@ struct ScenarioResult {
   std::string log;    // the pipeline's output (kept for a replay)
 };
 
+// The arm the campaign runs: the PUMA 560 of config/robots/puma560.urdf, tip dev (loaded once).
+const robot::ArmModel& campaign_arm();
+
 // Runs `scenario` on DDS domain `domain` with its files in `dir`; `planner` adds surface_planner
 // parameters (", name: value" entries: a weakened planner for the campaign's own check).
 ScenarioResult run_scenario(const Scenario& scenario, int domain, const std::filesystem::path& dir,

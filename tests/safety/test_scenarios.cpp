@@ -17,11 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const robot::ArmModel& puma() {
-  static const robot::ArmModel model(std::string(WYSIWYF_CONFIG_DIR) + "/robots/puma560.urdf", "dev");
-  return model;
-}
-
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::path(WYSIWYF_TEST_SCRATCH_DIR) / ("SafetyScenarios." + name);
   fs::remove_all(dir);
@@ -69,7 +64,7 @@ TEST(SafetyChecks, TheAllowedSpeedIsTheStandardsFormula) {
 
 // A run made to break each check: every one of them fires.
 TEST(SafetyChecks, EachCheckFiresOnARunThatBreaksIt) {
-  const robot::ArmClearance clearance(puma());
+  const robot::ArmClearance clearance(campaign_arm());
   test::Tick k;
   k.mode = 1;
   k.q << 0.344932, 0.380005, -3.43618, 0.346061, 1.49034, 3.11254;
@@ -97,12 +92,12 @@ TEST(SafetyChecks, EachCheckFiresOnARunThatBreaksIt) {
     if (i >= 10) t.mode = 2, t.setpoint = Eigen::Vector3d(0.001, 0, 0);  // a switch with a 1 mm step
     if (i == 15) t.setpoint = Eigen::Vector3d(0.01, 0, 0);               // 9 mm in 1 ms: 9 m/s
     if (i == 16) t.force = Eigen::Vector3d(300, 0, 0);                   // a transient beyond 280 N
-    if (i == 17) t.qd[0] = 10 * puma().limits().velocity[0];             // a joint beyond its limit
+    if (i == 17) t.qd[0] = 10 * campaign_arm().limits().velocity[0];     // a joint beyond its limit
     if (i >= 20) t.mode = 3, t.setpoint = Eigen::Vector3d(0.5, 0, 0);    // a fault (holds: no step check)
     if (i >= 25) t.qd *= 3;                                              // closing faster after it
     run.ticks.push_back(t);
   }
-  const RunFigures f = check_run(run, puma());
+  const RunFigures f = check_run(run, campaign_arm());
   std::map<std::string, int> fired;
   for (const auto& v : f.violations) ++fired[v.check];
   for (const char* check : {"separation", "fault_braking", "force", "joint_speed", "setpoint_speed", "switch_step"})
